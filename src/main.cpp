@@ -1,9 +1,21 @@
 // glint command-line entry point; each subcommand lives in its own cmd_*.cpp.
-#include <CLI/CLI.hpp>
+#include <cstdio>
+
+#include "cli.h"
 
 int main(int argc, char** argv) {
-  CLI::App app{"glint: fixed-point specular shading unit simulator"};
+  CLI::App app{"glint: simulator of fixed-point specular shading units (max(0,t)^n)"};
   app.require_subcommand(1);
-  CLI11_PARSE(app, argc, argv);
-  return 0;
+  int status = glint::cli::kExitOk;
+  glint::cli::add_tau_command(app, status);
+  glint::cli::add_fit_command(app, status);
+  glint::cli::add_eval_command(app, status);
+  glint::cli::add_units_command(app, status);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : glint::cli::kExitBadInput;
+  }
+  return status;
 }

@@ -1,0 +1,30 @@
+// Shared plumbing of the glint subcommands (each lives in its own cmd_*.cpp).
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace glint::cli {
+
+// Exit statuses: 0 success, 1 a check failed (e.g. regression), 2 bad input or usage.
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitBadInput = 2;
+
+// Runs `body` and turns glint's exceptions into a message on stderr and an exit status:
+// InputError and std::invalid_argument are bad input (2); anything else is an internal error (3).
+int guarded(const std::function<int()>& body);
+
+// Prints a JSON document on stdout (one document, newline-terminated).
+void print_json(const nlohmann::json& j);
+
+// Parses "r,g,b" into three doubles; throws std::invalid_argument naming the option.
+std::array<double, 3> parse_rgb(const std::string& text, const std::string& option);
+
+void add_tau_command(CLI::App& app, int& status);
+void add_fit_command(CLI::App& app, int& status);
+void add_eval_command(CLI::App& app, int& status);
+void add_units_command(CLI::App& app, int& status);
+
+}  // namespace glint::cli

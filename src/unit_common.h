@@ -1,0 +1,56 @@
+// What every specular datapath unit shares: the per-material constants it is built for, the input
+// front end that turns a float t into the unit's input format, and the tau comparator.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+#include "fixed_point.h"
+
+namespace glint {
+
+// One "slot" of a unit: a material, or a light x material pair when lights are coloured. Plain data
+// derived from the vector header (or later a scene); the unit quantizes what it needs.
+struct MaterialParams {
+  double shininess = 1.0;    // exponent n (gaussian lobes: equivalent 2/omega^2)
+  double tau = 0.0;          // skip threshold, Källberg eq.5 (or eq.9); may be < 0
+  bool always_skip = false;  // c_y <= eps: the lobe is never perceptible
+};
+
+// Default formats: 16-bit input and output, enough for 8-bit display output with guard bits.
+inline constexpr QFormat kDefaultIn = uq(1, 15);
+inline constexpr QFormat kDefaultOut = uq(1, 15);
+
+// Front end: t = r.v or n.h arrives as a float in [-1, 1 + 1e-3]. The unit computes max(0, t)^n, so
+// negative t is clamped to 0 (Källberg eq.1), and t > 1 (normalisation noise of unit vectors) to
+// 1. The clamped value is rounded to nearest-even into the input format.
+inline std::int64_t quantize_input(double t, const QFormat& in) {
+  const double c = t <= 0.0 ? 0.0 : (t >= 1.0 ? 1.0 : t);
+  return Fixed::from_double(c, in, Quant::kRndConv, Overflow::kSat).raw();
+}
+inline double input_value(std::int64_t raw, const QFormat& in) {
+  return std::ldexp(static_cast<double>(raw), -in.frac_bits);
+}
+
+// The comparator threshold for one slot, in the input format. tau is rounded DOWN (floor) so the
+// fixed-point comparator never skips a t that the float test t <= tau would keep: its skip set is a
+// subset of Källberg's. always_skip puts the threshold at 1.0, which every clamped input meets;
+// tau < 0 (a Gaussian lobe visible at every angle) gives -1, which no input meets.
+inline std::int64_t tau_threshold_raw(const MaterialParams& m, const QFormat& in) {
+  if (m.always_skip || m.tau >= 1.0) return in.raw_one();
+  if (m.tau < 0.0) return -1;
+  return Fixed::from_double(m.tau, in, Quant::kTrn, Overflow::kSat).raw();
+}
+
+// TauComparator datapath: skip the highlight when t <= tau (Källberg eq.5).
+inline bool tau_skip(std::int64_t t_raw, std::int64_t tau_raw) {
+  return t_raw <= tau_raw;
+}
+
+// Rounds a non-negative value right by `shift` bits to nearest, ties up (SC_RND). Every unit's
+// final rounding uses it: the ½-ulp term of each error budget.
+inline std::int64_t round_nearest(std::int64_t v, int shift) {
+  return round_shift(v, shift, Quant::kRnd);
+}
+
+}  // namespace glint
