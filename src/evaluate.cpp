@@ -63,6 +63,9 @@ SlotMap make_slots(const VectorHeader& header) {
 }
 
 double reference_value(const SlotMap& slots, std::size_t slot, double t) {
+  // t = cos(phi) <= 1: the slack up to 1 + 1e-3 that vector files allow is float noise of unit
+  // vectors, not a brighter highlight (1.001^5000 would be 147).
+  t = std::min(t, 1.0);
   if (slots.lobe[slot] == Lobe::kGaussian) return gaussian_lobe(t, slots.roughness[slot]);
   return glossy_scalar(t, slots.params[slot].shininess);
 }

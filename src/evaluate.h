@@ -36,7 +36,8 @@ struct SlotMap {
 SlotMap make_slots(const VectorHeader& header);
 
 // The float reference the units are judged against: max(0,t)^n for Phong and Blinn (eq.1-2, the
-// scalar lobe; colour is a separate multiply), exp(-(acos t / omega)^2) for Gaussian lobes (eq.7).
+// scalar lobe; colour is a separate multiply), exp(-(acos t / omega)^2) for Gaussian lobes (eq.7),
+// at t clamped to <= 1.
 double reference_value(const SlotMap& slots, std::size_t slot, double t);
 
 struct ErrorStats {

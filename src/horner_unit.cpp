@@ -7,14 +7,37 @@
 
 namespace glint {
 
-int horner_required_guard(const HornerCoefficients& coeffs) {
-  const std::size_t p = coeffs.c.size() - 1;
-  double deriv = 0;  // bound on |P'| over [0, 1]
-  for (std::size_t k = 1; k <= p; ++k) deriv += static_cast<double>(k) * std::fabs(coeffs.c[k]);
-  const double need = 2.0 * (static_cast<double>(p) - 1.0 + (coeffs.tau_domain ? deriv : 0.0));
+namespace {
+int guard_for(double need) {
   int g = 1;
   while (std::ldexp(1.0, g) < need) ++g;
   return g;
+}
+double derivative_bound(const HornerCoefficients& coeffs) {
+  double deriv = 0;  // bound on |P'| over [0, 1]
+  for (std::size_t k = 1; k < coeffs.c.size(); ++k)
+    deriv += static_cast<double>(k) * std::fabs(coeffs.c[k]);
+  return deriv;
+}
+}  // namespace
+
+int horner_required_guard(const HornerCoefficients& coeffs) {
+  const double p = static_cast<double>(coeffs.c.size() - 1);
+  // u is rounded only on the tau domain; on the full domain u = t exactly.
+  return guard_for(2.0 * (p - 1.0 + (coeffs.tau_domain ? derivative_bound(coeffs) : 0.0)));
+}
+
+int horner_preferred_guard(const HornerCoefficients& coeffs) {
+  const double p = static_cast<double>(coeffs.c.size() - 1);
+  return guard_for(2.0 * (p - 1.0 + derivative_bound(coeffs)));
+}
+
+int horner_max_guard(const HornerCoefficients& coeffs, const QFormat& out) {
+  double sum_abs = 0;
+  for (double c : coeffs.c) sum_abs += std::fabs(c);
+  int bits = 0;  // integer bits of the accumulator
+  while (std::ldexp(1.0, bits) <= sum_abs + 1) ++bits;
+  return (60 - bits) / 2 - out.frac_bits;  // acc * u: bits + 2 fh + sign <= 62
 }
 
 HornerUnit::HornerUnit(const HornerConfig& cfg, const MaterialParams& m,

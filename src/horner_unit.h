@@ -9,7 +9,11 @@
 // coefficients): final rounding ½ ulp_out; the p - 1 inner roundings add 2^-(fh+1) each (scaled by
 // u^k <= 1); rounding u costs |P'| 2^-(fh+1) <= (sum k |c_k|) 2^-(fh+1). Faithful needs
 // (p - 1 + sum k |c_k|) 2^-(fh+1) < 2^-(fo+1): horner_required_guard() picks g = fh - fo with
-// 2^g >= 2 (p - 1 + sum k |c_k|), a factor-2 margin for the coefficients' own quantization.
+// 2^g >= 2 (p - 1 + sum k |c_k|), a factor-2 margin for the coefficients' own quantization. On the
+// full domain u = t is exact and the derivative term is not needed for faithfulness, but
+// horner_preferred_guard() keeps it where the registers allow (horner_max_guard()): the extra bits
+// keep the inner error far below the model's step per input LSB, which keeps the rounded output
+// monotone wherever the model is (faithful rounding alone would allow a 1-ulp step back).
 #pragma once
 
 #include <cstdint>
@@ -34,7 +38,9 @@ struct HornerConfig {
   bool skip = true;
 };
 
-int horner_required_guard(const HornerCoefficients& coeffs);
+int horner_required_guard(const HornerCoefficients& coeffs);                 // faithful minimum
+int horner_preferred_guard(const HornerCoefficients& coeffs);                // + derivative term
+int horner_max_guard(const HornerCoefficients& coeffs, const QFormat& out);  // 62-bit limit
 
 class HornerUnit {
  public:

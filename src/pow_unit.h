@@ -13,7 +13,7 @@
 //   eps_E = same for 2^x on [0, 1] (absolute; 2^x >= 1 makes it relative too)
 //   |out - t^n| <= (2^dy (1 + eps_E) - 1) + ½ ulp_out,     plus tau^n where skipping.
 // The bound grows linearly in n: with the defaults it stays under ½ LSB of an 8-bit display for
-// n <= 1024 (see `glint units` and tests/test_units_exhaustive.cpp).
+// n <= 512 and under 1 LSB for n <= 1024 (tests/test_units_exhaustive.cpp holds it to that).
 #pragma once
 
 #include <cstdint>

@@ -34,10 +34,11 @@ inline double input_value(std::int64_t raw, const QFormat& in) {
 
 // The comparator threshold for one slot, in the input format. tau is rounded DOWN (floor) so the
 // fixed-point comparator never skips a t that the float test t <= tau would keep: its skip set is a
-// subset of Källberg's. always_skip puts the threshold at 1.0, which every clamped input meets;
+// subset of Källberg's. always_skip puts the threshold at the top of the format, which every input
+// meets;
 // tau < 0 (a Gaussian lobe visible at every angle) gives -1, which no input meets.
 inline std::int64_t tau_threshold_raw(const MaterialParams& m, const QFormat& in) {
-  if (m.always_skip || m.tau >= 1.0) return in.raw_one();
+  if (m.always_skip || m.tau >= 1.0) return in.raw_max();
   if (m.tau < 0.0) return -1;
   return Fixed::from_double(m.tau, in, Quant::kTrn, Overflow::kSat).raw();
 }

@@ -306,7 +306,7 @@ std::unique_ptr<SpecularUnit> make_unit(const UnitSpec& spec,
       // Fit every slot first: the datapath width is shared, so the guard is the largest any
       // slot needs.
       std::vector<HornerCoefficients> fits;
-      int guard = 0;
+      int guard = 0, required = 0, max_guard = 64;
       for (const auto& m : slots) {
         FitOptions o;
         o.shininess = m.shininess;
@@ -318,10 +318,12 @@ std::unique_ptr<SpecularUnit> make_unit(const UnitSpec& spec,
         o.constrain_zero = constrain && domain == "tau";
         const FitResult r = fit_power(o);
         HornerCoefficients hc{r.coeffs, domain == "tau", o.constrain_one, o.constrain_zero};
-        guard = std::max(guard, horner_required_guard(hc));
+        guard = std::max(guard, horner_preferred_guard(hc));
+        required = std::max(required, horner_required_guard(hc));
+        max_guard = std::min(max_guard, horner_max_guard(hc, out));
         fits.push_back(std::move(hc));
       }
-      if (c.guard < 0) c.guard = guard;
+      if (c.guard < 0) c.guard = std::max(required, std::min(guard, max_guard));
       config["degree"] = degree;
       config["method"] = method;
       config["domain"] = domain;
