@@ -1,0 +1,408 @@
+// Polynomial fits of t^n: Öztürk's least squares and robust fits, and our thresholded minimax.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+#include <vector>
+
+#include "fit.h"
+#include "reference.h"
+
+namespace glint {
+namespace {
+
+constexpr double kEps = 1e-3;
+
+double tau_for(double n) {
+  return tau_power(n, kEps, 1.0).tau;
+}
+
+FitOptions tau_options(double n, int degree, FitMethod method) {
+  FitOptions o;
+  o.shininess = n;
+  o.degree = degree;
+  o.method = method;
+  o.domain = FitDomain::kTau;
+  o.tau = tau_for(n);
+  return o;
+}
+
+// Deterministic Gaussian noise (splitmix64 + Box-Muller), so the test does not depend on how a
+// standard library implements std::normal_distribution.
+class Noise {
+ public:
+  explicit Noise(std::uint64_t seed) : s_(seed) {}
+  double uniform() {
+    std::uint64_t z = (s_ += 0x9e3779b97f4a7c15ULL);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    z ^= z >> 31;
+    return (static_cast<double>(z >> 11) + 0.5) / 9007199254740992.0;  // (0, 1)
+  }
+  double gaussian() {
+    const double u1 = uniform(), u2 = uniform();
+    return std::sqrt(-2.0 * std::log(u1)) * std::cos(6.283185307179586 * u2);
+  }
+
+ private:
+  std::uint64_t s_;
+};
+
+TEST(FitNames, ParseRoundTrip) {
+  for (FitMethod m : {FitMethod::kLeastSquares, FitMethod::kRobust, FitMethod::kMinimax}) {
+    EXPECT_EQ(parse_fit_method(to_string(m)), m);
+  }
+  EXPECT_EQ(parse_fit_method("least-squares"), FitMethod::kLeastSquares);
+  for (FitDomain d : {FitDomain::kFull, FitDomain::kTau}) {
+    EXPECT_EQ(parse_fit_domain(to_string(d)), d);
+  }
+  EXPECT_STREQ(to_string(FitVariable::kU), "u");
+  EXPECT_THROW(parse_fit_method("spline"), std::invalid_argument);
+  EXPECT_THROW(parse_fit_domain("half"), std::invalid_argument);
+}
+
+// Öztürk Fig.1 (mu = 0, sigma = 1, gamma = 20): the fit improves with the degree, and for low
+// degrees the largest error is at x = 1, the peak of the highlight.
+TEST(OzturkFit, Gamma20ErrorShrinksWithDegreeAndPeaksAtOne) {
+  double prev_max = INFINITY, prev_rms = INFINITY;
+  for (int p = 1; p <= 10; ++p) {
+    FitOptions o;
+    o.shininess = 20.0;
+    o.degree = p;
+    const FitResult r = fit_power(o);
+    ASSERT_EQ(r.coeffs.size(), static_cast<std::size_t>(p) + 1);
+    EXPECT_EQ(r.variable, FitVariable::kT);
+    EXPECT_LT(r.max_abs_error, prev_max) << "p=" << p;
+    EXPECT_LT(r.rms_error, prev_rms) << "p=" << p;
+    prev_max = r.max_abs_error;
+    prev_rms = r.rms_error;
+    if (p <= 5) {
+      EXPECT_GE(r.t_at_max_error, 1.0 - 1.0 / 20000) << "p=" << p;
+    }
+    EXPECT_EQ(r.skipped_error_bound, 0.0);
+  }
+  // Measured: 0.82 at p = 1 down to 1.9e-3 at p = 10.
+  EXPECT_LT(prev_max, 2.5e-3);
+}
+
+TEST(RobustFit, EqualsLeastSquaresOnExactPolynomialData) {
+  std::vector<double> x, y;
+  for (int i = 1; i <= 2000; ++i) {
+    const double t = i / 2000.0;
+    x.push_back(t);
+    y.push_back(0.2 - t + 3.0 * t * t * t);
+  }
+  for (int p : {3, 5}) {
+    const SampleFit ls = fit_samples(x, y, p, FitMethod::kLeastSquares);
+    const SampleFit rb = fit_samples(x, y, p, FitMethod::kRobust);
+    ASSERT_EQ(ls.coeffs.size(), rb.coeffs.size());
+    for (std::size_t k = 0; k < ls.coeffs.size(); ++k) {
+      EXPECT_NEAR(rb.coeffs[k], ls.coeffs[k], 1e-9) << "p=" << p << " k=" << k;
+    }
+    EXPECT_NEAR(rb.coeffs[0], 0.2, 1e-9);
+    EXPECT_NEAR(rb.coeffs[3], 3.0, 1e-8);
+    EXPECT_TRUE(rb.converged);
+    for (double w : rb.weights) ASSERT_GT(w, 1.0 - 1e-12);
+  }
+}
+
+// The pitfall of bisquare weights on noise-free t^n over the full domain: the residuals are the
+// approximation bias, not noise. Most samples sit where t^20 ~ 0 and are fitted closely, so the
+// MAD scale is small and the large bias at the highlight is judged an outlier: the robust fit
+// drops the very region that matters. (Öztürk used robustfit on noisy measured BRDFs, where the
+// residuals really are noise; see RobustFit.RejectsOutliersInNoisyData.)
+TEST(RobustFit, NoiseFreeFullDomainRejectsTheHighlight) {
+  std::vector<double> x, y;
+  for (int i = 1; i <= 2000; ++i) {
+    x.push_back(i / 2000.0);
+    y.push_back(std::pow(x.back(), 20.0));
+  }
+  const SampleFit ls = fit_samples(x, y, 4, FitMethod::kLeastSquares);
+  const SampleFit rb = fit_samples(x, y, 4, FitMethod::kRobust);
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    if (x[i] > 0.95) {
+      ASSERT_EQ(rb.weights[i], 0.0) << x[i];
+    }
+  }
+  EXPECT_GT(std::abs(horner(rb.coeffs, 1.0) - 1.0), 2.0 * std::abs(horner(ls.coeffs, 1.0) - 1.0));
+  FitOptions o;
+  o.shininess = 20.0;
+  o.degree = 4;
+  const FitResult fl = fit_power(o);
+  o.method = FitMethod::kRobust;
+  const FitResult fr = fit_power(o);
+  EXPECT_GT(fr.max_abs_error, 2.0 * fl.max_abs_error);
+}
+
+// With measurement noise above the model bias, bisquare weights do their job: outliers get zero
+// weight and the fit stays close to the truth, while least squares is dragged towards them.
+TEST(RobustFit, RejectsOutliersInNoisyData) {
+  const double n = 50.0;
+  const double tau = tau_for(n);
+  const int count = 2000;
+  Noise noise(42);
+  std::vector<double> x(count), y(count);
+  for (int i = 0; i < count; ++i) {
+    x[i] = tau + (1.0 - tau) * i / (count - 1);
+    y[i] = std::pow(x[i], n) + 0.002 * noise.gaussian();
+  }
+  std::vector<int> outliers;
+  for (int k = 0; k < 20; ++k) outliers.push_back(37 + 97 * k);
+  for (int i : outliers) y[i] += 0.5;
+  for (int p : {6, 8}) {
+    const SampleFit ls = fit_samples(x, y, p, FitMethod::kLeastSquares);
+    const SampleFit rb = fit_samples(x, y, p, FitMethod::kRobust);
+    EXPECT_TRUE(rb.converged);
+    for (int i : outliers) EXPECT_EQ(rb.weights[i], 0.0) << i;
+    double err_ls = 0.0, err_rb = 0.0;
+    for (int j = 0; j <= 20000; ++j) {
+      const double t = tau + (1.0 - tau) * j / 20000.0;
+      const double truth = std::pow(t, n);
+      err_ls = std::max(err_ls, std::abs(horner(ls.coeffs, t) - truth));
+      err_rb = std::max(err_rb, std::abs(horner(rb.coeffs, t) - truth));
+    }
+    EXPECT_LT(err_rb * 3.0, err_ls) << "p=" << p << " ls=" << err_ls << " robust=" << err_rb;
+  }
+}
+
+// Minimax spreads the error evenly over [tau, 1]; least squares lets it pile up at the ends.
+TEST(MinimaxFit, BeatsLeastSquaresOnTauDomain) {
+  for (double n : {10.0, 50.0, 200.0}) {
+    for (int p = 2; p <= 5; ++p) {
+      const FitResult ls = fit_power(tau_options(n, p, FitMethod::kLeastSquares));
+      const FitResult mm = fit_power(tau_options(n, p, FitMethod::kMinimax));
+      EXPECT_TRUE(mm.converged);
+      EXPECT_EQ(mm.variable, FitVariable::kU);
+      EXPECT_GE(ls.max_abs_error, 1.8 * mm.max_abs_error)
+          << "n=" << n << " p=" << p << " ls=" << ls.max_abs_error << " mm=" << mm.max_abs_error;
+    }
+  }
+}
+
+// Chebyshev alternation: at the final reference the error alternates in sign with magnitude |E|,
+// and |E| is the true maximum error.
+void expect_equioscillation(const FitResult& r, const char* what) {
+  ASSERT_TRUE(r.converged) << what;
+  ASSERT_GE(r.reference.size(), 2u) << what;
+  const double e_lev = r.levelled_error;
+  double prev_sign = 0.0;
+  for (double v : r.reference) {
+    const double e = r.value(v) - glossy_scalar(r.to_t(v), r.shininess);
+    EXPECT_NEAR(std::abs(e), e_lev, 1e-6 * e_lev) << what << " v=" << v;
+    const double s = e > 0 ? 1.0 : -1.0;
+    EXPECT_NE(s, prev_sign) << what << " v=" << v;
+    prev_sign = s;
+  }
+  EXPECT_LE(r.max_abs_error, e_lev * (1 + 1e-6)) << what;
+  EXPECT_GE(r.max_abs_error, e_lev * (1 - 1e-4)) << what;
+}
+
+TEST(MinimaxFit, Equioscillates) {
+  for (double n : {10.0, 50.0, 200.0}) {
+    for (int p = 2; p <= 6; ++p) {
+      FitOptions o = tau_options(n, p, FitMethod::kMinimax);
+      const FitResult r = fit_power(o);
+      EXPECT_EQ(r.reference.size(), static_cast<std::size_t>(p) + 2);
+      expect_equioscillation(r, "tau");
+      o.constrain_one = true;
+      const FitResult c = fit_power(o);
+      EXPECT_EQ(c.reference.size(), static_cast<std::size_t>(p) + 1);
+      expect_equioscillation(c, "tau, f(1)=1");
+    }
+  }
+  for (int p = 2; p <= 8; ++p) {
+    FitOptions o;
+    o.shininess = 20.0;
+    o.degree = p;
+    o.method = FitMethod::kMinimax;
+    expect_equioscillation(fit_power(o), "full");
+  }
+}
+
+TEST(Constraints, HoldExactlyForEveryMethodAndDomain) {
+  for (FitDomain dom : {FitDomain::kFull, FitDomain::kTau}) {
+    for (FitMethod m : {FitMethod::kLeastSquares, FitMethod::kRobust, FitMethod::kMinimax}) {
+      for (int cons = 1; cons <= 3; ++cons) {
+        for (int p = 1; p <= 10; ++p) {
+          FitOptions o = tau_options(50.0, p, m);
+          o.domain = dom;
+          o.constrain_one = cons & 1;
+          o.constrain_zero = cons & 2;
+          const FitResult r = fit_power(o);
+          if (o.constrain_one) {
+            EXPECT_NEAR(r.value_at_t(1.0), 1.0, 1e-12)
+                << to_string(dom) << " " << to_string(m) << " p=" << p;
+          }
+          if (o.constrain_zero) {
+            EXPECT_NEAR(r.value_at_t(r.tau), 0.0, 1e-12)
+                << to_string(dom) << " " << to_string(m) << " p=" << p;
+          }
+        }
+      }
+    }
+  }
+}
+
+// In u = (t - tau)/(1 - tau) the monomial basis stays well conditioned: degree 10 still gains.
+TEST(TauFit, HighDegreeKeepsImproving) {
+  for (double n : {50.0, 200.0, 1000.0}) {
+    for (FitMethod m : {FitMethod::kLeastSquares, FitMethod::kMinimax}) {
+      double prev = INFINITY;
+      for (int p = 8; p <= 10; ++p) {
+        const FitResult r = fit_power(tau_options(n, p, m));
+        EXPECT_TRUE(r.converged);
+        EXPECT_LT(r.max_abs_error, 0.5 * prev) << "n=" << n << " p=" << p << " " << to_string(m);
+        prev = r.max_abs_error;
+      }
+      EXPECT_LT(prev, 5e-6);
+    }
+  }
+}
+
+// The shifted variable makes the problem nearly independent of n: t^n on [tau, 1] is
+// exp(n ln(tau + (1 - tau) u)), and n (1 - tau) -> ln(c_y/eps) as n grows (Källberg eq.5).
+TEST(TauFit, DifficultyIsNearlyIndependentOfShininess) {
+  double lo = INFINITY, hi = 0.0;
+  for (double n : {50.0, 100.0, 200.0, 500.0, 1000.0, 2000.0}) {
+    EXPECT_LT(n * (1.0 - tau_for(n)), std::log(1.0 / kEps));
+    const FitResult r = fit_power(tau_options(n, 4, FitMethod::kMinimax));
+    lo = std::min(lo, r.max_abs_error);
+    hi = std::max(hi, r.max_abs_error);
+  }
+  EXPECT_LT(hi, 1.5 * lo);
+}
+
+TEST(TauFit, SkippedRegionBoundIsEpsOverCy) {
+  const FitResult r = fit_power(tau_options(50.0, 4, FitMethod::kMinimax));
+  EXPECT_NEAR(r.skipped_error_bound, kEps, 1e-15);
+  EXPECT_EQ(r.gated_value_at_t(r.tau), 0.0);
+  EXPECT_EQ(r.gated_value_at_t(0.3), 0.0);
+  EXPECT_EQ(r.gated_value_at_t(1.0), r.value(1.0));
+  EXPECT_DOUBLE_EQ(r.value_at_t(r.tau), r.coeffs[0]);
+}
+
+// f(1) = 1 costs little. f(tau) = 0 pins the error at tau to tau^n = eps/c_y, so once the free
+// fit is better than that, the constrained error sits at that floor (the same bound as the
+// skipped region below tau, i.e. imperceptible by the choice of eps).
+TEST(Constraints, StayCloseToUnconstrained) {
+  for (double n : {10.0, 50.0, 200.0}) {
+    for (FitMethod m : {FitMethod::kLeastSquares, FitMethod::kMinimax}) {
+      for (int p = 1; p <= 10; ++p) {
+        FitOptions o = tau_options(n, p, m);
+        const FitResult free = fit_power(o);
+        o.constrain_one = true;
+        const FitResult one = fit_power(o);
+        EXPECT_LE(one.max_abs_error, 3.0 * free.max_abs_error + 1e-12)
+            << "n=" << n << " p=" << p << " " << to_string(m);
+        o.constrain_zero = true;
+        for (bool with_one : {false, true}) {
+          o.constrain_one = with_one;
+          const FitResult z = fit_power(o);
+          const double floor = glossy_scalar(o.tau, n);
+          EXPECT_GE(z.max_abs_error, floor * (1 - 1e-9));
+          EXPECT_LE(z.max_abs_error, std::max(3.0 * free.max_abs_error, floor * (1 + 1e-6)))
+              << "n=" << n << " p=" << p << " " << to_string(m) << " one=" << with_one;
+        }
+      }
+    }
+  }
+}
+
+// Remez must converge over the whole shininess range, both domains, every constraint set.
+TEST(MinimaxFit, ConvergesEverywhere) {
+  for (double n : {1.0, 1.5, 3.7, 20.0, 128.0, 700.0, 2000.0}) {
+    for (FitDomain dom : {FitDomain::kFull, FitDomain::kTau}) {
+      for (int cons = 0; cons < 4; ++cons) {
+        for (int p = 0; p <= 10; ++p) {
+          FitOptions o = tau_options(n, p, FitMethod::kMinimax);
+          o.domain = dom;
+          o.constrain_one = cons & 1;
+          o.constrain_zero = cons & 2;
+          if (p + 1 < static_cast<int>(o.constrain_one) + static_cast<int>(o.constrain_zero)) {
+            EXPECT_THROW(fit_power(o), std::invalid_argument);
+            continue;
+          }
+          const FitResult r = fit_power(o);
+          EXPECT_TRUE(r.converged)
+              << "n=" << n << " " << to_string(dom) << " p=" << p << " cons=" << cons;
+          EXPECT_LE(r.max_abs_error, r.levelled_error * (1 + 1e-6) + 1e-12)
+              << "n=" << n << " " << to_string(dom) << " p=" << p << " cons=" << cons;
+        }
+      }
+    }
+  }
+}
+
+TEST(MinimaxFit, ReproducesPolynomialsExactly) {
+  FitOptions o;
+  o.shininess = 3.0;
+  o.degree = 5;
+  o.method = FitMethod::kMinimax;
+  const FitResult r = fit_power(o);
+  EXPECT_LT(r.max_abs_error, 1e-13);
+  EXPECT_NEAR(r.coeffs[3], 1.0, 1e-12);
+  o.method = FitMethod::kLeastSquares;
+  EXPECT_LT(fit_power(o).max_abs_error, 1e-13);
+}
+
+TEST(MinimaxFit, Degree10IsFast) {
+  for (FitDomain dom : {FitDomain::kFull, FitDomain::kTau}) {
+    FitOptions o = tau_options(50.0, 10, FitMethod::kMinimax);
+    o.domain = dom;
+    double best_ms = INFINITY;
+    for (int rep = 0; rep < 3; ++rep) {  // best of 3: the machine is shared
+      const auto t0 = std::chrono::steady_clock::now();
+      const FitResult r = fit_power(o);
+      const auto t1 = std::chrono::steady_clock::now();
+      ASSERT_TRUE(r.converged);
+      best_ms = std::min(best_ms, std::chrono::duration<double, std::milli>(t1 - t0).count());
+    }
+    EXPECT_LT(best_ms, 50.0) << to_string(dom);
+  }
+}
+
+TEST(FitOptionsCheck, RejectsBadOptions) {
+  FitOptions o;
+  o.degree = -1;
+  EXPECT_THROW(fit_power(o), std::invalid_argument);
+  o.degree = kMaxFitDegree + 1;
+  EXPECT_THROW(fit_power(o), std::invalid_argument);
+  o = FitOptions{};
+  o.shininess = 0.0;
+  EXPECT_THROW(fit_power(o), std::invalid_argument);
+  o = FitOptions{};
+  o.domain = FitDomain::kTau;
+  o.tau = 1.0;
+  EXPECT_THROW(fit_power(o), std::invalid_argument);
+  o = FitOptions{};
+  o.degree = 0;
+  o.constrain_one = o.constrain_zero = true;
+  EXPECT_THROW(fit_power(o), std::invalid_argument);
+  o = FitOptions{};
+  o.samples = 3;
+  EXPECT_THROW(fit_power(o), std::invalid_argument);
+  const std::vector<double> x{0.1, 0.2, 0.3}, y{1, 2, 3};
+  EXPECT_THROW(fit_samples(x, y, 1, FitMethod::kMinimax), std::invalid_argument);
+  EXPECT_THROW(fit_samples(x, y, 3, FitMethod::kLeastSquares), std::invalid_argument);
+  EXPECT_THROW(fit_samples(x, std::vector<double>{1, 2}, 1, FitMethod::kLeastSquares),
+               std::invalid_argument);
+}
+
+TEST(FitSamples, ShiftedDataGivesMonomialsInX) {
+  // Data on [2, 3]: the fit works in (x - 2) internally and hands back coefficients in x.
+  std::vector<double> x, y;
+  for (int i = 0; i <= 100; ++i) {
+    x.push_back(2.0 + i / 100.0);
+    y.push_back(1.0 - 0.5 * x.back() + 0.25 * x.back() * x.back());
+  }
+  const SampleFit f = fit_samples(x, y, 2, FitMethod::kLeastSquares);
+  EXPECT_NEAR(f.coeffs[0], 1.0, 1e-10);
+  EXPECT_NEAR(f.coeffs[1], -0.5, 1e-10);
+  EXPECT_NEAR(f.coeffs[2], 0.25, 1e-10);
+}
+
+}  // namespace
+}  // namespace glint
