@@ -13,18 +13,6 @@ Rgb rgb(const std::array<double, 3>& a) {
   return Rgb{a[0], a[1], a[2]};
 }
 
-Lobe lobe_of(VectorLobe l) {
-  switch (l) {
-    case VectorLobe::kPhong:
-      return Lobe::kPhong;
-    case VectorLobe::kBlinn:
-      return Lobe::kBlinn;
-    case VectorLobe::kGaussian:
-      return Lobe::kGaussian;
-  }
-  return Lobe::kPhong;
-}
-
 }  // namespace
 
 SlotMap make_slots(const VectorHeader& header) {
@@ -39,7 +27,7 @@ SlotMap make_slots(const VectorHeader& header) {
     for (const VectorMaterial& m : header.materials) {
       const double cy =
           map.per_light ? c_y(rgb(header.intensity(l)), rgb(m.specular)) : c_y(rgb(m.specular));
-      const Lobe lobe = lobe_of(m.lobe);
+      const Lobe lobe = m.lobe;
       MaterialParams p;
       TauResult tau;
       if (lobe == Lobe::kGaussian) {

@@ -157,18 +157,6 @@ bool is_white(const std::array<double, 3>& c) {
 
 }  // namespace
 
-const char* to_string(VectorLobe lobe) {
-  switch (lobe) {
-    case VectorLobe::kPhong:
-      return "phong";
-    case VectorLobe::kBlinn:
-      return "blinn";
-    case VectorLobe::kGaussian:
-      return "gaussian";
-  }
-  return "?";
-}
-
 std::size_t VectorHeader::material_index(std::string_view name) const {
   for (std::size_t i = 0; i < materials.size(); ++i) {
     if (materials[i].name == name) return i;

@@ -28,13 +28,14 @@
 #include <vector>
 
 #include "input_error.h"
+#include "reference.h"
 
 namespace glint {
 
 // The material's highlight lobe. (reference.h has the equivalent glint::Lobe; kept separate here.)
-enum class VectorLobe : std::uint8_t { kPhong, kBlinn, kGaussian };
+// The lobe of a material is the reference model's (reference.h).
+using VectorLobe = Lobe;
 
-const char* to_string(VectorLobe lobe);  // "phong", "blinn", "gaussian"
 
 // Format limits of version 1 (documented in traces/README.md).
 inline constexpr int kVectorFormatVersion = 1;
