@@ -1,0 +1,773 @@
+// End-to-end tests of the `glint` command-line tool: every test runs the real binary
+// (GLINT_BINARY_DIR/glint) through the shell, with stdout and stderr captured to files in a
+// per-test temporary directory, and checks the exit status and both streams. Expected values come
+// from the papers' formulas (Källberg eq.5/eq.9, Öztürk Fig.1), from the input files themselves
+// (row counts, t values) or from cross-checks between the CLI's own outputs (JSON vs dump), never
+// from a copied run.
+#include <gtest/gtest.h>
+#include <stdlib.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+const std::string kGlint = GLINT_BINARY_DIR "/glint";
+const std::string kTraces = GLINT_SOURCE_DIR "/traces";
+const std::string kPhongBasic = kTraces + "/phong_basic.vec";
+
+const std::vector<std::string> kAllUnits = {"pow", "schlick", "hast", "horner", "lut"};
+
+std::string quote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) {
+    if (c == '\'')
+      out += "'\\''";
+    else
+      out += c;
+  }
+  return out + "'";
+}
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+void write_text(const fs::path& p, const std::string& text) {
+  std::ofstream out(p, std::ios::binary);
+  out << text;
+  ASSERT_TRUE(out.good()) << p;
+}
+
+std::vector<std::string> split(const std::string& s, char sep) {
+  std::vector<std::string> out;
+  std::string cur;
+  for (char c : s) {
+    if (c == sep) {
+      out.push_back(cur);
+      cur.clear();
+    } else {
+      cur += c;
+    }
+  }
+  out.push_back(cur);
+  return out;
+}
+
+std::vector<std::string> lines_of(const std::string& s) {
+  std::vector<std::string> out = split(s, '\n');
+  if (!out.empty() && out.back().empty()) out.pop_back();
+  return out;
+}
+
+// The t values of a vector file whose rows start with t (the first field), read independently of
+// glint's reader: non-blank, non-comment lines after the `data` line.
+std::vector<double> row_ts(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  bool data = false;
+  std::vector<double> ts;
+  while (std::getline(in, line)) {
+    const auto hash = line.find('#');
+    if (hash != std::string::npos) line.erase(hash);
+    const auto first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos) continue;
+    if (!data) {
+      data = line.compare(first, 4, "data") == 0;
+      continue;
+    }
+    ts.push_back(std::strtod(line.c_str() + first, nullptr));
+  }
+  return ts;
+}
+
+struct CliRun {
+  int status = -1;  // exit status, or -1 if the process did not exit normally
+  std::string out, err;
+};
+
+// Per-test temporary directory under /tmp, removed (with everything in it) at the end.
+class CliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::string tmpl = "/tmp/glint_test_cli.XXXXXX";
+    ASSERT_NE(mkdtemp(tmpl.data()), nullptr);
+    dir_ = tmpl;
+    ASSERT_TRUE(fs::exists(kGlint)) << kGlint << " not built";
+  }
+  void TearDown() override {
+    std::error_code ec;
+    if (!dir_.empty()) fs::remove_all(dir_, ec);
+  }
+
+  // Runs `glint ARGS` (ARGS already shell-quoted where needed) with the temp dir as working
+  // directory.
+  CliRun glint(const std::string& args) {
+    const int n = runs_++;
+    const fs::path out = dir_ / ("stdout." + std::to_string(n));
+    const fs::path err = dir_ / ("stderr." + std::to_string(n));
+    const std::string cmd = "cd " + quote(dir_.string()) + " && " + quote(kGlint) + " " + args +
+                            " >" + quote(out.string()) + " 2>" + quote(err.string()) +
+                            " </dev/null";
+    const int raw = std::system(cmd.c_str());
+    CliRun r;
+    r.status = (raw != -1 && WIFEXITED(raw)) ? WEXITSTATUS(raw) : -1;
+    r.out = read_text(out);
+    r.err = read_text(err);
+    fs::remove(out);
+    fs::remove(err);
+    return r;
+  }
+
+  // Runs glint and parses stdout as exactly one JSON document (exit status must be 0).
+  json glint_json(const std::string& args) {
+    const CliRun r = glint(args);
+    EXPECT_EQ(r.status, 0) << "glint " << args << "\nstderr: " << r.err;
+    EXPECT_TRUE(json::accept(r.out)) << "not one JSON document:\n" << r.out;
+    if (!json::accept(r.out)) return json();
+    return json::parse(r.out);
+  }
+
+  // Files in the temp dir other than the ones the test created itself.
+  std::vector<std::string> files_in_dir() const {
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir_)) names.push_back(e.path().filename());
+    std::sort(names.begin(), names.end());
+    return names;
+  }
+
+  fs::path dir_;
+  int runs_ = 0;
+};
+
+double parse_labelled(const std::string& out, const std::string& label) {
+  std::smatch m;
+  const std::regex re("(^|\n)" + label + " ([-+0-9.eE]+)");
+  if (!std::regex_search(out, m, re)) {
+    ADD_FAILURE() << "no '" << label << " NUMBER' line in:\n" << out;
+    return std::nan("");
+  }
+  return std::stod(m[2]);
+}
+
+// ---------------------------------------------------------------------------------------------
+// glint tau
+
+TEST_F(CliTest, TauTextMatchesKallbergExample) {
+  const CliRun r = glint("tau --shininess 50 --eps 1e-3");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  const double tau = parse_labelled(r.out, "tau");
+  // Källberg & Larsson §2: n = 50, eps = 1e-3 gives tau ~ 0.87.
+  EXPECT_DOUBLE_EQ(std::round(tau * 1000) / 1000, 0.871);
+  EXPECT_NEAR(tau, std::pow(1e-3, 1.0 / 50), 1e-6);  // eq.5, printed with 6 decimals
+  EXPECT_NEAR(parse_labelled(r.out, "c_y"), 1.0, 1e-6);
+}
+
+TEST_F(CliTest, TauJson) {
+  const json j = glint_json("tau --shininess 50 --eps 1e-3 --json");
+  ASSERT_TRUE(j.is_object());
+  EXPECT_NEAR(j.at("tau").get<double>(), std::pow(1e-3, 1.0 / 50), 1e-12);
+  EXPECT_NEAR(j.at("c_y").get<double>(), 1.0, 1e-12);
+  EXPECT_EQ(j.at("always_skip"), false);
+  EXPECT_EQ(j.at("never_skip"), false);
+  EXPECT_DOUBLE_EQ(j.at("eps_effective").get<double>(), 1e-3);
+}
+
+TEST_F(CliTest, TauDimColourAlwaysSkips) {
+  // c_y = 1e-4 (Rec.709 weights sum to 1) is below eps = 1e-3: never perceptible.
+  const json j = glint_json("tau --shininess 50 --eps 1e-3 --color 0.0001,0.0001,0.0001 --json");
+  ASSERT_TRUE(j.is_object());
+  EXPECT_NEAR(j.at("c_y").get<double>(), 1e-4, 1e-12);
+  EXPECT_EQ(j.at("always_skip"), true);
+}
+
+TEST_F(CliTest, TauColourUsesRec709Luminance) {
+  const json j = glint_json("tau --shininess 20 --eps 1e-3 --color 0.2,0.5,0.1 --json");
+  ASSERT_TRUE(j.is_object());
+  const double cy = 0.2126 * 0.2 + 0.7152 * 0.5 + 0.0722 * 0.1;
+  EXPECT_NEAR(j.at("c_y").get<double>(), cy, 1e-12);
+  EXPECT_NEAR(j.at("tau").get<double>(), std::pow(1e-3 / cy, 1.0 / 20), 1e-12);
+  EXPECT_EQ(j.at("always_skip"), false);
+}
+
+TEST_F(CliTest, TauFourLightsQuarterEps) {
+  const json one = glint_json("tau --shininess 50 --eps 1e-3 --json");
+  const json four = glint_json("tau --shininess 50 --eps 1e-3 --lights 4 --json");
+  ASSERT_TRUE(one.is_object());
+  ASSERT_TRUE(four.is_object());
+  EXPECT_EQ(four.at("lights"), 4);
+  EXPECT_NEAR(four.at("eps_effective").get<double>(), 2.5e-4, 1e-18);
+  EXPECT_NEAR(four.at("tau").get<double>(), std::pow(2.5e-4, 1.0 / 50), 1e-12);
+  EXPECT_LT(four.at("tau").get<double>(), one.at("tau").get<double>());
+}
+
+TEST_F(CliTest, TauGaussianWithRoughness) {
+  // Källberg eq.9: c_y exp(-(acos t / omega)^2) = eps  =>  tau = cos(omega sqrt(ln(c_y/eps))).
+  const double omega = 0.2;
+  const json j = glint_json("tau --lobe gaussian --roughness 0.2 --eps 1e-3 --json");
+  ASSERT_TRUE(j.is_object());
+  EXPECT_EQ(j.at("lobe"), "gaussian");
+  EXPECT_NEAR(j.at("tau").get<double>(), std::cos(omega * std::sqrt(std::log(1e3))), 1e-9);
+  EXPECT_EQ(j.at("always_skip"), false);
+  EXPECT_EQ(j.at("never_skip"), false);
+
+  const CliRun text = glint("tau --lobe gaussian --roughness 0.2 --eps 1e-3");
+  ASSERT_EQ(text.status, 0) << text.err;
+  EXPECT_NEAR(parse_labelled(text.out, "tau"), std::cos(omega * std::sqrt(std::log(1e3))), 1e-6);
+}
+
+TEST_F(CliTest, TauGaussianWithoutRoughnessIsBadInput) {
+  const CliRun r = glint("tau --lobe gaussian --eps 1e-3");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("roughness"), std::string::npos) << r.err;
+}
+
+TEST_F(CliTest, TauZeroShininessIsBadInput) {
+  const CliRun r = glint("tau --shininess 0 --eps 1e-3");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("shininess"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+}
+
+TEST_F(CliTest, TauMissingEpsIsBadInput) {
+  const CliRun r = glint("tau --shininess 50");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--eps"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+}
+
+TEST_F(CliTest, TauBadNumbersAreBadInput) {
+  for (const char* args : {"tau --shininess 50 --eps 0", "tau --shininess 50 --eps -1",
+                           "tau --shininess 50 --eps 1e-3 --color 1,1",
+                           "tau --shininess 50 --eps 1e-3 --color 1,nan,1",
+                           "tau --shininess 50 --eps 1e-3 --lights 0"}) {
+    const CliRun r = glint(args);
+    EXPECT_EQ(r.status, 2) << args;
+    EXPECT_FALSE(r.err.empty()) << args;
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// glint fit
+
+double poly(const std::vector<double>& c, double x) {
+  double y = 0;
+  for (auto it = c.rbegin(); it != c.rend(); ++it) y = y * x + *it;
+  return y;
+}
+
+TEST_F(CliTest, FitFullDomainMaxErrorAtOne) {
+  const json j = glint_json("fit --shininess 20 --degree 4 --json");
+  ASSERT_TRUE(j.is_object());
+  const auto c = j.at("coefficients").get<std::vector<double>>();
+  ASSERT_EQ(c.size(), 5u);
+  const double max_err = j.at("max_abs_error").get<double>();
+  EXPECT_GT(max_err, 0);
+  // Öztürk et al. Fig.1: for p <= 5 the largest error of the LS fit sits at x = 1.
+  EXPECT_EQ(j.at("t_at_max_error").get<double>(), 1.0);
+  // The reported coefficients really give that error: |P(1) - 1| is the maximum, and no t in
+  // (0, 1] does worse.
+  EXPECT_NEAR(std::abs(poly(c, 1.0) - 1.0), max_err, 1e-9);
+  double sampled = 0;
+  for (int i = 1; i <= 4000; ++i) {
+    const double t = i / 4000.0;
+    sampled = std::max(sampled, std::abs(poly(c, t) - std::pow(t, 20)));
+  }
+  EXPECT_LE(sampled, max_err * (1 + 1e-9));
+}
+
+TEST_F(CliTest, FitMaxErrorAtOneForLowDegrees) {
+  for (int p = 1; p <= 5; ++p) {
+    const json j = glint_json("fit --shininess 20 --degree " + std::to_string(p) + " --json");
+    ASSERT_TRUE(j.is_object());
+    EXPECT_EQ(j.at("coefficients").size(), static_cast<std::size_t>(p + 1)) << p;
+    EXPECT_EQ(j.at("t_at_max_error").get<double>(), 1.0) << "degree " << p;
+  }
+}
+
+TEST_F(CliTest, FitMinimaxBeatsLeastSquaresOnTauDomain) {
+  const json mm = glint_json(
+      "fit --shininess 20 --degree 4 --method minimax --domain tau "
+      "--constrain --json");
+  const json ls =
+      glint_json("fit --shininess 20 --degree 4 --method ls --domain tau --constrain --json");
+  ASSERT_TRUE(mm.is_object());
+  ASSERT_TRUE(ls.is_object());
+  EXPECT_LT(mm.at("max_abs_error").get<double>(), ls.at("max_abs_error").get<double>());
+  for (const json* j : {&mm, &ls}) {
+    EXPECT_NEAR(j->at("tau").get<double>(), std::pow(1e-3, 1.0 / 20), 1e-12);
+    // Constrained on the tau domain: P(u=0) = 0 and P(u=1) = 1.
+    const auto c = j->at("coefficients").get<std::vector<double>>();
+    ASSERT_EQ(c.size(), 5u);
+    EXPECT_NEAR(poly(c, 0.0), 0.0, 1e-12);
+    EXPECT_NEAR(poly(c, 1.0), 1.0, 1e-12);
+    EXPECT_EQ(j->at("constrain_one"), true);
+    EXPECT_EQ(j->at("constrain_zero"), true);
+  }
+}
+
+TEST_F(CliTest, FitBadOptions) {
+  for (const char* args :
+       {"fit --shininess 0 --degree 4", "fit --degree 4", "fit --shininess 20 --degree 0",
+        "fit --shininess 20 --degree 11", "fit --shininess 20 --method foo",
+        "fit --shininess 20 --domain tau --color 0,0,0"}) {
+    const CliRun r = glint(args);
+    EXPECT_EQ(r.status, 2) << args;
+    EXPECT_FALSE(r.err.empty()) << args;
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// glint units
+
+TEST_F(CliTest, UnitsListsAllUnits) {
+  const CliRun r = glint("units");
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const auto& u : kAllUnits) {
+    EXPECT_TRUE(std::regex_search(r.out, std::regex("(^|\n)" + u + " "))) << u << " missing in:\n"
+                                                                          << r.out;
+  }
+}
+
+TEST_F(CliTest, UnitsJsonKeysHaveDefaults) {
+  const json j = glint_json("units --json");
+  ASSERT_TRUE(j.is_object());
+  ASSERT_TRUE(j.at("units").is_array());
+  std::set<std::string> names;
+  for (const auto& u : j.at("units")) {
+    const std::string name = u.at("name");
+    names.insert(name);
+    ASSERT_TRUE(u.at("keys").is_array()) << name;
+    EXPECT_FALSE(u.at("keys").empty()) << name;
+    std::set<std::string> keys;
+    for (const auto& k : u.at("keys")) {
+      EXPECT_FALSE(k.at("key").get<std::string>().empty()) << name;
+      EXPECT_FALSE(k.at("default").get<std::string>().empty()) << name << " " << k.at("key");
+      EXPECT_FALSE(k.at("meaning").get<std::string>().empty()) << name << " " << k.at("key");
+      keys.insert(k.at("key").get<std::string>());
+    }
+    for (const char* common : {"in", "out", "skip"})
+      EXPECT_EQ(keys.count(common), 1u) << name << " lacks key " << common;
+  }
+  EXPECT_EQ(names, std::set<std::string>(kAllUnits.begin(), kAllUnits.end()));
+}
+
+// Spelling every listed default out in a SPEC must be accepted and give the default unit.
+TEST_F(CliTest, UnitsDefaultsAreAcceptedAsSpecs) {
+  const json cat = glint_json("units --json");
+  const json defaults = glint_json("eval " + quote(kPhongBasic) + " --json");
+  ASSERT_TRUE(cat.is_object());
+  ASSERT_TRUE(defaults.is_object());
+  std::string args;
+  for (const auto& u : cat.at("units")) {
+    std::string spec = u.at("name").get<std::string>() + ":";
+    bool first = true;
+    for (const auto& k : u.at("keys")) {
+      spec += (first ? "" : ",") + k.at("key").get<std::string>() + "=" +
+              k.at("default").get<std::string>();
+      first = false;
+    }
+    args += " --unit " + quote(spec);
+  }
+  const json explicit_ = glint_json("eval " + quote(kPhongBasic) + args + " --json");
+  ASSERT_TRUE(explicit_.is_object());
+  ASSERT_EQ(explicit_.at("units").size(), defaults.at("units").size());
+  for (std::size_t i = 0; i < defaults.at("units").size(); ++i) {
+    const json& a = defaults.at("units")[i];
+    const json& b = explicit_.at("units")[i];
+    EXPECT_EQ(a.at("spec"), b.at("spec"));
+    EXPECT_EQ(a.at("error_vs_reference"), b.at("error_vs_reference")) << a.at("unit");
+    EXPECT_EQ(a.at("skipped"), b.at("skipped")) << a.at("unit");
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// glint eval
+
+TEST_F(CliTest, EvalTableListsFiveUnits) {
+  const std::size_t rows = row_ts(kPhongBasic).size();
+  ASSERT_GT(rows, 0u);
+  const CliRun r = glint("eval " + quote(kPhongBasic));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find(std::to_string(rows) + " vectors"), std::string::npos) << r.out;
+  for (const auto& u : kAllUnits) {
+    EXPECT_TRUE(std::regex_search(r.out, std::regex("(^|\n)" + u + " +" + std::to_string(rows))))
+        << u << " row missing in:\n"
+        << r.out;
+  }
+}
+
+TEST_F(CliTest, EvalJson) {
+  const std::vector<double> ts = row_ts(kPhongBasic);
+  ASSERT_FALSE(ts.empty());
+  const json j = glint_json("eval " + quote(kPhongBasic) + " --json");
+  ASSERT_TRUE(j.is_object());
+  EXPECT_EQ(j.at("rows"), ts.size());
+  ASSERT_TRUE(j.at("units").is_array());
+  std::vector<std::string> names;
+  // phong_basic: n = 50, eps = 1e-3, c_y = 1. Its t grid (step 0.002) stays far from tau in
+  // input ulps, so the comparator skips exactly the rows with t <= tau.
+  const double tau = std::pow(1e-3, 1.0 / 50);
+  const auto skipped = static_cast<std::size_t>(
+      std::count_if(ts.begin(), ts.end(), [&](double t) { return t <= tau; }));
+  for (const auto& u : j.at("units")) {
+    const std::string name = u.at("unit");
+    names.push_back(name);
+    EXPECT_EQ(u.at("vectors"), ts.size()) << name;
+    EXPECT_EQ(u.at("skipped"), skipped) << name;
+    EXPECT_EQ(u.at("error_vs_reference").at("count"), ts.size()) << name;
+    const double ulps = u.at("datapath_error_ulps").at("max");
+    if (name == "schlick") {
+      EXPECT_LE(ulps, 0.5 + 1e-9) << "schlick must be correctly rounded";
+    }
+    if (name == "schlick" || name == "hast" || name == "horner") {
+      EXPECT_LT(ulps, 1.0) << name << " must be faithful";
+    }
+    if (name == "pow" || name == "lut") {
+      ASSERT_TRUE(u.at("error_bound").is_number()) << name;
+      EXPECT_LE(u.at("error_vs_reference").at("max_abs").get<double>(),
+                u.at("error_bound").get<double>())
+          << name << " exceeds its stated bound";
+    }
+  }
+  EXPECT_EQ(names, kAllUnits);
+}
+
+TEST_F(CliTest, EvalSelectedUnitsOnly) {
+  const std::string args = "eval " + quote(kPhongBasic) + " --unit hast:d=3 --unit lut:bits=5";
+  const json j = glint_json(args + " --json");
+  ASSERT_TRUE(j.is_object());
+  ASSERT_EQ(j.at("units").size(), 2u);
+  EXPECT_EQ(j.at("units")[0].at("unit"), "hast");
+  EXPECT_EQ(j.at("units")[1].at("unit"), "lut");
+  EXPECT_NE(j.at("units")[0].at("spec").get<std::string>().find("d=3"), std::string::npos);
+  EXPECT_NE(j.at("units")[1].at("spec").get<std::string>().find("bits=5"), std::string::npos);
+
+  const CliRun r = glint(args);
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const auto& u : kAllUnits) {
+    const bool listed = std::regex_search(r.out, std::regex("(^|\n)" + u + " +[0-9]"));
+    EXPECT_EQ(listed, u == "hast" || u == "lut") << u << " in:\n" << r.out;
+  }
+}
+
+struct BadSpec {
+  const char* spec;
+  const char* names;  // what the message must mention
+};
+
+TEST_F(CliTest, EvalBadUnitSpecs) {
+  const BadSpec cases[] = {
+      {"foo", "foo"},
+      {"hast:zz=1", "zz"},
+      {"hast:d=99", "'d'"},
+      {"horner:method=foo", "'method'"},
+      {"schlick:in=xq1.15", "'in'"},
+      {"lut:bits=abc", "'bits'"},
+      {"pow:skip=maybe", "'skip'"},
+      {"horner:degree=11", "'degree'"},
+      {"hast:d=3,d=4", "'d'"},
+  };
+  for (const auto& c : cases) {
+    const CliRun r =
+        glint("eval " + quote(kPhongBasic) + " --unit " + quote(c.spec) + " --dump out.csv");
+    EXPECT_EQ(r.status, 2) << c.spec;
+    EXPECT_NE(r.err.find(c.names), std::string::npos) << c.spec << ": " << r.err;
+    EXPECT_TRUE(r.out.empty()) << c.spec << ": " << r.out;
+    EXPECT_FALSE(fs::exists(dir_ / "out.csv")) << c.spec;
+  }
+}
+
+struct DumpRow {
+  std::map<std::string, std::string> f;
+  double num(const std::string& k) const { return std::stod(f.at(k)); }
+};
+
+std::vector<DumpRow> read_csv(const fs::path& p, std::vector<std::string>* header) {
+  const auto lines = lines_of(read_text(p));
+  std::vector<DumpRow> rows;
+  if (lines.empty()) return rows;
+  *header = split(lines[0], ',');
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    const auto fields = split(lines[i], ',');
+    EXPECT_EQ(fields.size(), header->size()) << "CSV line " << i + 1 << ": " << lines[i];
+    DumpRow r;
+    for (std::size_t k = 0; k < std::min(fields.size(), header->size()); ++k)
+      r.f[(*header)[k]] = fields[k];
+    rows.push_back(std::move(r));
+  }
+  return rows;
+}
+
+TEST_F(CliTest, EvalDumpCsvAgreesWithJson) {
+  const std::vector<double> ts = row_ts(kPhongBasic);
+  ASSERT_FALSE(ts.empty());
+  const json j = glint_json("eval " + quote(kPhongBasic) + " --dump out.csv --json");
+  ASSERT_TRUE(j.is_object());
+  ASSERT_TRUE(fs::exists(dir_ / "out.csv"));
+  // Nothing but out.csv is left beside it (no temporary).
+  EXPECT_EQ(files_in_dir(), std::vector<std::string>{"out.csv"});
+
+  std::vector<std::string> header;
+  const auto rows = read_csv(dir_ / "out.csv", &header);
+  const std::size_t units = j.at("units").size();
+  ASSERT_EQ(units, kAllUnits.size());
+  ASSERT_EQ(rows.size(), ts.size() * units);
+  for (const char* col : {"t", "t_raw", "unit", "reference", "model", "fixed", "fixed_raw",
+                          "skipped", "line", "material"}) {
+    EXPECT_EQ(std::count(header.begin(), header.end(), col), 1) << col;
+  }
+
+  const double tau = std::pow(1e-3, 1.0 / 50);
+  std::map<std::string, double> max_err;
+  std::map<std::string, std::size_t> skipped, count;
+  std::size_t bad_rows = 0;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const DumpRow& r = rows[i];
+    const std::string unit = r.f.at("unit");
+    const double t = r.num("t"), ref = r.num("reference"), fixed = r.num("fixed");
+    const long long fixed_raw = std::stoll(r.f.at("fixed_raw"));
+    const bool skip = r.f.at("skipped") == "1";
+    bool ok = true;
+    ok &= unit == kAllUnits[i % units];  // rows in file order, units in --unit order
+    ok &= t == ts[i / units];
+    ok &= r.f.at("material") == "white";
+    ok &= std::abs(ref - std::pow(std::max(0.0, std::min(t, 1.0)), 50)) <= 1e-12;
+    ok &= std::abs(std::stoll(r.f.at("t_raw")) - std::clamp(t, 0.0, 1.0) * 32768) <= 0.5;
+    ok &= fixed == std::ldexp(static_cast<double>(fixed_raw), -15);  // default out = uq1.15
+    ok &= skip == (t <= tau);
+    ok &= !skip || fixed_raw == 0;         // a skipped request gives exactly 0
+    ok &= t != 1.0 || fixed_raw == 32768;  // every unit gives exactly 1.0 at t = 1
+    if (!ok && ++bad_rows <= 5) ADD_FAILURE() << "inconsistent dump row " << i + 2;
+    max_err[unit] = std::max(max_err[unit], std::abs(fixed - ref));
+    skipped[unit] += skip;
+    ++count[unit];
+  }
+  EXPECT_EQ(bad_rows, 0u);
+  for (const auto& u : j.at("units")) {
+    const std::string name = u.at("unit");
+    EXPECT_EQ(count[name], ts.size()) << name;
+    EXPECT_EQ(u.at("skipped"), skipped[name]) << name;
+    EXPECT_NEAR(u.at("error_vs_reference").at("max_abs").get<double>(), max_err[name], 1e-15)
+        << name;
+  }
+}
+
+TEST_F(CliTest, EvalDumpOnlySelectedUnits) {
+  const std::size_t n = row_ts(kPhongBasic).size();
+  const CliRun r = glint("eval " + quote(kPhongBasic) + " --unit hast:d=3 --unit lut:bits=5" +
+                         " --dump out.csv");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto lines = lines_of(read_text(dir_ / "out.csv"));
+  EXPECT_EQ(lines.size(), 2 * n + 1);
+}
+
+TEST_F(CliTest, EvalAllShippedTraces) {
+  for (const auto& e : fs::directory_iterator(kTraces)) {
+    if (e.path().extension() != ".vec") continue;
+    const json j = glint_json("eval " + quote(e.path().string()) + " --json");
+    ASSERT_TRUE(j.is_object()) << e.path();
+    for (const auto& u : j.at("units")) {
+      EXPECT_EQ(u.at("vectors"), j.at("rows")) << e.path();
+      const std::string name = u.at("unit");
+      const double ulps = u.at("datapath_error_ulps").at("max");
+      if (name == "schlick") {
+        EXPECT_LE(ulps, 0.5 + 1e-9) << e.path();
+      }
+      if (name == "hast" || name == "horner") {
+        EXPECT_LT(ulps, 1.0) << e.path() << " " << name;
+      }
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Bad vector input
+
+const char* const kHeader =
+    "# test vectors\n"                                         // line 1
+    "glint-vectors 1\n"                                        // line 2
+    "eps 1e-3\n"                                               // line 3
+    "lights 1\n"                                               // line 4
+    "material white specular=1,1,1 shininess=50 lobe=phong\n"  // line 5
+    "columns t material\n"                                     // line 6
+    "data\n";                                                  // line 7
+constexpr int kHeaderLines = 7;
+
+struct BadRow {
+  const char* what;
+  const char* row;
+  const char* field;
+};
+
+TEST_F(CliTest, EvalBadRowsNameFileAndLine) {
+  const BadRow cases[] = {
+      {"non-numeric t", "abc white", "'t'"},
+      {"nan", "nan white", "'t'"},
+      {"inf", "-inf white", "'t'"},
+      {"missing column", "0.5", "'material'"},
+      {"unknown material", "0.5 black", "'material'"},
+      {"t above 1.001", "2.0 white", "'t'"},
+      {"t below -1", "-1.5 white", "'t'"},
+      {"hex float", "0x1p-1 white", "'t'"},
+      {"extra field", "0.5 white 7", "'columns'"},
+      {"empty field", "0.5,,white", "'material'"},
+  };
+  // Enough good rows before the bad one that the dump has already received output.
+  const int good_rows = 3000;
+  std::string good;
+  for (int i = 0; i < good_rows; ++i) good += std::to_string(0.5 + i / 10000.0) + " white\n";
+  int k = 0;
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.what);
+    const std::string name = "bad" + std::to_string(k++) + ".vec";
+    const fs::path vec = dir_ / name;
+    write_text(vec, kHeader + good + c.row + "\n0.9 white\n");
+    const int line = kHeaderLines + good_rows + 1;
+    const CliRun r = glint("eval " + quote(vec.string()) + " --dump out.csv");
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find(vec.string() + ":" + std::to_string(line) + ":"), std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find(c.field), std::string::npos) << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+    // No out.csv and no temporary beside it: only the input files are left.
+    for (const auto& f : files_in_dir()) EXPECT_EQ(f.rfind("bad", 0), 0u) << "left behind: " << f;
+
+    // Without --dump, with --json: the same error, no JSON on stdout.
+    const CliRun rj = glint("eval " + quote(vec.string()) + " --json");
+    EXPECT_EQ(rj.status, 2);
+    EXPECT_NE(rj.err.find(vec.string() + ":" + std::to_string(line) + ":"), std::string::npos)
+        << rj.err;
+    EXPECT_TRUE(rj.out.empty()) << rj.out;
+  }
+}
+
+TEST_F(CliTest, EvalBadHeaderNamesFileAndLine) {
+  struct Case {
+    const char* what;
+    std::string text;
+    int line;
+    const char* field;
+  };
+  const Case cases[] = {
+      {"unknown keyword",
+       "glint-vectors 1\neps 1e-3\ngamma 2.2\nlights 1\n"
+       "material white specular=1,1,1 shininess=50 lobe=phong\ncolumns t material\ndata\n0.5 "
+       "white\n",
+       3, "'header'"},
+      {"unknown attribute",
+       "glint-vectors 1\neps 1e-3\nlights 1\n"
+       "material white specular=1,1,1 shininess=50 lobe=phong sheen=1\ncolumns t material\ndata\n",
+       4, "'material'"},
+      {"unsupported version", "# v2\nglint-vectors 2\n", 2, "'version'"},
+      {"bad eps",
+       "glint-vectors 1\neps -1\nlights 1\n"
+       "material white specular=1,1,1 shininess=50 lobe=phong\ncolumns t material\ndata\n",
+       2, "'eps'"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.what);
+    const fs::path vec = dir_ / "hdr.vec";
+    write_text(vec, c.text);
+    const CliRun r = glint("eval " + quote(vec.string()) + " --dump out.csv");
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find(vec.string() + ":" + std::to_string(c.line) + ":"), std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find(c.field), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "out.csv"));
+    EXPECT_EQ(files_in_dir(), std::vector<std::string>{"hdr.vec"});
+  }
+}
+
+TEST_F(CliTest, EvalFailureKeepsPreviousDump) {
+  const fs::path vec = dir_ / "bad.vec";
+  write_text(vec, std::string(kHeader) + "0.5 white\n0.7 black\n");
+  write_text(dir_ / "out.csv", "previous\n");
+  const CliRun r = glint("eval " + quote(vec.string()) + " --dump out.csv");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find(vec.string() + ":" + std::to_string(kHeaderLines + 2) + ":"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(read_text(dir_ / "out.csv"), "previous\n");
+  EXPECT_EQ(files_in_dir(), (std::vector<std::string>{"bad.vec", "out.csv"}));
+}
+
+TEST_F(CliTest, EvalNonexistentInput) {
+  const std::string missing = (dir_ / "no_such.vec").string();
+  const CliRun r = glint("eval " + quote(missing) + " --dump out.csv");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find(missing), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  EXPECT_TRUE(files_in_dir().empty());
+}
+
+TEST_F(CliTest, EvalEmptyStreamIsValid) {
+  const fs::path vec = dir_ / "empty.vec";
+  write_text(vec, kHeader);
+  const json j = glint_json("eval " + quote(vec.string()) + " --json --dump out.csv");
+  ASSERT_TRUE(j.is_object());
+  EXPECT_EQ(j.at("rows"), 0);
+  for (const auto& u : j.at("units")) EXPECT_EQ(u.at("vectors"), 0);
+  EXPECT_EQ(lines_of(read_text(dir_ / "out.csv")).size(), 1u);  // the header only
+}
+
+// Known CLI bugs, reported but not yet fixed: enable these tests once they are.
+// A --dump path that cannot be created is a bad option (README: exit status 2), not an internal
+// error; today it exits 3 with "glint: internal error: cannot create temporary file ...".
+TEST_F(CliTest, DISABLED_EvalUncreatableDumpIsBadInput) {
+  const CliRun r = glint("eval " + quote(kPhongBasic) + " --dump no_such_dir/out.csv");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("no_such_dir/out.csv"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+}
+
+// `glint tau --help` documents "Gaussian roughness omega in (0, 1]" (as does the vector format),
+// but --roughness 2 is accepted (exit 0, "skip never").
+TEST_F(CliTest, DISABLED_TauRoughnessAboveOneIsBadInput) {
+  const CliRun r = glint("tau --lobe gaussian --roughness 2 --eps 1e-3");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("roughness"), std::string::npos) << r.err;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Usage
+
+TEST_F(CliTest, NoSubcommandFails) {
+  const CliRun r = glint("");
+  EXPECT_NE(r.status, 0);
+  EXPECT_FALSE(r.err.empty());
+}
+
+TEST_F(CliTest, UnknownOptionIsUsageError) {
+  const CliRun r = glint("eval " + quote(kPhongBasic) + " --bogus");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--bogus"), std::string::npos) << r.err;
+}
+
+TEST_F(CliTest, EvalHelp) {
+  const CliRun r = glint("eval --help");
+  EXPECT_EQ(r.status, 0) << r.err;
+  for (const char* opt : {"--unit", "--dump", "--json"})
+    EXPECT_NE(r.out.find(opt), std::string::npos) << opt << " not in:\n" << r.out;
+}
+
+}  // namespace
