@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
@@ -35,7 +36,14 @@ int run_eval(const EvalOptions& o) {
 
   std::unique_ptr<AtomicOutputFile> dump;
   if (!o.dump.empty()) {
-    dump = std::make_unique<AtomicOutputFile>(o.dump);
+    std::error_code ec;
+    if (std::filesystem::equivalent(o.vectors, o.dump, ec))
+      throw std::invalid_argument(fmt::format("--dump {}: is the input vector file", o.dump));
+    try {
+      dump = std::make_unique<AtomicOutputFile>(o.dump);
+    } catch (const std::runtime_error& e) {
+      throw std::invalid_argument(fmt::format("--dump: {}", e.what()));
+    }
     dump->stream() << "line,material,light,x,y,t,t_raw,unit,reference,model,fixed,fixed_raw,"
                       "skipped\n";
   }
@@ -58,7 +66,13 @@ int run_eval(const EvalOptions& o) {
       std::fprintf(stderr, "\r%llu vectors", static_cast<unsigned long long>(reader.rows_read()));
   }
   if (progress && reader.rows_read() >= 0x100000) std::fprintf(stderr, "\n");
-  if (dump) dump->commit();
+  if (dump) {
+    try {
+      dump->commit();
+    } catch (const std::runtime_error& e) {
+      throw std::invalid_argument(fmt::format("--dump: {}", e.what()));
+    }
+  }
 
   if (o.json) {
     nlohmann::json j = ev.to_json();

@@ -29,7 +29,8 @@ int run_tau(const TauOptions& o) {
   TauResult r;
   double n = o.shininess;
   if (lobe == Lobe::kGaussian) {
-    if (!(o.roughness > 0)) throw std::invalid_argument("--roughness must be > 0 for gaussian");
+    if (!(o.roughness > 0 && o.roughness <= 1))
+      throw std::invalid_argument("--roughness must be in (0, 1] for gaussian (Källberg eq.7)");
     r = tau_gaussian(o.roughness, o.eps, cy, o.lights);
     if (!(n > 0)) n = gaussian_equivalent_shininess(o.roughness);
   } else {

@@ -108,8 +108,7 @@ class KeyReader {
   }
   [[noreturn]] void fail(const std::string& key, const std::string& value,
                          const std::string& why) const {
-    throw std::invalid_argument(
-        fmt::format("unit '{}': key '{}' = '{}': {}", info_.name, key, value, why));
+    throw std::invalid_argument(fmt::format("key '{}' = '{}': {}", key, value, why));
   }
 
  private:
@@ -243,6 +242,8 @@ UnitSpec parse_unit_spec(std::string_view text) {
   if (spec.name.empty()) throw std::invalid_argument("empty unit spec");
   if (colon == std::string_view::npos) return spec;
   std::string_view rest = text.substr(colon + 1);
+  if (rest.empty())
+    throw std::invalid_argument(fmt::format("unit spec '{}': no keys after ':'", text));
   while (!rest.empty()) {
     const auto comma = rest.find(',');
     const std::string_view item = rest.substr(0, comma);
@@ -275,15 +276,15 @@ const UnitInfo& unit_info(std::string_view name) {
       fmt::format("unknown unit '{}' (known: pow, schlick, hast, horner, lut)", name));
 }
 
-std::unique_ptr<SpecularUnit> make_unit(const UnitSpec& spec,
-                                        const std::vector<MaterialParams>& slots) {
-  const UnitInfo& info = unit_info(spec.name);
+namespace {
+std::unique_ptr<SpecularUnit> build_unit(const UnitSpec& spec, const UnitInfo& info,
+                                         const std::vector<MaterialParams>& slots) {
   const KeyReader keys(spec, info);
   const QFormat in = keys.format("in", kDefaultIn);
   const QFormat out = keys.format("out", kDefaultOut);
   const bool skip = keys.flag("skip", true);
   nlohmann::json config = {{"in", in.name()}, {"out", out.name()}, {"skip", on_off(skip)}};
-  try {
+  {
     if (spec.name == "schlick") {
       SchlickConfig c{in, out, keys.format("n", SchlickConfig{}.n_format), skip};
       config["n"] = c.n_format.name();
@@ -359,8 +360,20 @@ std::unique_ptr<SpecularUnit> make_unit(const UnitSpec& spec,
     config["bits"] = c.bits;
     config["table_frac"] = c.table_frac;
     return wrap("lut", config, in, out, build_all<LutUnit>(c, slots));
+  }
+}
+}  // namespace
+
+std::unique_ptr<SpecularUnit> make_unit(const UnitSpec& spec,
+                                        const std::vector<MaterialParams>& slots) {
+  const UnitInfo& info = unit_info(spec.name);
+  try {
+    return build_unit(spec, info, slots);
   } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(fmt::format("unit '{}': {}", spec.name, e.what()));
+    // Datapath constructors name themselves ("hast: ..."); key errors do not.
+    const std::string what = e.what();
+    if (what.rfind(spec.name + ":", 0) == 0) throw;
+    throw std::invalid_argument(fmt::format("unit '{}': {}", spec.name, what));
   }
 }
 

@@ -729,10 +729,9 @@ TEST_F(CliTest, EvalEmptyStreamIsValid) {
   EXPECT_EQ(lines_of(read_text(dir_ / "out.csv")).size(), 1u);  // the header only
 }
 
-// Known CLI bugs, reported but not yet fixed: enable these tests once they are.
 // A --dump path that cannot be created is a bad option (README: exit status 2), not an internal
-// error; today it exits 3 with "glint: internal error: cannot create temporary file ...".
-TEST_F(CliTest, DISABLED_EvalUncreatableDumpIsBadInput) {
+// error.
+TEST_F(CliTest, EvalUncreatableDumpIsBadInput) {
   const CliRun r = glint("eval " + quote(kPhongBasic) + " --dump no_such_dir/out.csv");
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("no_such_dir/out.csv"), std::string::npos) << r.err;
@@ -740,9 +739,8 @@ TEST_F(CliTest, DISABLED_EvalUncreatableDumpIsBadInput) {
   EXPECT_TRUE(r.out.empty()) << r.out;
 }
 
-// `glint tau --help` documents "Gaussian roughness omega in (0, 1]" (as does the vector format),
-// but --roughness 2 is accepted (exit 0, "skip never").
-TEST_F(CliTest, DISABLED_TauRoughnessAboveOneIsBadInput) {
+// `glint tau --help` documents "Gaussian roughness omega in (0, 1]", as does the vector format.
+TEST_F(CliTest, TauRoughnessAboveOneIsBadInput) {
   const CliRun r = glint("tau --lobe gaussian --roughness 2 --eps 1e-3");
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("roughness"), std::string::npos) << r.err;
@@ -750,6 +748,21 @@ TEST_F(CliTest, DISABLED_TauRoughnessAboveOneIsBadInput) {
 
 // ---------------------------------------------------------------------------------------------
 // Usage
+
+TEST_F(CliTest, DumpOntoTheInputIsRefused) {
+  const fs::path vec = dir_ / "in.vec";
+  fs::copy_file(kPhongBasic, vec);
+  const std::string before = read_text(vec);
+  const CliRun r = glint("eval " + quote(vec.string()) + " --dump " + quote(vec.string()));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(read_text(vec), before);
+}
+
+TEST_F(CliTest, SameUnitTwiceGetsDistinctLabels) {
+  const json j = glint_json("eval " + quote(kPhongBasic) + " --unit hast --unit hast:d=3 --json");
+  ASSERT_EQ(j.at("units").size(), 2u);
+  EXPECT_NE(j.at("units")[0].at("unit"), j.at("units")[1].at("unit"));
+}
 
 TEST_F(CliTest, NoSubcommandFails) {
   const CliRun r = glint("");
