@@ -20,22 +20,37 @@ const char* to_string(Quant q) {
   return "?";
 }
 
-const char* to_string(Overflow o) { return o == Overflow::kWrap ? "wrap" : "sat"; }
+const char* to_string(Overflow o) {
+  return o == Overflow::kWrap ? "wrap" : "sat";
+}
 
-double QFormat::ulp() const { return std::ldexp(1.0, -frac_bits); }
-double QFormat::max_value() const { return std::ldexp(static_cast<double>(raw_max()), -frac_bits); }
-double QFormat::min_value() const { return std::ldexp(static_cast<double>(raw_min()), -frac_bits); }
+double QFormat::ulp() const {
+  return std::ldexp(1.0, -frac_bits);
+}
+double QFormat::max_value() const {
+  return std::ldexp(static_cast<double>(raw_max()), -frac_bits);
+}
+double QFormat::min_value() const {
+  return std::ldexp(static_cast<double>(raw_min()), -frac_bits);
+}
 
 std::string QFormat::name() const {
   return fmt::format("{}q{}.{}", is_signed ? 's' : 'u', int_bits, frac_bits);
 }
 
-void check_format(const QFormat& f) {
-  if (!f.valid()) {
-    throw std::invalid_argument(fmt::format("fixed-point format {} has width {}; allowed 1..{}",
-                                            f.name(), f.width(), QFormat::kMaxWidth));
-  }
+namespace detail {
+void throw_bad_format(int int_bits, int frac_bits, bool is_signed) {
+  const QFormat f{int_bits, frac_bits, is_signed};
+  throw std::invalid_argument(fmt::format("fixed-point format {} has width {}; allowed 1..{}",
+                                          f.name(), f.width(), QFormat::kMaxWidth));
 }
+
+void throw_too_wide(int int_bits, int frac_bits, bool is_signed, const char* op) {
+  const QFormat f{int_bits, frac_bits, is_signed};
+  throw std::overflow_error(
+      fmt::format("exact {} needs format {} wider than {} bits", op, f.name(), QFormat::kMaxWidth));
+}
+}  // namespace detail
 
 QFormat parse_q_format(std::string_view text) {
   const std::string orig(text);
@@ -86,7 +101,10 @@ __int128 round_shift128(__int128 raw, int shift, Quant q) {
   return fl + ((rem > half || (rem == half && (fl & 1))) ? 1 : 0);
 }
 
-std::int64_t quantize_raw(__int128 raw, int from_frac, const QFormat& to, Quant q, Overflow o) {
+namespace detail {
+// quantize_raw for raws beyond int64 and shifts outside 0..62 (left shifts, huge right shifts).
+std::int64_t quantize_raw_wide(__int128 raw, int from_frac, const QFormat& to, Quant q,
+                               Overflow o) {
   const int shift = from_frac - to.frac_bits;
   __int128 v;
   if (shift >= 0) {
@@ -106,12 +124,10 @@ std::int64_t quantize_raw(__int128 raw, int from_frac, const QFormat& to, Quant 
   }
   return fit_overflow(v, to, o);
 }
+}  // namespace detail
 
-Fixed::Fixed(std::int64_t raw, const QFormat& fmt) : raw_(raw), fmt_(fmt) {
-  check_format(fmt);
-  if (raw < fmt.raw_min() || raw > fmt.raw_max()) {
-    throw std::out_of_range(fmt::format("raw value {} outside format {}", raw, fmt.name()));
-  }
+void Fixed::throw_out_of_range() const {
+  throw std::out_of_range(fmt::format("raw value {} outside format {}", raw_, fmt_.name()));
 }
 
 Fixed Fixed::from_double(double x, const QFormat& fmt, Quant q, Overflow o) {
@@ -121,93 +137,30 @@ Fixed Fixed::from_double(double x, const QFormat& fmt, Quant q, Overflow o) {
     if (o == Overflow::kSat) return Fixed(x > 0 ? fmt.raw_max() : fmt.raw_min(), fmt);
     throw std::invalid_argument("cannot wrap an infinite value into fixed point");
   }
-  // Scale exactly, then split into floor and fraction, both exact in double.
-  const double s = std::ldexp(x, fmt.frac_bits);
-  const double fl = std::floor(s);
-  const double frac = s - fl;
-  double r = fl;
-  if (q == Quant::kRnd) {
-    if (frac >= 0.5) r = fl + 1;
-  } else if (q == Quant::kRndConv) {
-    if (frac > 0.5 || (frac == 0.5 && std::fmod(fl, 2.0) != 0)) r = fl + 1;
-  }
-  // r is an integer-valued double. Values beyond 2^100 only matter modulo 2^W for wrap.
-  if (std::fabs(r) >= 0x1p100) {
-    if (o == Overflow::kSat) return Fixed(r > 0 ? fmt.raw_max() : fmt.raw_min(), fmt);
-    r = std::fmod(r, std::ldexp(1.0, fmt.width()));  // exact
-  }
-  return Fixed(fit_overflow(static_cast<__int128>(r), fmt, o), fmt);
+  // x = mant * 2^(e - 53) exactly, with |mant| < 2^53 an integer (also for subnormals, which
+  // frexp normalizes); quantize_raw then rounds and fits exactly, with no double arithmetic
+  // that could round or underflow.
+  int e = 0;
+  const double m = std::frexp(x, &e);
+  const auto mant = static_cast<std::int64_t>(std::ldexp(m, 53));
+  return Fixed(quantize_raw(mant, 53 - e, fmt, q, o), fmt);
 }
 
-double Fixed::to_double() const { return std::ldexp(static_cast<double>(raw_), -fmt_.frac_bits); }
+double Fixed::to_double() const {
+  return std::ldexp(static_cast<double>(raw_), -fmt_.frac_bits);
+}
 
-std::string Fixed::to_string() const { return fmt::format("{} ({})", to_double(), fmt_.name()); }
+std::string Fixed::to_string() const {
+  return fmt::format("{} ({})", to_double(), fmt_.name());
+}
 
 namespace {
-// Integer bits an operand needs when viewed as signed.
-int signed_int_bits(const QFormat& f) { return f.int_bits + (f.is_signed ? 0 : 1); }
-
-QFormat checked(QFormat f, const char* op) {
-  if (f.width() > QFormat::kMaxWidth) {
-    throw std::overflow_error(fmt::format("exact {} needs format {} wider than {} bits", op,
-                                          f.name(), QFormat::kMaxWidth));
-  }
-  return f;
-}
-
-// Aligns both raws to `frac` fraction bits (exact: frac >= both operands' frac bits).
+// Aligns a raw to `frac` fraction bits (exact: frac >= the operand's frac bits, shift <= 64).
 __int128 align(const Fixed& v, int frac) {
-  return static_cast<__int128>(v.raw()) << (frac - v.format().frac_bits);
+  return static_cast<__int128>(v.raw()) *
+         (static_cast<__int128>(1) << (frac - v.format().frac_bits));
 }
 }  // namespace
-
-QFormat add_format(const QFormat& a, const QFormat& b) {
-  QFormat r;
-  r.frac_bits = std::max(a.frac_bits, b.frac_bits);
-  r.is_signed = a.is_signed || b.is_signed;
-  r.int_bits = r.is_signed ? std::max(signed_int_bits(a), signed_int_bits(b)) + 1
-                           : std::max(a.int_bits, b.int_bits) + 1;
-  return r;
-}
-
-QFormat sub_format(const QFormat& a, const QFormat& b) {
-  QFormat r;
-  r.frac_bits = std::max(a.frac_bits, b.frac_bits);
-  r.is_signed = true;
-  r.int_bits = std::max(signed_int_bits(a), signed_int_bits(b)) + 1;
-  return r;
-}
-
-QFormat mul_format(const QFormat& a, const QFormat& b) {
-  // Signed x unsigned of widths Wa, Wb fits Wa + Wb signed bits, so the integer bits simply add.
-  return QFormat{a.int_bits + b.int_bits, a.frac_bits + b.frac_bits, a.is_signed || b.is_signed};
-}
-
-Fixed add(const Fixed& a, const Fixed& b) {
-  const QFormat f = checked(add_format(a.format(), b.format()), "sum");
-  return Fixed(static_cast<std::int64_t>(align(a, f.frac_bits) + align(b, f.frac_bits)), f);
-}
-
-Fixed sub(const Fixed& a, const Fixed& b) {
-  const QFormat f = checked(sub_format(a.format(), b.format()), "difference");
-  return Fixed(static_cast<std::int64_t>(align(a, f.frac_bits) - align(b, f.frac_bits)), f);
-}
-
-Fixed mul(const Fixed& a, const Fixed& b) {
-  const QFormat f = checked(mul_format(a.format(), b.format()), "product");
-  return Fixed(static_cast<std::int64_t>(static_cast<__int128>(a.raw()) * b.raw()), f);
-}
-
-Fixed quantize(const Fixed& v, const QFormat& to, Quant q, Overflow o) {
-  check_format(to);
-  return Fixed(quantize_raw(v.raw(), v.format().frac_bits, to, q, o), to);
-}
-
-Fixed mul_quantize(const Fixed& a, const Fixed& b, const QFormat& to, Quant q, Overflow o) {
-  check_format(to);
-  const __int128 p = static_cast<__int128>(a.raw()) * b.raw();
-  return Fixed(quantize_raw(p, a.format().frac_bits + b.format().frac_bits, to, q, o), to);
-}
 
 int compare(const Fixed& a, const Fixed& b) {
   const int frac = std::max(a.format().frac_bits, b.format().frac_bits);
@@ -215,13 +168,14 @@ int compare(const Fixed& a, const Fixed& b) {
   // the shift so the comparison stays exact for any formats that pass check_format.
   const int sa = frac - a.format().frac_bits, sb = frac - b.format().frac_bits;
   if (sa > 64 || sb > 64) {
-    // One value has far more fraction bits: compare via long double-free exact route:
-    // shift the other one down instead (floor), then break ties with the discarded bits.
+    // One value has far more fraction bits: shift it down to the other's scale instead (floor),
+    // then break ties with the discarded bits.
     const Fixed& hi = sa > 64 ? b : a;  // the one with more fraction bits
     const Fixed& lo = sa > 64 ? a : b;
     const int s = hi.format().frac_bits - lo.format().frac_bits;
     const __int128 hi_floor = round_shift128(hi.raw(), s, Quant::kTrn);
-    const bool hi_has_rest = (static_cast<__int128>(hi.raw()) - (hi_floor << std::min(s, 126))) != 0;
+    const bool hi_has_rest = (static_cast<__int128>(hi.raw()) -
+                              hi_floor * (static_cast<__int128>(1) << std::min(s, 126))) != 0;
     int c = hi_floor < lo.raw() ? -1 : (hi_floor > lo.raw() ? 1 : (hi_has_rest ? 1 : 0));
     return sa > 64 ? -c : c;
   }
