@@ -2,8 +2,16 @@
 #include <cstdio>
 
 #include "cli.h"
+#include "sc_setup.h"
+
+// libsystemc's own main() would call sc_main; glint has a main of its own, which takes precedence,
+// so sc_main only satisfies the linker.
+int sc_main(int, char**) {
+  return 0;
+}
 
 int main(int argc, char** argv) {
+  glint::quiet_systemc_banner();
   CLI::App app{"glint: simulator of fixed-point specular shading units (max(0,t)^n)"};
   app.require_subcommand(1);
   int status = glint::cli::kExitOk;

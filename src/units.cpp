@@ -21,7 +21,8 @@ namespace {
 std::vector<UnitKey> common_keys() {
   return {{"in", "input format of t (clamped to [0, 1], rounded to nearest)", kDefaultIn.name()},
           {"out", "output format of the highlight", kDefaultOut.name()},
-          {"skip", "tau comparator on|off (skip t <= tau, Källberg eq.5)", "on"}};
+          {"skip", "tau comparator on|off (skip t <= tau, Källberg eq.5)", "on"},
+          {"buffer", "merge-buffer entries (timing; auto: latency + 3, full throughput)", "auto"}};
 }
 
 std::vector<UnitInfo> build_catalog() {
@@ -41,7 +42,11 @@ std::vector<UnitInfo> build_catalog() {
             {"exp_bits", "exp2 table address bits", std::to_string(pw.exp_bits)},
             {"exp_frac", "exp2 table entry fraction bits", std::to_string(pw.exp_frac)}})},
       {"schlick", "Schlick t/(n - n t + t) with an exact, correctly rounded divider",
-       with_common({{"n", "shininess register format", SchlickConfig{}.n_format.name()}})},
+       with_common({{"n", "shininess register format", SchlickConfig{}.n_format.name()},
+                    {"divider",
+                     "divider kind (timing): pipelined (one quotient bit per stage, II 1) | "
+                     "iterative (radix-2, one quotient bit per cycle, II = quotient bits)",
+                     "pipelined"}})},
       {"hast", "Hast kappa (t - tau)^d as u^d, u = (t - tau)/(1 - tau): multiplier chain",
        with_common({{"d", "exponent: d - 1 multipliers", "4"},
                     {"guard", "guard bits of the chain (auto: ceil(log2(2d-2)) + 1)", "auto"}})},
@@ -156,13 +161,14 @@ template <class Unit>
 class UnitSet final : public SpecularUnit {
  public:
   UnitSet(std::string name, std::string canonical, QFormat in, QFormat out, std::vector<Unit> units,
-          nlohmann::json config)
+          nlohmann::json config, UnitTiming timing)
       : name_(std::move(name)),
         canonical_(std::move(canonical)),
         in_(in),
         out_(out),
         units_(std::move(units)),
-        config_(std::move(config)) {}
+        config_(std::move(config)),
+        timing_(timing) {}
 
   const std::string& name() const override { return name_; }
   std::string canonical_spec() const override { return canonical_; }
@@ -191,11 +197,14 @@ class UnitSet final : public SpecularUnit {
       return std::numeric_limits<double>::quiet_NaN();
     }
   }
+  UnitTiming timing() const override { return timing_; }
   nlohmann::json describe() const override {
     nlohmann::json j;
     j["name"] = name_;
     j["spec"] = canonical_;
     j["config"] = config_;
+    j["timing"] = {
+        {"latency", timing_.latency}, {"ii", timing_.ii}, {"buffer_depth", timing_.buffer_depth}};
     nlohmann::json slots = nlohmann::json::array();
     for (const Unit& u : units_) slots.push_back(describe_slot(u));
     j["slots"] = std::move(slots);
@@ -207,6 +216,7 @@ class UnitSet final : public SpecularUnit {
   QFormat in_, out_;
   std::vector<Unit> units_;
   nlohmann::json config_;
+  UnitTiming timing_;
 };
 
 template <class Unit, class Config, class... Extra>
@@ -219,8 +229,12 @@ std::vector<Unit> build_all(const Config& cfg, const std::vector<MaterialParams>
 }
 
 template <class Unit>
-std::unique_ptr<SpecularUnit> wrap(const std::string& name, const nlohmann::json& config,
-                                   QFormat in, QFormat out, std::vector<Unit> units) {
+std::unique_ptr<SpecularUnit> wrap(const std::string& name, nlohmann::json config, QFormat in,
+                                   QFormat out, std::vector<Unit> units, UnitTiming timing,
+                                   int buffer) {
+  // buffer = auto: enough credits that a result never waits for one when the sink keeps up.
+  timing.buffer_depth = buffer > 0 ? buffer : timing.latency + 3;
+  config["buffer"] = timing.buffer_depth;
   // Keys in catalogue order, so the spec reads like the `glint units` listing.
   std::string canonical = name;
   char sep = ':';
@@ -230,7 +244,8 @@ std::unique_ptr<SpecularUnit> wrap(const std::string& name, const nlohmann::json
     canonical += sep + key.key + "=" + (it->is_string() ? it->get<std::string>() : it->dump());
     sep = ',';
   }
-  return std::make_unique<UnitSet<Unit>>(name, canonical, in, out, std::move(units), config);
+  return std::make_unique<UnitSet<Unit>>(name, canonical, in, out, std::move(units), config,
+                                         timing);
 }
 
 }  // namespace
@@ -283,12 +298,19 @@ std::unique_ptr<SpecularUnit> build_unit(const UnitSpec& spec, const UnitInfo& i
   const QFormat in = keys.format("in", kDefaultIn);
   const QFormat out = keys.format("out", kDefaultOut);
   const bool skip = keys.flag("skip", true);
+  const int buffer = keys.integer("buffer", -1, 1, 1 << 16, true);
   nlohmann::json config = {{"in", in.name()}, {"out", out.name()}, {"skip", on_off(skip)}};
   {
     if (spec.name == "schlick") {
       SchlickConfig c{in, out, keys.format("n", SchlickConfig{}.n_format), skip};
       config["n"] = c.n_format.name();
-      return wrap("schlick", config, in, out, build_all<SchlickUnit>(c, slots));
+      const std::string divider = keys.choice("divider", "pipelined", {"pipelined", "iterative"});
+      config["divider"] = divider;
+      // Denominator multiply-add stage, Fo + 2 quotient bits (integer bit, Fo fraction bits, the
+      // rounding bit), rounding stage.
+      const int q = out.frac_bits + 2;
+      const UnitTiming t{q + 2, divider == "iterative" ? q : 1, 0};
+      return wrap("schlick", config, in, out, build_all<SchlickUnit>(c, slots), t, buffer);
     }
     if (spec.name == "hast") {
       HastConfig c{in, out, keys.integer("d", 4, 1, 16), keys.integer("guard", -1, 0, 20, true),
@@ -296,7 +318,9 @@ std::unique_ptr<SpecularUnit> build_unit(const UnitSpec& spec, const UnitInfo& i
       if (c.guard < 0) c.guard = hast_default_guard(c.d);
       config["d"] = c.d;
       config["guard"] = c.guard;
-      return wrap("hast", config, in, out, build_all<HastUnit>(c, slots));
+      // u scaler stage, then d - 1 multiplier stages.
+      return wrap("hast", config, in, out, build_all<HastUnit>(c, slots), UnitTiming{c.d, 1, 0},
+                  buffer);
     }
     if (spec.name == "horner") {
       const int degree = keys.integer("degree", 4, 1, 10);
@@ -332,7 +356,9 @@ std::unique_ptr<SpecularUnit> build_unit(const UnitSpec& spec, const UnitInfo& i
       config["guard"] = c.guard;
       std::vector<HornerUnit> units;
       for (std::size_t i = 0; i < slots.size(); ++i) units.emplace_back(c, slots[i], fits[i]);
-      return wrap("horner", config, in, out, std::move(units));
+      // u scaler stage, then one multiply-add stage per degree.
+      return wrap("horner", config, in, out, std::move(units), UnitTiming{degree + 1, 1, 0},
+                  buffer);
     }
     if (spec.name == "pow") {
       PowConfig c;
@@ -351,7 +377,10 @@ std::unique_ptr<SpecularUnit> build_unit(const UnitSpec& spec, const UnitInfo& i
                      {"y_frac", c.y_frac},
                      {"exp_bits", c.exp_bits},
                      {"exp_frac", c.exp_frac}});
-      return wrap("pow", config, in, out, build_all<PowUnit>(c, slots));
+      // leading-one detect + log2 table read, log2 interpolation, multiply by n, exp2 table read,
+      // exp2 interpolation + shift + rounding.
+      return wrap("pow", config, in, out, build_all<PowUnit>(c, slots), UnitTiming{5, 1, 0},
+                  buffer);
     }
     // lut
     LutConfig c{in, out, keys.integer("bits", 6, 1, 16),
@@ -359,7 +388,8 @@ std::unique_ptr<SpecularUnit> build_unit(const UnitSpec& spec, const UnitInfo& i
     if (c.table_frac < 0) c.table_frac = out.frac_bits + 2;
     config["bits"] = c.bits;
     config["table_frac"] = c.table_frac;
-    return wrap("lut", config, in, out, build_all<LutUnit>(c, slots));
+    // index + table read, interpolation + rounding.
+    return wrap("lut", config, in, out, build_all<LutUnit>(c, slots), UnitTiming{2, 1, 0}, buffer);
   }
 }
 }  // namespace

@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "timing.h"
 #include "unit_common.h"
 
 namespace glint {
@@ -64,6 +65,8 @@ class SpecularUnit {
   virtual double error_bound(std::size_t slot) const = 0;
   // Structured description: config and per-slot constants (tables sizes, coefficients, widths).
   virtual nlohmann::json describe() const = 0;
+  // Latency, initiation interval and merge-buffer depth of the unit's hardware (timing keys).
+  virtual UnitTiming timing() const = 0;
 
   bool skip(std::size_t slot, std::int64_t t_raw) const { return tau_skip(t_raw, tau_raw(slot)); }
   std::int64_t eval_with_skip(std::size_t slot, std::int64_t t_raw) const {
