@@ -26,5 +26,7 @@ void add_tau_command(CLI::App& app, int& status);
 void add_fit_command(CLI::App& app, int& status);
 void add_eval_command(CLI::App& app, int& status);
 void add_units_command(CLI::App& app, int& status);
+void add_sim_command(CLI::App& app, int& status);
+void add_regress_command(CLI::App& app, int& status);
 
 }  // namespace glint::cli

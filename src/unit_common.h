@@ -26,6 +26,11 @@ inline constexpr QFormat kDefaultOut = uq(1, 15);
 // 1. The clamped value is rounded to nearest-even into the input format.
 inline std::int64_t quantize_input(double t, const QFormat& in) {
   const double c = t <= 0.0 ? 0.0 : (t >= 1.0 ? 1.0 : t);
+  if (in.frac_bits >= 0 && in.frac_bits <= 52 && in.raw_one() != 0) {
+    // c * 2^F is exact and below 2^53; nearbyint rounds half to even in the default rounding
+    // mode, which is exactly kRndConv, and 1.0 is representable so nothing saturates.
+    return static_cast<std::int64_t>(std::nearbyint(std::ldexp(c, in.frac_bits)));
+  }
   return Fixed::from_double(c, in, Quant::kRndConv, Overflow::kSat).raw();
 }
 inline double input_value(std::int64_t raw, const QFormat& in) {

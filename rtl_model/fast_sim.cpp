@@ -1,0 +1,97 @@
+#include "fast_sim.h"
+
+#include <algorithm>
+#include <systemc>
+
+namespace glint {
+namespace {
+
+class FastLanes : public sc_core::sc_module {
+ public:
+  FastLanes(sc_core::sc_module_name name, const std::vector<const SpecularUnit*>& units,
+            const SlotMap& slots, const std::function<bool(VectorRow&)>& next_row,
+            const FastOptions& options, std::vector<LaneAccumulator>* accumulators,
+            const std::function<void(const FastResult&)>& on_result)
+      : sc_module(name),
+        units_(units),
+        slots_(slots),
+        next_row_(next_row),
+        options_(options),
+        accumulators_(accumulators),
+        on_result_(on_result) {
+    for (const SpecularUnit* u : units) engines_.emplace_back(u->timing(), options.sink);
+    SC_HAS_PROCESS(FastLanes);
+    SC_THREAD(run);
+  }
+
+  std::vector<TimingStats> stats() const {
+    std::vector<TimingStats> s;
+    for (const auto& e : engines_) s.push_back(e.stats());
+    return s;
+  }
+
+ private:
+  void run() {
+    const std::size_t batch = std::max<std::size_t>(1, options_.batch);
+    std::vector<VectorRow> rows(batch);
+    std::vector<RowReference> refs(batch);
+    std::vector<std::size_t> slot(batch);
+    const bool stats = accumulators_ && !accumulators_->empty();
+    std::uint64_t now_cycles = 0;
+    for (;;) {
+      std::size_t n = 0;
+      while (n < batch && next_row_(rows[n])) ++n;
+      if (n == 0) break;
+      for (std::size_t i = 0; i < n; ++i) {
+        slot[i] = slots_.slot(rows[i]);
+        if (stats) refs[i] = make_reference(slots_, slot[i], rows[i].t);
+      }
+      std::uint64_t end = now_cycles;
+      for (std::size_t l = 0; l < units_.size(); ++l) {
+        const SpecularUnit& u = *units_[l];
+        TimingEngine& engine = engines_[l];
+        const QFormat in = u.in_format();
+        for (std::size_t i = 0; i < n; ++i) {
+          const std::int64_t t_raw = quantize_input(rows[i].t, in);
+          const bool skipped = u.skip(slot[i], t_raw);
+          const std::int64_t out = skipped ? 0 : u.eval(slot[i], t_raw);
+          const ResultTiming timing = engine.next(skipped);
+          if (stats) (*accumulators_)[l].add(slot[i], refs[i], t_raw, skipped, out);
+          if (on_result_) on_result_(FastResult{l, &rows[i], t_raw, skipped, out, timing});
+        }
+        end = std::max(end, engine.stats().cycles);
+      }
+      // Temporal decoupling: one wait per batch, by the cycles the batch spanned.
+      if (end > now_cycles) {
+        wait(sc_core::sc_time(options_.clock_period_ns * static_cast<double>(end - now_cycles),
+                              sc_core::SC_NS));
+        now_cycles = end;
+      }
+    }
+    // No clock and no further events: sc_start() returns on its own (no sc_stop, whose info
+    // message would land on stdout).
+  }
+
+  const std::vector<const SpecularUnit*>& units_;
+  const SlotMap& slots_;
+  const std::function<bool(VectorRow&)>& next_row_;
+  FastOptions options_;
+  std::vector<LaneAccumulator>* accumulators_;
+  const std::function<void(const FastResult&)>& on_result_;
+  std::vector<TimingEngine> engines_;
+};
+
+}  // namespace
+
+std::vector<TimingStats> run_fast(const std::vector<const SpecularUnit*>& units,
+                                  const SlotMap& slots,
+                                  const std::function<bool(VectorRow&)>& next_row,
+                                  const FastOptions& options,
+                                  std::vector<LaneAccumulator>* accumulators,
+                                  const std::function<void(const FastResult&)>& on_result) {
+  FastLanes lanes("fast", units, slots, next_row, options, accumulators, on_result);
+  sc_core::sc_start();
+  return lanes.stats();
+}
+
+}  // namespace glint

@@ -1,0 +1,49 @@
+// Fast mode: transaction-level simulation of the specular lanes with temporal decoupling.
+//
+// One SC_THREAD reads requests in batches, runs every lane's datapath (the same functions the
+// clocked modules call) and schedules each result with TimingEngine, the recurrences the clocked
+// mode implements cycle by cycle (src/timing.h). SystemC time advances once per batch, by the
+// cycles the batch took: cycle stamps come from latency, II and stalls instead of from clock edges,
+// which is what makes long streams cheap. Both modes must give identical outputs and cycle counts
+// (tests/test_rtl_*.cpp).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "evaluate.h"
+#include "lane_stats.h"
+#include "timing.h"
+#include "units.h"
+#include "vectors.h"
+
+namespace glint {
+
+struct FastOptions {
+  SinkReady sink;
+  std::size_t batch = 4096;  // requests per temporal-decoupling quantum
+  double clock_period_ns = 1.0;
+};
+
+struct FastResult {
+  std::size_t lane;
+  const VectorRow* row;
+  std::int64_t t_raw;
+  bool skipped;
+  std::int64_t out_raw;
+  ResultTiming timing;
+};
+
+// Elaborates the fast-mode module for `units` (one lane each, fed the same stream), runs it to the
+// end of the stream and returns each lane's timing statistics. `accumulators` (one per lane, may be
+// empty) collect the accuracy statistics; `on_result` (may be empty) sees every result in order.
+// Elaborates SystemC: call once per process.
+std::vector<TimingStats> run_fast(const std::vector<const SpecularUnit*>& units,
+                                  const SlotMap& slots,
+                                  const std::function<bool(VectorRow&)>& next_row,
+                                  const FastOptions& options,
+                                  std::vector<LaneAccumulator>* accumulators,
+                                  const std::function<void(const FastResult&)>& on_result = {});
+
+}  // namespace glint
