@@ -36,7 +36,6 @@ namespace glint {
 // The lobe of a material is the reference model's (reference.h).
 using VectorLobe = Lobe;
 
-
 // Format limits of version 1 (documented in traces/README.md).
 inline constexpr int kVectorFormatVersion = 1;
 inline constexpr std::size_t kVectorMaxLineBytes = 4096;  // excluding "\n" / "\r\n"
