@@ -1,0 +1,321 @@
+// The area / critical-path / energy proxies (src/cost_model.h): they follow each unit's datapath
+// and widths, grow where the hardware grows, and the JSON form carries every field.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cost_model.h"
+#include "reference.h"
+#include "units.h"
+
+namespace glint {
+namespace {
+
+MaterialParams material(double n, double eps = 1e-3) {
+  const TauResult t = tau_power(n, eps, 1.0);
+  return MaterialParams{n, t.never_skip ? -1.0 : t.tau, t.always_skip};
+}
+
+std::unique_ptr<SpecularUnit> build(const std::string& spec,
+                                    const std::vector<double>& shininess = {50}) {
+  std::vector<MaterialParams> slots;
+  for (double n : shininess) slots.push_back(material(n));
+  return make_unit(parse_unit_spec(spec), slots);
+}
+
+UnitCost cost(const std::string& spec, const std::vector<double>& shininess = {50},
+              bool colour = false) {
+  return unit_cost(*build(spec, shininess), colour);
+}
+
+std::vector<const Primitive*> find(const UnitCost& c, const std::string& kind,
+                                   const std::string& where_part = "") {
+  std::vector<const Primitive*> out;
+  for (const Primitive& p : c.inventory)
+    if (p.kind == kind && p.where.find(where_part) != std::string::npos) out.push_back(&p);
+  return out;
+}
+
+double area_where(const UnitCost& c, const std::string& where_part) {
+  double a = 0;
+  for (const Primitive& p : c.inventory)
+    if (p.where.find(where_part) != std::string::npos) a += p.ge;
+  return a;
+}
+
+const StageDelay& stage(const UnitCost& c, const std::string& name) {
+  for (const StageDelay& s : c.stages)
+    if (s.stage == name) return s;
+  throw std::runtime_error("no stage " + name);
+}
+
+const std::vector<std::string> kUnits = {"schlick", "hast", "horner", "pow", "lut"};
+
+TEST(CostModel, DelayFormulas) {
+  EXPECT_EQ(adder_delay(16), 10);  // 2 ceil(log2 16) + 2
+  EXPECT_EQ(adder_delay(17), 12);
+  EXPECT_EQ(multiplier_tree_levels(2), 0);
+  EXPECT_EQ(multiplier_tree_levels(3), 1);
+  EXPECT_EQ(multiplier_tree_levels(4), 2);
+  EXPECT_EQ(multiplier_tree_levels(9), 4);
+  EXPECT_EQ(multiplier_tree_levels(16), 6);  // 16 -> 13 -> 9 -> 6 -> 4 -> 3 -> 2
+  EXPECT_EQ(multiplier_delay(18, 16), 1 + 3 * 6 + adder_delay(34));
+  EXPECT_EQ(multiplier_delay(16, 18), multiplier_delay(18, 16));
+  EXPECT_EQ(divider_row_delay(33), adder_delay(34) + 2);
+  EXPECT_EQ(table_delay(65), 7 + 2);
+  EXPECT_EQ(table_delay(1), 2);
+}
+
+TEST(CostModel, InventoryIsConsistent) {
+  const std::vector<std::string> specs = {
+      "schlick", "schlick:divider=iterative", "schlick:skip=off", "hast", "hast:d=1", "hast:d=2",
+      "horner",  "horner:domain=full",        "horner:degree=1",  "pow",  "lut",      "lut:bits=3"};
+  for (const auto& spec : specs) {
+    for (bool colour : {false, true}) {
+      for (const std::vector<double>& slots : {std::vector<double>{50}, {10, 50, 200}}) {
+        SCOPED_TRACE(spec + (colour ? " colour" : "") + " slots " + std::to_string(slots.size()));
+        const UnitCost c = cost(spec, slots, colour);
+        ASSERT_FALSE(c.inventory.empty());
+        double sum = 0;
+        for (const Primitive& p : c.inventory) {
+          EXPECT_GT(p.ge, 0) << p.kind << " " << p.where;
+          EXPECT_GE(p.count, 1) << p.where;
+          EXPECT_GT(p.width_a, 0) << p.where;
+          EXPECT_FALSE(p.where.empty());
+          sum += p.ge;
+        }
+        EXPECT_NEAR(c.area_ge, sum, 1e-9 * sum);
+        ASSERT_FALSE(c.stages.empty());
+        double worst = 0;
+        for (const StageDelay& s : c.stages) {
+          EXPECT_GE(s.delay, cost_constants().reg_delay) << s.stage;
+          worst = std::max(worst, s.delay);
+        }
+        EXPECT_EQ(c.critical_path, worst);
+        EXPECT_EQ(stage(c, c.critical_stage).delay, c.critical_path);
+        EXPECT_EQ(c.stages.front().stage, "comparator");
+        EXPECT_GT(c.ops_per_computed.at("reg_bits"), 0);
+        EXPECT_GT(c.ops_per_request.at("reg_bits"), 0);
+      }
+    }
+  }
+}
+
+TEST(CostModel, StagesFollowTiming) {
+  for (const auto& name : kUnits) {
+    SCOPED_TRACE(name);
+    const auto u = build(name);
+    const UnitCost c = unit_cost(*u);
+    // Comparator stage + one entry per unit stage.
+    EXPECT_EQ(c.stages.size(), static_cast<std::size_t>(u->timing().latency) + 1);
+    const UnitCost col = unit_cost(*u, true);
+    EXPECT_EQ(col.stages.back().stage, "colour");
+  }
+}
+
+TEST(CostModel, AreaGrowsWithOutputWidth) {
+  for (const auto& name : kUnits) {
+    SCOPED_TRACE(name);
+    const UnitCost wide = cost(name + ":out=uq1.15");
+    const UnitCost narrow = cost(name + ":out=uq1.11");
+    EXPECT_GT(wide.area_ge, narrow.area_ge);
+    EXPECT_GE(wide.critical_path, narrow.critical_path);
+  }
+  // Where the output width sets the datapath width, the growth is far from marginal.
+  EXPECT_GT(cost("schlick:out=uq1.15").area_ge, 1.15 * cost("schlick:out=uq1.11").area_ge);
+  EXPECT_GT(cost("hast:out=uq1.15").area_ge, 1.3 * cost("hast:out=uq1.11").area_ge);
+}
+
+TEST(CostModel, AreaGrowsWithHastExponent) {
+  double prev = 0;
+  for (int d = 1; d <= 8; ++d) {
+    const UnitCost c = cost("hast:d=" + std::to_string(d));
+    EXPECT_GT(c.area_ge, prev) << "d = " << d;
+    prev = c.area_ge;
+    // d - 1 chain multipliers of (fh + 1)^2, fh = out.frac_bits + guard.
+    const auto u = build("hast:d=" + std::to_string(d));
+    const int fh = 15 + u->describe()["config"]["guard"].get<int>();
+    const auto chain = find(c, "multiplier", "chain");
+    ASSERT_EQ(chain.size(), static_cast<std::size_t>(d - 1));
+    for (const Primitive* p : chain) {
+      EXPECT_EQ(p->width_a, fh + 1);
+      EXPECT_EQ(p->width_b, fh + 1);
+    }
+    EXPECT_EQ(c.ops_per_computed.at("mul"), d);  // u scaler + chain
+  }
+}
+
+TEST(CostModel, AreaGrowsWithHornerDegree) {
+  double prev = 0;
+  for (int p = 1; p <= 6; ++p) {
+    const UnitCost c = cost("horner:degree=" + std::to_string(p));
+    EXPECT_GT(c.area_ge, prev) << "degree " << p;
+    prev = c.area_ge;
+    EXPECT_EQ(find(c, "multiplier", "acc u").size(), static_cast<std::size_t>(p));
+    EXPECT_EQ(find(c, "adder", "+ c_").size(), static_cast<std::size_t>(p));
+    const auto coef = find(c, "table", "coefficient");
+    ASSERT_EQ(coef.size(), 1u);
+    EXPECT_EQ(coef[0]->count, p + 1);
+    EXPECT_EQ(c.ops_per_computed.at("mul"), p + 1);  // + the u scaler on the tau domain
+  }
+  // The full domain has no u scaler.
+  const UnitCost full = cost("horner:domain=full");
+  EXPECT_TRUE(find(full, "multiplier", "u scaler").empty());
+  EXPECT_EQ(full.ops_per_computed.at("mul"), 4);
+}
+
+TEST(CostModel, LutTableDoublesWithBits) {
+  const UnitCost b6 = cost("lut:bits=6");
+  const UnitCost b7 = cost("lut:bits=7");
+  EXPECT_GT(b7.area_ge, b6.area_ge);
+  const auto t6 = find(b6, "table", "t^n table");
+  const auto t7 = find(b7, "table", "t^n table");
+  ASSERT_EQ(t6.size(), 1u);
+  ASSERT_EQ(t7.size(), 1u);
+  EXPECT_EQ(t6[0]->width_a, 65);
+  EXPECT_EQ(t7[0]->width_a, 129);
+  EXPECT_EQ(t6[0]->width_b, 15 + 2 + 1);  // table_frac (out + 2) + the bit of 1.0
+  const double ratio = t7[0]->ge / t6[0]->ge;
+  EXPECT_GT(ratio, 1.9);
+  EXPECT_LT(ratio, 2.1);
+}
+
+TEST(CostModel, LutTableScalesWithSlots) {
+  const UnitCost one = cost("lut", {50});
+  double bits1 = 0, ge1 = 0;
+  for (const auto& shin : {std::vector<double>{50}, {10, 50}, {5, 20, 50, 200}}) {
+    const UnitCost c = cost("lut", shin);
+    const auto t = find(c, "table", "t^n table");
+    ASSERT_EQ(t.size(), 1u);
+    EXPECT_EQ(t[0]->count, static_cast<int>(shin.size()));
+    const double bits = double(t[0]->count) * t[0]->width_a * t[0]->width_b;
+    if (shin.size() == 1) {
+      bits1 = bits;
+      ge1 = t[0]->ge;
+    }
+    EXPECT_EQ(bits, bits1 * static_cast<double>(shin.size()));
+    EXPECT_GT(t[0]->ge, 0.95 * ge1 * static_cast<double>(shin.size()));
+    EXPECT_GE(c.area_ge, one.area_ge);
+  }
+  // pow's tables are fixed-function ROMs: they do not scale with the slots.
+  const UnitCost pow1 = cost("pow", {50}), pow4 = cost("pow", {5, 20, 50, 200});
+  const auto rom1 = find(pow1, "table", "ROM");
+  const auto rom4 = find(pow4, "table", "ROM");
+  ASSERT_EQ(rom1.size(), 2u);
+  ASSERT_EQ(rom4.size(), 2u);
+  EXPECT_EQ(rom1[0]->ge + rom1[1]->ge, rom4[0]->ge + rom4[1]->ge);
+}
+
+TEST(CostModel, SchlickDividerWidths) {
+  const UnitCost c = cost("schlick");
+  const auto div = find(c, "divider");
+  ASSERT_EQ(div.size(), 1u);
+  EXPECT_EQ(div[0]->width_a, 15 + 2);   // quotient bits: out.frac_bits + 2
+  EXPECT_EQ(div[0]->width_b, 18 + 15);  // D: n register (uq14.4) + input fraction bits
+  const auto mul = find(c, "multiplier");
+  ASSERT_EQ(mul.size(), 1u);
+  EXPECT_EQ(mul[0]->width_a, 18);
+  EXPECT_EQ(mul[0]->width_b, 16);
+  // A wider n register widens the multiplier and the divider.
+  const UnitCost wide_n = cost("schlick:n=uq16.6");
+  EXPECT_EQ(find(wide_n, "divider")[0]->width_b, 22 + 15);
+  EXPECT_GT(wide_n.area_ge, c.area_ge);
+}
+
+TEST(CostModel, IterativeDividerIsSmallerWithSameSteps) {
+  const UnitCost pipe = cost("schlick:divider=pipelined");
+  const UnitCost iter = cost("schlick:divider=iterative");
+  const double div_pipe = area_where(pipe, "divider");
+  const double div_iter = area_where(iter, "divider");
+  EXPECT_LT(div_iter, 0.2 * div_pipe);  // one row + its state vs 17 rows + 17 register stages
+  EXPECT_LT(iter.area_ge, 0.5 * pipe.area_ge);
+  EXPECT_EQ(find(pipe, "divider")[0]->width_a, 17);
+  EXPECT_EQ(find(iter, "divider")[0]->width_a, 1);
+  EXPECT_DOUBLE_EQ(find(pipe, "divider")[0]->ge, 17 * find(iter, "divider")[0]->ge);
+  EXPECT_EQ(pipe.ops_per_computed.at("div_step"), 17);
+  EXPECT_EQ(iter.ops_per_computed.at("div_step"), pipe.ops_per_computed.at("div_step"));
+  EXPECT_EQ(cost("schlick:out=uq1.11").ops_per_computed.at("div_step"), 13);
+}
+
+TEST(CostModel, PipelinedSchlickCriticalPathIsOneDividerRow) {
+  const UnitCost c = cost("schlick");
+  const double row = divider_row_delay(33);
+  const double reg = cost_constants().reg_delay;
+  for (int s = 2; s <= 18; ++s) EXPECT_EQ(stage(c, "stage " + std::to_string(s)).delay, row + reg);
+  EXPECT_LT(c.critical_path, 17 * row);  // never the whole divider in one stage
+  EXPECT_LE(c.critical_path, std::max(row + reg, stage(c, "stage 1").delay));
+  // The iterative divider's loop is one row plus its load mux.
+  const UnitCost it = cost("schlick:divider=iterative");
+  EXPECT_EQ(stage(it, "stages 2-18 (divider loop)").delay, row + cost_constants().mux_delay + reg);
+  EXPECT_EQ(it.stages.size(), 4u);  // comparator, stage 1, loop, rounding
+}
+
+TEST(CostModel, SkipOffDropsTheComparator) {
+  const UnitCost on = cost("schlick");
+  const UnitCost off = cost("schlick:skip=off");
+  EXPECT_EQ(find(on, "comparator").size(), 1u);
+  EXPECT_TRUE(find(off, "comparator").empty());
+  EXPECT_EQ(on.ops_per_request.at("compare"), 1);
+  EXPECT_EQ(off.ops_per_request.count("compare"), 0u);
+  EXPECT_LT(off.area_ge, on.area_ge);
+  // hast keeps the per-slot root table: it is the u scaler's root, not only the threshold.
+  EXPECT_EQ(find(cost("hast:skip=off"), "table", "root").size(), 1u);
+}
+
+TEST(CostModel, OperationCounts) {
+  const UnitCost pw = cost("pow");
+  EXPECT_EQ(pw.ops_per_computed.at("mul"), 3);
+  EXPECT_EQ(pw.ops_per_computed.at("lzd"), 1);
+  EXPECT_EQ(pw.ops_per_computed.at("table_read"), 5);  // 2 log2 + 2 exp2 words + n
+  const UnitCost lut = cost("lut");
+  EXPECT_EQ(lut.ops_per_computed.at("mul"), 1);
+  EXPECT_EQ(lut.ops_per_computed.count("div_step"), 0u);
+  for (const auto& name : kUnits) {
+    const UnitCost c = cost(name);
+    EXPECT_EQ(c.ops_per_request.at("compare"), 1) << name;
+    const UnitCost col = cost(name, {50}, true);
+    EXPECT_EQ(col.ops_per_computed.at("mul"), c.ops_per_computed.at("mul") + 3) << name;
+    EXPECT_EQ(find(col, "multiplier", "colour")[0]->count, 3) << name;
+    EXPECT_GT(col.area_ge, c.area_ge) << name;
+  }
+}
+
+TEST(CostModel, JsonRoundTrip) {
+  for (const auto& spec : {"schlick:divider=iterative", "horner", "lut"}) {
+    SCOPED_TRACE(spec);
+    const UnitCost c = cost(spec, {10, 50}, true);
+    const nlohmann::json j = c.to_json();
+    for (const char* key : {"inventory", "area_ge", "critical_path", "critical_stage", "stages",
+                            "ops_per_computed", "ops_per_request"})
+      EXPECT_TRUE(j.contains(key)) << key;
+    const UnitCost back = UnitCost::from_json(nlohmann::json::parse(j.dump()));
+    ASSERT_EQ(back.inventory.size(), c.inventory.size());
+    for (std::size_t i = 0; i < c.inventory.size(); ++i) {
+      const Primitive &a = c.inventory[i], &b = back.inventory[i];
+      EXPECT_EQ(a.kind, b.kind);
+      EXPECT_EQ(a.width_a, b.width_a);
+      EXPECT_EQ(a.width_b, b.width_b);
+      EXPECT_EQ(a.count, b.count);
+      EXPECT_EQ(a.ge, b.ge);
+      EXPECT_EQ(a.where, b.where);
+    }
+    EXPECT_EQ(back.area_ge, c.area_ge);
+    EXPECT_EQ(back.critical_path, c.critical_path);
+    EXPECT_EQ(back.critical_stage, c.critical_stage);
+    ASSERT_EQ(back.stages.size(), c.stages.size());
+    for (std::size_t i = 0; i < c.stages.size(); ++i) {
+      EXPECT_EQ(back.stages[i].stage, c.stages[i].stage);
+      EXPECT_EQ(back.stages[i].delay, c.stages[i].delay);
+      EXPECT_EQ(back.stages[i].path, c.stages[i].path);
+    }
+    EXPECT_EQ(back.ops_per_computed, c.ops_per_computed);
+    EXPECT_EQ(back.ops_per_request, c.ops_per_request);
+    EXPECT_EQ(back.to_json(), j);
+  }
+}
+
+}  // namespace
+}  // namespace glint
