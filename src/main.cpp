@@ -6,7 +6,7 @@
 
 // libsystemc's own main() would call sc_main; glint has a main of its own, which takes precedence,
 // so sc_main only satisfies the linker.
-int sc_main(int, char**) {
+extern "C" int sc_main(int, char**) {
   return 0;
 }
 
@@ -19,6 +19,8 @@ int main(int argc, char** argv) {
   glint::cli::add_fit_command(app, status);
   glint::cli::add_eval_command(app, status);
   glint::cli::add_units_command(app, status);
+  glint::cli::add_sim_command(app, status);
+  glint::cli::add_regress_command(app, status);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,185 @@
+// glint sim: the cycle-approximate SystemC model of the specular units over a vector stream.
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+
+#include "atomic_file.h"
+#include "cli.h"
+#include "fast_sim.h"
+#include "sim_report.h"
+#include "vectors.h"
+
+namespace glint::cli {
+namespace {
+
+struct SimOptions {
+  std::string vectors;
+  std::vector<std::string> units;
+  std::string report, dump, vcd, vcd_window, mode = "auto";
+  double sink_ready = 1.0;
+  std::uint64_t seed = 1;
+  std::size_t batch = 4096;
+  bool json = false;
+};
+
+// The colour multiply is built only when the stream needs it: some light or material not white.
+bool stream_is_coloured(const VectorHeader& h) {
+  for (int l = 0; l < h.lights; ++l) {
+    const auto i = h.intensity(l);
+    if (i[0] != i[1] || i[1] != i[2]) return true;
+  }
+  for (const auto& m : h.materials)
+    if (m.specular[0] != m.specular[1] || m.specular[1] != m.specular[2]) return true;
+  return false;
+}
+
+void write_atomic(const std::string& path, const std::string& option, const std::string& text) {
+  try {
+    AtomicOutputFile f(path);
+    f.stream() << text;
+    f.commit();
+  } catch (const std::runtime_error& e) {
+    throw std::invalid_argument(fmt::format("{}: {}", option, e.what()));
+  }
+}
+
+int run_sim(const SimOptions& o) {
+  std::vector<UnitSpec> specs;
+  for (const auto& s : o.units.empty()
+                           ? std::vector<std::string>{"pow", "schlick", "hast", "horner", "lut"}
+                           : o.units)
+    specs.push_back(parse_unit_spec(s));
+  if (!(o.sink_ready > 0 && o.sink_ready <= 1))
+    throw std::invalid_argument("--sink-ready must be in (0, 1]");
+  for (const auto* out : {&o.report, &o.dump, &o.vcd}) {
+    std::error_code ec;
+    if (!out->empty() && std::filesystem::equivalent(o.vectors, *out, ec))
+      throw std::invalid_argument(fmt::format("output {} is the input vector file", *out));
+  }
+  const bool clocked = o.mode == "clocked" || (o.mode == "auto" && !o.vcd.empty());
+  if (!clocked && !o.vcd.empty())
+    throw std::invalid_argument("--vcd needs the clocked mode (--mode clocked or auto)");
+  if (clocked) throw std::invalid_argument("the clocked mode is not built yet");
+
+  VectorReader reader(o.vectors);
+  const SlotMap slots = make_slots(reader.header());
+  const bool colour = stream_is_coloured(reader.header());
+  std::vector<std::unique_ptr<SpecularUnit>> owned;
+  std::vector<const SpecularUnit*> units;
+  for (const auto& s : specs) {
+    owned.push_back(make_unit(s, slots.params));
+    units.push_back(owned.back().get());
+  }
+  std::vector<LaneAccumulator> acc;
+  for (const auto* u : units) acc.emplace_back(*u);
+  // Two units of one kind get labels name.1, name.2.
+  for (std::size_t i = 0; i < units.size(); ++i) {
+    int same = 0, index = 0;
+    for (std::size_t j = 0; j < units.size(); ++j)
+      if (units[j]->name() == units[i]->name()) {
+        ++same;
+        if (j <= i) ++index;
+      }
+    if (same > 1) acc[i].stats().name = units[i]->name() + "." + std::to_string(index);
+  }
+
+  std::unique_ptr<AtomicOutputFile> dump;
+  if (!o.dump.empty()) {
+    try {
+      dump = std::make_unique<AtomicOutputFile>(o.dump);
+    } catch (const std::runtime_error& e) {
+      throw std::invalid_argument(fmt::format("--dump: {}", e.what()));
+    }
+    dump->stream() << "line,unit,t,t_raw,skipped,fixed_raw,fixed,issue,done,retire\n";
+  }
+  const bool progress = isatty(STDERR_FILENO);
+  std::function<bool(VectorRow&)> next = [&](VectorRow& row) {
+    const bool ok = reader.next(row);
+    if (progress && ok && (reader.rows_read() & 0xFFFFF) == 0)
+      std::fprintf(stderr, "\r%llu vectors", static_cast<unsigned long long>(reader.rows_read()));
+    return ok;
+  };
+  std::function<void(const FastResult&)> on_result;
+  if (dump) {
+    on_result = [&](const FastResult& r) {
+      dump->stream() << fmt::format(
+          "{},{},{:.17g},{},{},{},{:.17g},{},{},{}\n", r.row->line, acc[r.lane].stats().name,
+          r.row->t, r.t_raw, r.skipped ? 1 : 0, r.out_raw,
+          std::ldexp(static_cast<double>(r.out_raw), -units[r.lane]->out_format().frac_bits),
+          r.timing.issue, r.timing.done, r.timing.retire);
+    };
+  }
+  FastOptions fo;
+  fo.sink = SinkReady{o.sink_ready, o.seed};
+  fo.batch = o.batch;
+  const std::vector<TimingStats> timing = run_fast(units, slots, next, fo, &acc, on_result);
+  if (progress && reader.rows_read() >= 0x100000) std::fprintf(stderr, "\n");
+
+  nlohmann::json report = {{"glint_sim_report", kSimReportVersion},
+                           {"vectors_file", std::filesystem::path(o.vectors).filename().string()},
+                           {"rows", reader.rows_read()},
+                           {"mode", clocked ? "clocked" : "fast"},
+                           {"sink_ready", o.sink_ready},
+                           {"seed", o.seed},
+                           {"slots", slots.params.size()},
+                           {"per_light_slots", slots.per_light}};
+  nlohmann::json list = nlohmann::json::array();
+  for (std::size_t i = 0; i < units.size(); ++i)
+    list.push_back(unit_sim_report(*units[i], timing[i], acc[i].stats(), acc[i].digest(), colour));
+  report["units"] = list;
+
+  if (dump) {
+    try {
+      dump->commit();
+    } catch (const std::runtime_error& e) {
+      throw std::invalid_argument(fmt::format("--dump: {}", e.what()));
+    }
+  }
+  if (!o.report.empty()) write_atomic(o.report, "--report", report.dump(2) + "\n");
+  if (o.json) {
+    print_json(report);
+  } else {
+    std::cout << fmt::format("{}: {} vectors, {} mode, sink ready {}\n", o.vectors,
+                             reader.rows_read(), clocked ? "clocked" : "fast", o.sink_ready)
+              << format_sim_table(report);
+    for (const auto& u : report["units"])
+      std::cout << fmt::format("  {}: {}\n", u["unit"].get<std::string>(),
+                               u["spec"].get<std::string>());
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_sim_command(CLI::App& app, int& status) {
+  auto o = std::make_shared<SimOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "sim", "Cycle-approximate SystemC simulation of units side by side on a vector file");
+  sub->add_option("VECTORS", o->vectors, "Vector file (see traces/README.md)")->required();
+  sub->add_option("--unit", o->units,
+                  "Unit SPEC NAME[:key=value,...] (repeatable; default all five); timing keys: "
+                  "buffer, schlick divider");
+  sub->add_option("--report", o->report, "Write the JSON report to this file (atomically)");
+  sub->add_option("--dump", o->dump, "Per-result CSV with cycle stamps (atomically)");
+  sub->add_option("--vcd", o->vcd, "VCD trace (clocked mode) + GTKWave save file beside it");
+  sub->add_option("--vcd-window", o->vcd_window, "FIRST:LAST vector indices to trace");
+  sub->add_option("--mode", o->mode, "fast | clocked | auto (clocked when --vcd is given)")
+      ->check(CLI::IsMember({"fast", "clocked", "auto"}))
+      ->capture_default_str();
+  sub->add_option("--sink-ready", o->sink_ready, "Probability the sink is ready in a cycle")
+      ->capture_default_str();
+  sub->add_option("--seed", o->seed, "Seed of the sink backpressure pattern")
+      ->capture_default_str();
+  sub->add_option("--batch", o->batch, "Fast mode: requests per time quantum")
+      ->check(CLI::Range(1, 1 << 24))
+      ->capture_default_str();
+  sub->add_flag("--json", o->json, "Print the report as one JSON document on stdout");
+  sub->callback([o, &status] { status = guarded([&] { return run_sim(*o); }); });
+}
+
+}  // namespace glint::cli
