@@ -24,7 +24,7 @@ LaneAccumulator::LaneAccumulator(const SpecularUnit& unit) : unit_(unit) {
       stats_.error_bound = std::isfinite(stats_.error_bound) ? std::max(stats_.error_bound, b) : b;
   }
   ulp_ = unit.out_format().ulp();
-  out_frac_ = unit.out_format().frac_bits;
+  out_scale_ = ulp_;  // raw -> value: exact power-of-two scale
   if (unit.in_format().width() <= 20) memo_.resize(unit.slots());
 }
 
@@ -39,7 +39,7 @@ double LaneAccumulator::model(std::size_t slot, std::int64_t t_raw) {
 
 void LaneAccumulator::add(std::size_t slot, const RowReference& ref, std::int64_t t_raw,
                           bool skipped, std::int64_t out_raw) {
-  const double fixed = std::ldexp(static_cast<double>(out_raw), -out_frac_);
+  const double fixed = static_cast<double>(out_raw) * out_scale_;
   ++stats_.vectors;
   stats_.skipped += skipped;
   stats_.total.add(fixed - ref.value, ref.t);
@@ -51,12 +51,11 @@ void LaneAccumulator::add(std::size_t slot, const RowReference& ref, std::int64_
     }
   }
   if (std::lround(std::clamp(fixed, 0.0, 1.0) * 255.0) != ref.value8) ++stats_.mismatch8;
-  // FNV-1a over the result word (skip flag in bit 63).
-  std::uint64_t word = static_cast<std::uint64_t>(out_raw) ^ (std::uint64_t{skipped} << 63);
-  for (int i = 0; i < 8; ++i) {
-    digest_ ^= (word >> (8 * i)) & 0xFF;
-    digest_ *= 0x100000001b3ULL;
-  }
+  // FNV-1a style over the whole result word (skip flag in bit 63), with a shift-xor so every bit
+  // of the word reaches every bit of the digest.
+  const std::uint64_t word = static_cast<std::uint64_t>(out_raw) ^ (std::uint64_t{skipped} << 63);
+  digest_ = (digest_ ^ word) * 0x100000001b3ULL;
+  digest_ ^= digest_ >> 29;
 }
 
 }  // namespace glint

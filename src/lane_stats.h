@@ -34,9 +34,8 @@ class LaneAccumulator {
 
   const SpecularUnit& unit_;
   UnitStats stats_;
-  std::uint64_t digest_ = 0xcbf29ce484222325ULL;  // FNV-1a offset basis
-  double ulp_ = 0;
-  int out_frac_ = 0;
+  std::uint64_t digest_ = 0xcbf29ce484222325ULL;
+  double ulp_ = 0, out_scale_ = 0;
   // The unit's real-valued model per (slot, input raw), memoised when the input is <= 20 bits:
   // a long stream revisits the same 2^16 inputs, and the model is the costly part of the check.
   std::vector<std::vector<double>> memo_;
