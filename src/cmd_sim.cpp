@@ -77,16 +77,10 @@ int run_sim(const SimOptions& o) {
   }
   std::vector<LaneAccumulator> acc;
   for (const auto* u : units) acc.emplace_back(*u);
-  // Two units of one kind get labels name.1, name.2.
-  for (std::size_t i = 0; i < units.size(); ++i) {
-    int same = 0, index = 0;
-    for (std::size_t j = 0; j < units.size(); ++j)
-      if (units[j]->name() == units[i]->name()) {
-        ++same;
-        if (j <= i) ++index;
-      }
-    if (same > 1) acc[i].stats().name = units[i]->name() + "." + std::to_string(index);
-  }
+  std::vector<std::string> names;
+  for (const auto* u : units) names.push_back(u->name());
+  const auto labels = unit_labels(names);
+  for (std::size_t i = 0; i < units.size(); ++i) acc[i].stats().name = labels[i];
 
   std::unique_ptr<AtomicOutputFile> dump;
   if (!o.dump.empty()) {

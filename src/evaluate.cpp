@@ -96,16 +96,10 @@ Evaluator::Evaluator(const VectorHeader& header, const std::vector<UnitSpec>& sp
     }
     stats_.push_back(std::move(s));
   }
-  // Two units of one kind (e.g. hast and hast:d=3) get labels hast.1, hast.2 in tables and dumps.
-  for (std::size_t i = 0; i < stats_.size(); ++i) {
-    int same = 0, index = 0;
-    for (std::size_t j = 0; j < stats_.size(); ++j) {
-      if (units_[j]->name() != units_[i]->name()) continue;
-      ++same;
-      if (j <= i) ++index;
-    }
-    if (same > 1) stats_[i].name = units_[i]->name() + "." + std::to_string(index);
-  }
+  std::vector<std::string> names;
+  for (const auto& u : units_) names.push_back(u->name());
+  const auto labels = unit_labels(names);
+  for (std::size_t i = 0; i < stats_.size(); ++i) stats_[i].name = labels[i];
 }
 
 void Evaluator::add(const VectorRow& row, const std::function<void(const EvalRecord&)>& dump) {

@@ -279,6 +279,17 @@ UnitSpec parse_unit_spec(std::string_view text) {
   return spec;
 }
 
+std::vector<std::string> unit_labels(const std::vector<std::string>& names) {
+  std::vector<std::string> labels;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const auto same = std::count(names.begin(), names.end(), names[i]);
+    const auto index =
+        std::count(names.begin(), names.begin() + static_cast<long>(i) + 1, names[i]);
+    labels.push_back(same > 1 ? names[i] + "." + std::to_string(index) : names[i]);
+  }
+  return labels;
+}
+
 const std::vector<UnitInfo>& unit_catalog() {
   static const std::vector<UnitInfo> catalog = build_catalog();
   return catalog;

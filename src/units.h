@@ -74,6 +74,10 @@ class SpecularUnit {
   }
 };
 
+// Display labels of units shown side by side: the unit's name, or name.1, name.2, ... when the same
+// kind appears more than once (e.g. hast and hast:d=3).
+std::vector<std::string> unit_labels(const std::vector<std::string>& names);
+
 // Builds a unit. Throws std::invalid_argument for unknown names, keys or bad values.
 std::unique_ptr<SpecularUnit> make_unit(const UnitSpec& spec,
                                         const std::vector<MaterialParams>& slots);
