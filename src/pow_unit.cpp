@@ -110,7 +110,8 @@ double PowUnit::float_model(double t) const {
 }
 
 std::size_t PowUnit::table_bits() const {
-  return ((std::size_t{1} << cfg_.log_bits) + 1) * static_cast<std::size_t>(cfg_.log_frac) +
+  // log2 entries reach 1.0 (log_frac + 1 bits), exp2 entries reach 2.0 (exp_frac + 2 bits).
+  return ((std::size_t{1} << cfg_.log_bits) + 1) * static_cast<std::size_t>(cfg_.log_frac + 1) +
          ((std::size_t{1} << cfg_.exp_bits) + 1) * static_cast<std::size_t>(cfg_.exp_frac + 2);
 }
 

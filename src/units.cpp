@@ -139,6 +139,8 @@ nlohmann::json describe_slot(const HornerUnit& u) {
   return {{"tau_raw", u.tau_raw()},
           {"root_raw", u.scaler().root_raw()},
           {"k", u.scaler().k_value()},
+          {"k_int_bits", u.scaler().k_int_bits()},
+          {"k_frac_bits", u.scaler().k_frac()},
           {"coefficients", u.coefficients().c},
           {"coefficients_raw", u.coeff_raw()},
           {"coefficient_format", u.coeff_format().name()},
