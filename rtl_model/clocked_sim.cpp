@@ -1,0 +1,288 @@
+#include "clocked_sim.h"
+
+#include <sysc/tracing/sc_tracing_ids.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "colour_multiply.h"
+#include "compute_units.h"
+#include "result_merge.h"
+#include "rtl_common.h"
+#include "sc_setup.h"
+#include "scoreboard.h"
+#include "sim_control.h"
+#include "tau_comparator.h"
+#include "vcd_trace.h"
+#include "vector_source.h"
+
+namespace glint {
+
+UnitTiming clocked_timing(const SpecularUnit& unit, bool colour_stage) {
+  UnitTiming t = unit.timing();
+  if (colour_stage) t.latency += 1;
+  return t;
+}
+
+bool stream_is_coloured(const VectorHeader& header) {
+  auto grey = [](const std::array<double, 3>& c) { return c[0] == c[1] && c[1] == c[2]; };
+  for (int i = 0; i < header.lights; ++i)
+    if (!grey(header.intensity(i))) return true;
+  for (const VectorMaterial& m : header.materials)
+    if (!grey(m.specular)) return true;
+  return false;
+}
+
+namespace rtl {
+namespace {
+
+// One lane: source, comparator, compute unit (+ colour stage), merge buffer, sink.
+class Lane : public sc_core::sc_module {
+ public:
+  Lane(sc_core::sc_module_name name, std::size_t index, const SpecularUnit& unit,
+       const SlotMap& slots, std::unique_ptr<RowStream> stream, const ClockedOptions& options,
+       SimControl& control, sc_core::sc_clock& clk,
+       const std::function<void(const LaneOutput&)>& on_result, bool tracing)
+      : sc_core::sc_module(name),
+        index_(index),
+        unit_(unit),
+        stream_(std::move(stream)),
+        ring_(static_cast<std::size_t>(unit.timing().buffer_depth) + 2),
+        on_result_(on_result) {
+    const QFormat out = unit.out_format();
+    source_ =
+        std::make_unique<VectorSource>("source", *stream_, unit, slots, ring_, control, tracing);
+    comparator_ =
+        std::make_unique<TauComparator>("comparator", unit, unit.timing().buffer_depth, tracing);
+    compute_ = make_compute_unit("compute", unit, tracing);
+    if (options.colour_stage)
+      colour_ = std::make_unique<ColourMultiply>("colour", out.width(), out.is_signed, tracing);
+    merge_ = std::make_unique<ResultMerge>("merge", unit.timing().buffer_depth, out.width(),
+                                           out.is_signed, tracing);
+    Scoreboard::Callback cb;
+    if (on_result_) {
+      cb = [this](const VectorRow& row, const Result& r, const ResultTiming& t) {
+        on_result_(LaneOutput{index_, row, r.t_raw, r.skipped, r.value, t});
+      };
+    }
+    sink_ = std::make_unique<Scoreboard>("sink", unit, options.sink, ring_, control, std::move(cb),
+                                         source_->empty(), tracing);
+
+    source_->clk(clk);
+    source_->ready(comparator_->src_ready);
+    comparator_->clk(clk);
+    comparator_->src_valid(source_->valid);
+    comparator_->src_request(source_->request);
+    comparator_->unit_ready(compute_->ready);
+    comparator_->credit_return(merge_->credit_return);
+    compute_->clk(clk);
+    compute_->in_valid(comparator_->compute_valid);
+    compute_->in_request(source_->request);
+    if (colour_) {
+      colour_->clk(clk);
+      colour_->in(compute_->out);
+    }
+    merge_->clk(clk);
+    merge_->bypass_in(comparator_->bypass);
+    merge_->compute_in(colour_ ? colour_->out : compute_->out);
+    merge_->sink_ready(sink_->ready);
+    sink_->clk(clk);
+    sink_->head_valid(merge_->head_valid);
+    sink_->head(merge_->head);
+  }
+
+  TimingStats stats() const {
+    TimingStats s = sink_->stats();
+    s.stall_credit = comparator_->stall_credit();
+    s.stall_unit = comparator_->stall_unit();
+    return s;
+  }
+  std::uint64_t mismatches() const {
+    return sink_->mismatches() + compute_->violations() + merge_->overflows();
+  }
+  std::size_t max_occupancy() const { return merge_->max_occupancy(); }
+
+  void add_traces(sc_core::sc_trace_file* tf, const std::string& prefix,
+                  std::vector<TracedSignal>& out) const {
+    source_->add_traces(tf, prefix, out);
+    comparator_->add_traces(tf, prefix, out);
+    compute_->add_traces(tf, prefix, out);
+    if (colour_) colour_->add_traces(tf, prefix, out);
+    merge_->add_traces(tf, prefix, out);
+    sink_->add_traces(tf, prefix, out);
+  }
+
+ private:
+  std::size_t index_;
+  const SpecularUnit& unit_;
+  std::unique_ptr<RowStream> stream_;
+  RowRing ring_;
+  const std::function<void(const LaneOutput&)>& on_result_;
+  std::unique_ptr<VectorSource> source_;
+  std::unique_ptr<TauComparator> comparator_;
+  std::unique_ptr<ComputePipeline> compute_;
+  std::unique_ptr<ColourMultiply> colour_;
+  std::unique_ptr<ResultMerge> merge_;
+  std::unique_ptr<Scoreboard> sink_;
+};
+
+// The clock, the lanes, and the per-edge control (end of run, VCD window, cycle counter).
+class Top : public sc_core::sc_module {
+ public:
+  sc_core::sc_clock clk;
+
+  SC_HAS_PROCESS(Top);
+  Top(sc_core::sc_module_name name, const std::vector<const SpecularUnit*>& units,
+      const std::vector<std::string>& labels, const SlotMap& slots,
+      const std::function<std::unique_ptr<RowStream>()>& open_stream, const ClockedOptions& options,
+      SimControl& control, const std::function<void(const LaneOutput&)>& on_result, bool tracing)
+      : sc_core::sc_module(name),
+        clk("clk", clock_period(), 0.5, clock_first_edge(), true),
+        control_(control),
+        tracing_(tracing),
+        cycle_trace_(32, false) {
+    for (std::size_t i = 0; i < units.size(); ++i) {
+      lanes_.push_back(std::make_unique<Lane>(labels[i].c_str(), i, *units[i], slots, open_stream(),
+                                              options, control, clk, on_result, tracing));
+    }
+    SC_METHOD(edge);
+    sensitive << clk.posedge_event();
+    dont_initialize();
+  }
+
+  const std::vector<std::unique_ptr<Lane>>& lanes() const { return lanes_; }
+  std::uint64_t cycles() const { return cycle_; }
+
+  void add_traces(sc_core::sc_trace_file* tf, const std::vector<std::string>& labels,
+                  std::vector<TracedSignal>& out) const {
+    sc_core::sc_trace(tf, clk, "top.clk");
+    out.push_back({"top.clk", 1, false});
+    trace_raw(tf, cycle_trace_, "top.cycle", out);
+    for (std::size_t i = 0; i < lanes_.size(); ++i)
+      lanes_[i]->add_traces(tf, "top." + labels[i], out);
+  }
+
+ private:
+  void edge() {
+    const std::uint64_t c = cycle_++;
+    if (tracing_) cycle_trace_.set(static_cast<std::int64_t>(c & 0xffffffffu));
+    control_.on_edge(c);
+  }
+
+  SimControl& control_;
+  const bool tracing_;
+  std::uint64_t cycle_ = 0;
+  RawBits cycle_trace_;
+  std::vector<std::unique_ptr<Lane>> lanes_;
+};
+
+// VCD labels: unit_labels() (the unit's name, or name.k when several lanes share a name) with '_'
+// for '.', which separates VCD scopes: hast_1, hast_2.
+std::vector<std::string> lane_labels(const std::vector<const SpecularUnit*>& units) {
+  std::vector<std::string> names;
+  for (const SpecularUnit* u : units) names.push_back(u->name());
+  std::vector<std::string> labels = unit_labels(names);
+  for (std::string& l : labels) std::replace(l.begin(), l.end(), '.', '_');
+  return labels;
+}
+
+void quiet_reports() {
+  using sc_core::sc_report_handler;
+  // "Simulation stopped by user" and the VCD timescale note would go to stdout, which carries
+  // glint's results.
+  sc_report_handler::set_actions("/OSCI/SystemC", sc_core::SC_INFO, sc_core::SC_DO_NOTHING);
+  sc_report_handler::set_actions(sc_core::SC_ID_TRACING_TIMESCALE_UNIT_, sc_core::SC_INFO,
+                                 sc_core::SC_DO_NOTHING);
+}
+
+}  // namespace
+}  // namespace rtl
+
+std::vector<TimingStats> run_clocked(const std::vector<const SpecularUnit*>& units,
+                                     const SlotMap& slots,
+                                     const std::function<std::unique_ptr<RowStream>()>& open_stream,
+                                     const ClockedOptions& options,
+                                     const std::function<void(const LaneOutput&)>& on_result,
+                                     ClockedRunInfo* info) {
+  using namespace rtl;
+  if (units.empty()) throw std::invalid_argument("run_clocked: no units");
+  for (const SpecularUnit* u : units) {
+    if (!u) throw std::invalid_argument("run_clocked: null unit");
+    const UnitTiming t = u->timing();
+    if (t.latency < 0 || t.ii < 1 || t.buffer_depth < 1)
+      throw std::invalid_argument("run_clocked: unit " + u->name() + " has invalid timing");
+    if (u->slots() < slots.params.size())
+      throw std::invalid_argument("run_clocked: unit " + u->name() +
+                                  " has fewer slots than the "
+                                  "stream");
+  }
+  if (!(options.sink.probability > 0.0))
+    throw std::invalid_argument("run_clocked: sink ready probability must be > 0");
+  if (options.vcd_first > options.vcd_last)
+    throw std::invalid_argument("run_clocked: VCD window FIRST:LAST needs FIRST <= LAST");
+  if (sc_core::sc_get_status() != sc_core::SC_ELABORATION ||
+      sc_core::sc_start_of_simulation_invoked())
+    throw std::logic_error(
+        "run_clocked: SystemC has already simulated in this process (one "
+        "elaboration per process)");
+
+  quiet_systemc_banner();
+  quiet_reports();
+
+  const bool tracing = !options.vcd_path.empty();
+  const std::vector<std::string> labels = lane_labels(units);
+  SimControl control;
+  control.set_lanes(units.size());
+
+  std::unique_ptr<Top> top;
+  std::unique_ptr<TraceControl> vcd;
+  if (tracing) {
+    vcd = std::make_unique<TraceControl>(
+        options.vcd_path, [&](sc_core::sc_trace_file* tf, std::vector<TracedSignal>& out) {
+          top->add_traces(tf, labels, out);
+        });
+    control.set_window(
+        options.vcd_first, options.vcd_last, units.size(), [&] { vcd->open(); },
+        [&] { vcd->close(); });
+  }
+  control.hold_window(true);  // sources present vector 0 during elaboration
+  top = std::make_unique<Top>("top", units, labels, slots, open_stream, options, control, on_result,
+                              tracing);
+  control.hold_window(false);
+
+  sc_core::sc_start();
+  if (control.error()) std::rethrow_exception(control.error());
+
+  std::vector<TimingStats> stats;
+  std::uint64_t mismatches = 0;
+  for (const auto& lane : top->lanes()) {
+    stats.push_back(lane->stats());
+    mismatches += lane->mismatches();
+  }
+  if (info) {
+    info->labels = labels;
+    info->mismatches.clear();
+    info->max_occupancy.clear();
+    for (const auto& lane : top->lanes()) {
+      info->mismatches.push_back(lane->mismatches());
+      info->max_occupancy.push_back(lane->max_occupancy());
+    }
+    info->sim_cycles = top->cycles();
+  }
+  if (vcd) {
+    vcd->commit();
+    if (info) {
+      info->vcd_path = vcd->vcd_path();
+      info->gtkw_path = vcd->gtkw_path();
+      info->vcd_start_ns = vcd->start_ns();
+      info->traced.clear();
+      for (const TracedSignal& s : vcd->signals()) info->traced.push_back(s.name);
+    }
+  }
+  if (mismatches)
+    throw std::logic_error("run_clocked: " + std::to_string(mismatches) +
+                           " results differ from the datapath (model error)");
+  return stats;
+}
+
+}  // namespace glint

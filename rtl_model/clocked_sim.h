@@ -1,0 +1,81 @@
+// Clocked mode of the SystemC specular unit: one lane per unit, every register a process on the
+// rising clock edge, cycle-accurate to the recurrences of src/timing.h.
+//
+//   VectorSource -> TauComparator --+--> bypass register --------------------+--> ResultMerge
+//                                   |                                        |    (B entries)
+//                                   +--> compute unit [-> ColourMultiply] ---+         |
+//                                                                                  Scoreboard
+//
+// Cycle 0 is the first rising edge after the start of simulation (rtl_common.h); with it the
+// clocked model's issue, done and retire cycles, and every TimingStats field, equal TimingEngine's
+// for the same skip sequence, UnitTiming (clocked_timing) and SinkReady.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "evaluate.h"
+#include "row_stream.h"
+#include "timing.h"
+#include "units.h"
+#include "vectors.h"
+
+namespace glint {
+
+struct ClockedOptions {
+  // VCD output (empty: none). A GTKWave save file is written beside it (same name, .gtkw).
+  std::string vcd_path;
+  // VCD window of vector indices: tracing starts in the cycle the first lane's source presents
+  // vector vcd_first and stops one cycle after every lane retired vector vcd_last (or its last).
+  std::uint64_t vcd_first = 0, vcd_last = std::numeric_limits<std::uint64_t>::max();
+  SinkReady sink;
+  // Builds ColourMultiply (one more register on the computed path, latency + 1); the caller sets it
+  // when the stream's lights or materials are coloured (stream_is_coloured).
+  bool colour_stage = false;
+};
+
+struct LaneOutput {
+  std::size_t lane;
+  const VectorRow& row;  // valid during the callback only
+  std::int64_t t_raw;
+  bool skipped;
+  std::int64_t out_raw;
+  ResultTiming timing;
+};
+
+// Diagnostics of a run (optional out-parameter of run_clocked).
+struct ClockedRunInfo {
+  std::vector<std::string> labels;         // per lane: VCD scope name (unit name, or name_k)
+  std::vector<std::uint64_t> mismatches;   // per lane: results differing from the datapath
+  std::vector<std::size_t> max_occupancy;  // per lane: merge-buffer entries used at most
+  std::uint64_t sim_cycles = 0;            // rising edges simulated
+  std::string vcd_path, gtkw_path;         // written files (empty without VCD)
+  std::uint64_t vcd_start_ns = 0;          // simulation time of the first VCD dump
+  std::vector<std::string> traced;         // hierarchical names of the traced signals
+};
+
+// The timing the clocked lane realises for `unit`: its own, plus one stage with the colour stage.
+UnitTiming clocked_timing(const SpecularUnit& unit, bool colour_stage);
+
+// True when some light intensity or material specular colour is not grey (r, g, b not all equal).
+bool stream_is_coloured(const VectorHeader& header);
+
+// Elaborates one lane per unit (only the given units), runs until every lane's stream is drained
+// and retired, then returns per-lane TimingStats (filled as TimingEngine fills them). `on_result`
+// (may be empty) sees every retired result in stream order per lane. Throws what the streams or the
+// callback throw, std::invalid_argument for bad options, std::logic_error if a result differs from
+// the datapath (a model bug) or if SystemC has already elaborated in this process (SystemC allows
+// one elaboration per process).
+std::vector<TimingStats> run_clocked(const std::vector<const SpecularUnit*>& units,
+                                     const SlotMap& slots,
+                                     const std::function<std::unique_ptr<RowStream>()>& open_stream,
+                                     const ClockedOptions& options,
+                                     const std::function<void(const LaneOutput&)>& on_result,
+                                     ClockedRunInfo* info = nullptr);
+
+}  // namespace glint

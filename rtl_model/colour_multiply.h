@@ -1,0 +1,63 @@
+// ColourMultiply: the optional stage that scales the highlight by the specular colour x light
+// colour, built only when the stream's lights or materials are coloured (ClockedOptions::
+// colour_stage). It adds one register to the computed path: L_effective = L + 1
+// (clocked_timing() in clocked_sim.h); skipped results (0 in every channel) bypass it.
+//
+// The colour channels are out of scope of the scalar contract: the model carries the scalar
+// result (SpecularUnit::eval) through unchanged, so the stage changes timing only.
+#pragma once
+
+#include <string>
+#include <systemc>
+#include <vector>
+
+#include "rtl_common.h"
+
+namespace glint::rtl {
+
+class ColourMultiply : public sc_core::sc_module, public Traceable {
+ public:
+  sc_core::sc_in<bool> clk;
+  sc_core::sc_in<Result> in;
+  sc_core::sc_signal<Result> out;
+
+  SC_HAS_PROCESS(ColourMultiply);
+  ColourMultiply(sc_core::sc_module_name name, int out_width, bool out_signed, bool tracing)
+      : sc_core::sc_module(name),
+        clk("clk"),
+        in("in"),
+        out("out"),
+        tracing_(tracing),
+        result_trace_(out_width, out_signed) {
+    SC_METHOD(tick);
+    sensitive << clk.pos();
+    dont_initialize();
+  }
+
+  void add_traces(sc_core::sc_trace_file* tf, const std::string& prefix,
+                  std::vector<TracedSignal>& traced) const override {
+    const std::string p = prefix + ".colour.";
+    trace_bool(tf, valid_trace_, p + "valid", traced);
+    trace_raw(tf, result_trace_, p + "result", traced);
+  }
+
+ private:
+  void tick() {
+    const Result& r = in.read();
+    if (r.valid || active_) {
+      out.write(r);
+      active_ = r.valid;
+    }
+    if (tracing_) {
+      valid_trace_ = r.valid;
+      if (r.valid) result_trace_.set(r.value);
+    }
+  }
+
+  const bool tracing_;
+  bool active_ = false;
+  bool valid_trace_ = false;
+  RawBits result_trace_;
+};
+
+}  // namespace glint::rtl

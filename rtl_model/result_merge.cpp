@@ -1,0 +1,95 @@
+#include "result_merge.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace glint::rtl {
+
+ResultMerge::ResultMerge(sc_core::sc_module_name name, int depth, int out_width, bool out_signed,
+                         bool tracing)
+    : sc_core::sc_module(name),
+      clk("clk"),
+      bypass_in("bypass_in"),
+      compute_in("compute_in"),
+      sink_ready("sink_ready"),
+      head_valid("head_valid", false),
+      head("head"),
+      credit_return("credit_return", false),
+      entries_(static_cast<std::size_t>(std::max(depth, 1))),
+      tracing_(tracing),
+      result_trace_(out_width, out_signed),
+      count_trace_(bits_for(static_cast<std::uint64_t>(std::max(depth, 1))), false) {
+  if (depth < 1) throw std::invalid_argument("ResultMerge: depth >= 1 required");
+  SC_METHOD(comb);
+  sensitive << bypass_in << compute_in << changed_;
+
+  SC_METHOD(tick);
+  sensitive << clk.pos();
+  dont_initialize();
+}
+
+void ResultMerge::comb() {
+  const std::uint64_t h = next_seq_;
+  const Result& e = entries_[static_cast<std::size_t>(h % entries_.size())];
+  bool valid = false;
+  std::int64_t value = 0;
+  if (e.valid && e.seq == h) {
+    head.write(e);
+    value = e.value;
+    valid = true;
+  } else {
+    const Result& b = bypass_in.read();
+    const Result& u = compute_in.read();
+    const Result* arriving = (b.valid && b.seq == h) ? &b : (u.valid && u.seq == h) ? &u : nullptr;
+    if (arriving) {
+      Result r = *arriving;
+      r.done = cycle_;  // the coming edge: it arrives there
+      head.write(r);
+      value = r.value;
+      valid = true;
+    }
+  }
+  head_valid.write(valid);
+  if (tracing_ && valid) result_trace_.set(value);
+}
+
+void ResultMerge::tick() {
+  const std::uint64_t c = cycle_++;
+  const bool retire = head_valid.read() && sink_ready.read();
+  bool changed = false;
+  const std::size_t n = entries_.size();
+  for (const Result* in : {&bypass_in.read(), &compute_in.read()}) {
+    if (!in->valid) continue;
+    Result& slot = entries_[static_cast<std::size_t>(in->seq % n)];
+    if (slot.valid) ++overflows_;
+    slot = *in;
+    slot.done = c;
+    ++count_;
+    changed = true;
+  }
+  max_count_ = std::max(max_count_, count_);
+  if (retire) {
+    entries_[static_cast<std::size_t>(next_seq_ % n)].valid = false;
+    --count_;
+    ++next_seq_;
+    changed = true;
+  }
+  if (retire != credit_active_) {
+    credit_return.write(retire);
+    credit_active_ = retire;
+  }
+  if (changed) changed_.notify(sc_core::SC_ZERO_TIME);
+  if (tracing_) count_trace_.set(static_cast<std::int64_t>(count_));
+}
+
+void ResultMerge::add_traces(sc_core::sc_trace_file* tf, const std::string& prefix,
+                             std::vector<TracedSignal>& out) const {
+  const std::string p = prefix + ".merge.";
+  trace_bool(tf, head_valid, p + "valid", out);
+  trace_port(tf, sink_ready, p + "ready", out);
+  trace_raw(tf, result_trace_, p + "result", out);
+  trace_raw(tf, count_trace_, p + "count", out);
+  trace_bool(tf, credit_return, p + "credit", out);
+}
+
+}  // namespace glint::rtl

@@ -1,0 +1,62 @@
+// ResultMerge: the in-order merge of bypassed and computed results, a buffer of B entries.
+//
+// A result arrives at edge d_i (its bypass or output register was written at d_i - 1) and is kept
+// in the entry of its stream index modulo B; the comparator's credits (one per entry, returned
+// through `credit_return` at the edge after the retire) guarantee an entry is free, so the buffer
+// never overflows and the lane stalls at issue instead when it is full.
+//
+// The head (the oldest unretired result, in stream order) is combinational: the stored entry, or
+// the result arriving at the coming edge (flow-through), so a result can retire at its done cycle.
+// It retires at an edge where head_valid && sink ready.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <systemc>
+#include <vector>
+
+#include "rtl_common.h"
+
+namespace glint::rtl {
+
+class ResultMerge : public sc_core::sc_module, public Traceable {
+ public:
+  sc_core::sc_in<bool> clk;
+  sc_core::sc_in<Result> bypass_in;
+  sc_core::sc_in<Result> compute_in;
+  sc_core::sc_in<bool> sink_ready;
+
+  sc_core::sc_signal<bool> head_valid;     // combinational
+  sc_core::sc_signal<Result> head;         // combinational (meaningful when head_valid)
+  sc_core::sc_signal<bool> credit_return;  // registered: retired at the previous edge
+
+  SC_HAS_PROCESS(ResultMerge);
+  ResultMerge(sc_core::sc_module_name name, int depth, int out_width, bool out_signed,
+              bool tracing);
+
+  int depth() const { return static_cast<int>(entries_.size()); }
+  std::size_t occupancy() const { return count_; }
+  std::size_t max_occupancy() const { return max_count_; }
+  std::uint64_t overflows() const { return overflows_; }  // always 0 with credit flow control
+  std::uint64_t retired() const { return next_seq_; }
+
+  void add_traces(sc_core::sc_trace_file* tf, const std::string& prefix,
+                  std::vector<TracedSignal>& out) const override;
+
+ private:
+  void comb();
+  void tick();
+
+  std::vector<Result> entries_;
+  std::uint64_t next_seq_ = 0;  // stream index of the head
+  std::size_t count_ = 0, max_count_ = 0;
+  std::uint64_t overflows_ = 0;
+  std::uint64_t cycle_ = 0;
+  bool credit_active_ = false;
+  sc_core::sc_event changed_;
+  const bool tracing_;
+  RawBits result_trace_, count_trace_;
+};
+
+}  // namespace glint::rtl

@@ -1,0 +1,160 @@
+// What every clocked module of the specular lane shares: the clock, the payloads that travel on its
+// handshake channels, and the trace helpers (raw fixed-point bits at their true, runtime width).
+//
+// Clocking convention (the one src/timing.h's recurrences are written in): every register is an
+// SC_METHOD on clk.pos(); cycle c is the c-th rising edge after the start of simulation, counted
+// from 0, at time 5 ns + c * 10 ns (so a VCD shows the reset state before cycle 0). Each module
+// counts the edges it has seen, so its own counter equals the cycle number in every process. A
+// transfer on a valid/ready channel happens at edge c when valid and ready are both 1 just before
+// it (the signal values visible to processes at edge c); a register written at edge c is visible
+// from edge c + 1.
+#pragma once
+
+#include <cstdint>
+#include <ostream>
+#include <string>
+#include <systemc>
+#include <vector>
+
+namespace glint::rtl {
+
+// Cycle c is the rising edge at clock_first_edge() + c * clock_period(): (t_ns - 5) / 10.
+inline sc_core::sc_time clock_period() {
+  return sc_core::sc_time(10, sc_core::SC_NS);
+}
+inline sc_core::sc_time clock_first_edge() {
+  return sc_core::sc_time(5, sc_core::SC_NS);
+}
+inline std::uint64_t cycle_time_ns(std::uint64_t cycle) {
+  return 5 + 10 * cycle;
+}
+
+// A shading request as the source presents it: the stream index, t in the unit's input format
+// (quantize_input), the unit slot (SlotMap::slot) and whether it is the stream's last row.
+struct Request {
+  std::uint64_t seq = 0;
+  std::int64_t t_raw = 0;
+  std::uint32_t slot = 0;
+  bool last = false;
+
+  friend bool operator==(const Request& a, const Request& b) {
+    return a.seq == b.seq && a.t_raw == b.t_raw && a.slot == b.slot && a.last == b.last;
+  }
+};
+
+// A result on its way to the sink (bypass register, compute output, merge head). `issue` and `done`
+// are cycle stamps carried for the scoreboard (testbench sideband, not hardware): issue is stamped
+// by the comparator / compute input register, done by the merge buffer when the result arrives.
+struct Result {
+  bool valid = false;
+  bool skipped = false;
+  bool last = false;
+  std::uint32_t slot = 0;
+  std::uint64_t seq = 0;
+  std::int64_t t_raw = 0;
+  std::int64_t value = 0;  // out_raw, from the datapath function
+  std::uint64_t issue = 0;
+  std::uint64_t done = 0;
+
+  friend bool operator==(const Result& a, const Result& b) {
+    return a.valid == b.valid && a.skipped == b.skipped && a.last == b.last && a.slot == b.slot &&
+           a.seq == b.seq && a.t_raw == b.t_raw && a.value == b.value && a.issue == b.issue &&
+           a.done == b.done;
+  }
+};
+
+std::ostream& operator<<(std::ostream& os, const Request& r);
+std::ostream& operator<<(std::ostream& os, const Result& r);
+
+// sc_signal<T> wants an sc_trace overload for its payload; the payloads are traced field by field
+// through RawBits mirrors instead (true widths), so these add nothing.
+inline void sc_trace(sc_core::sc_trace_file*, const Request&, const std::string&) {}
+inline void sc_trace(sc_core::sc_trace_file*, const Result&, const std::string&) {}
+
+// A raw fixed-point (or integer) value traced with its true bit width, known only at run time. It
+// is traced as a 64-bit integer with an explicit width (sc_trace(tf, uint64/int64, name, width)):
+// the VCD declares exactly `width` bits, and SystemC's writer formats these by shifting, several
+// times faster than the per-bit proxies of sc_uint_base / sc_bv_base of the same runtime length.
+// Signed formats are written as two's complement of `width` bits. Updated by the process that
+// owns the register.
+class RawBits {
+ public:
+  RawBits(int width, bool is_signed)
+      : width_(width),
+        is_signed_(is_signed),
+        mask_(width >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << width) - 1) {}
+  void set(std::int64_t raw) {
+    if (is_signed_) {
+      signed_ = raw;
+    } else {
+      unsigned_ = static_cast<std::uint64_t>(raw) & mask_;
+    }
+  }
+  void trace(sc_core::sc_trace_file* tf, const std::string& name) const {
+    if (is_signed_) {
+      sc_core::sc_trace(tf, signed_, name, width_);
+    } else {
+      sc_core::sc_trace(tf, unsigned_, name, width_);
+    }
+  }
+  int width() const { return width_; }
+  bool is_signed() const { return is_signed_; }
+
+ private:
+  int width_;
+  bool is_signed_;
+  std::uint64_t mask_;
+  sc_dt::uint64 unsigned_ = 0;
+  sc_dt::int64 signed_ = 0;
+};
+
+// Bits needed to hold values 0..max_value (at least 1).
+inline int bits_for(std::uint64_t max_value) {
+  int b = 1;
+  while (b < 64 && (max_value >> b) != 0) ++b;
+  return b;
+}
+
+// One traced signal as the GTKWave save file lists it.
+struct TracedSignal {
+  std::string name;  // hierarchical, e.g. "top.hast.in.t"
+  int width = 1;
+  bool is_signed = false;
+};
+
+// The traced signals of one module, and where they were registered. Every module implements it;
+// TraceControl (vcd_trace.h) calls add_traces once when it opens the VCD file.
+class Traceable {
+ public:
+  virtual ~Traceable() = default;
+  // Registers this module's signals and mirrors under `prefix` (e.g. "top.hast") and appends
+  // their descriptions to `out`.
+  virtual void add_traces(sc_core::sc_trace_file* tf, const std::string& prefix,
+                          std::vector<TracedSignal>& out) const = 0;
+};
+
+// Helpers for add_traces implementations.
+inline void trace_bool(sc_core::sc_trace_file* tf, const bool& v, const std::string& name,
+                       std::vector<TracedSignal>& out) {
+  sc_core::sc_trace(tf, v, name);
+  out.push_back({name, 1, false});
+}
+inline void trace_bool(sc_core::sc_trace_file* tf, const sc_core::sc_signal<bool>& v,
+                       const std::string& name, std::vector<TracedSignal>& out) {
+  sc_core::sc_trace(tf, v, name);
+  out.push_back({name, 1, false});
+}
+// An input port traces the signal it is bound to (sc_trace on the port itself would only take
+// effect at end of elaboration, and the VCD may be opened later).
+inline void trace_port(sc_core::sc_trace_file* tf, const sc_core::sc_in<bool>& port,
+                       const std::string& name, std::vector<TracedSignal>& out) {
+  sc_core::sc_trace(tf, port->read(), name);
+  out.push_back({name, 1, false});
+}
+inline void trace_raw(sc_core::sc_trace_file* tf, const RawBits& v, const std::string& name,
+                      std::vector<TracedSignal>& out) {
+  v.trace(tf, name);
+  out.push_back({name, v.width(), v.is_signed()});
+}
+
+}  // namespace glint::rtl

@@ -1,0 +1,123 @@
+#include "tau_comparator.h"
+
+#include <stdexcept>
+
+#include "unit_common.h"
+
+namespace glint::rtl {
+
+TauComparator::TauComparator(sc_core::sc_module_name name, const SpecularUnit& unit, int credits,
+                             bool tracing)
+    : sc_core::sc_module(name),
+      clk("clk"),
+      src_valid("src_valid"),
+      src_request("src_request"),
+      unit_ready("unit_ready"),
+      credit_return("credit_return"),
+      src_ready("src_ready", false),
+      compute_valid("compute_valid", false),
+      bypass("bypass"),
+      unit_(unit),
+      depth_(credits),
+      tracing_(tracing),
+      credits_(credits),
+      tau_trace_(unit.in_format().width() + 1, true),  // -1 (never skip) .. raw_max
+      credits_trace_(bits_for(static_cast<std::uint64_t>(credits)), false),
+      bypass_t_trace_(unit.in_format().width(), unit.in_format().is_signed),
+      bypass_result_trace_(unit.out_format().width(), unit.out_format().is_signed) {
+  if (credits < 1) throw std::invalid_argument("TauComparator: at least one credit required");
+  tau_.reserve(unit.slots());
+  for (std::size_t s = 0; s < unit.slots(); ++s) tau_.push_back(unit.tau_raw(s));
+  credits_trace_.set(credits_);
+
+  SC_METHOD(comb);
+  sensitive << src_valid << src_request << unit_ready << credit_return << credits_changed_;
+
+  SC_METHOD(tick);
+  sensitive << clk.pos();
+  dont_initialize();
+}
+
+void TauComparator::comb() {
+  const bool valid = src_valid.read();
+  const Request& r = src_request.read();
+  const bool skip = valid && tau_skip(r.t_raw, tau_[r.slot]);
+  const bool credit_ok = credits_ > 0 || credit_return.read();
+  const bool unit_ok = unit_ready.read();
+  skip_ = skip;
+  credit_ok_ = credit_ok;
+  src_ready.write(credit_ok && (skip || unit_ok));
+  compute_valid.write(valid && credit_ok && !skip && unit_ok);
+  if (tracing_) {
+    skip_trace_ = skip;
+    if (valid) tau_trace_.set(tau_[r.slot]);
+  }
+}
+
+void TauComparator::tick() {
+  const std::uint64_t c = cycle_++;
+  bool changed = false;
+  if (credit_return.read()) {
+    ++credits_;
+    changed = true;
+  }
+  const bool valid = src_valid.read();
+  const bool issue = valid && src_ready.read();
+  Result b;
+  if (issue) {
+    --credits_;
+    changed = true;
+    ++issued_;
+    if (held_ > 0) {
+      (held_by_credit_ ? stall_credit_ : stall_unit_) += held_;
+      held_ = 0;
+    }
+    if (skip_) {
+      const Request& r = src_request.read();
+      b.valid = true;
+      b.skipped = true;
+      b.last = r.last;
+      b.slot = r.slot;
+      b.seq = r.seq;
+      b.t_raw = r.t_raw;
+      b.value = unit_.eval_with_skip(r.slot, r.t_raw);
+      b.issue = c;
+    }
+  } else if (valid) {
+    ++held_;
+    held_by_credit_ = !credit_ok_;
+  }
+  if (b.valid || bypass_active_) {
+    bypass.write(b);
+    bypass_active_ = b.valid;
+  }
+  if (changed) credits_changed_.notify(sc_core::SC_ZERO_TIME);
+  if (tracing_) {
+    issue_trace_ = issue;
+    stall_trace_ = valid && !issue;
+    credits_trace_.set(credits_);
+    bypass_valid_trace_ = b.valid;
+    if (b.valid) {
+      bypass_t_trace_.set(b.t_raw);
+      bypass_result_trace_.set(b.value);
+    }
+  }
+}
+
+void TauComparator::add_traces(sc_core::sc_trace_file* tf, const std::string& prefix,
+                               std::vector<TracedSignal>& out) const {
+  const std::string p = prefix + ".comparator.";
+  trace_raw(tf, tau_trace_, p + "tau", out);
+  trace_bool(tf, skip_trace_, p + "skip", out);
+  trace_bool(tf, issue_trace_, p + "issue", out);
+  trace_bool(tf, stall_trace_, p + "stall", out);
+  trace_raw(tf, credits_trace_, p + "credits", out);
+  trace_bool(tf, compute_valid, p + "compute_valid", out);
+  trace_port(tf, unit_ready, p + "compute_ready", out);
+  const std::string b = prefix + ".bypass.";
+  trace_bool(tf, bypass_valid_trace_, b + "valid", out);
+  trace_raw(tf, bypass_t_trace_, b + "t", out);
+  trace_raw(tf, bypass_result_trace_, b + "result", out);
+}
+
+}  // namespace glint::rtl

@@ -1,0 +1,78 @@
+// VectorSource: the head of a lane. Pulls rows from its RowStream and presents one request at a
+// time in its output register (valid, t_raw in the unit's input format, slot, stream index); the
+// register advances at an edge where valid && ready (the comparator takes the request). It always
+// has the next request ready (src/timing.h: "the source always has the next request ready"): the
+// row after the presented one is read ahead, which is also how it knows the `last` flag.
+//
+// t_raw comes from quantize_input (the datapath's front end) and the slot from SlotMap::slot; the
+// module adds nothing of its own. The rows themselves stay in a RowRing until the scoreboard
+// retires them (testbench sideband, so the result callback can name its row).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <systemc>
+#include <vector>
+
+#include "evaluate.h"
+#include "row_stream.h"
+#include "rtl_common.h"
+#include "sim_control.h"
+#include "units.h"
+
+namespace glint::rtl {
+
+// Rows in flight, indexed by stream index modulo its size. With B merge-buffer credits at most B
+// requests are issued and not retired, plus the one presented: B + 2 entries never collide.
+class RowRing {
+ public:
+  explicit RowRing(std::size_t size) : rows_(size) {}
+  VectorRow& at(std::uint64_t seq) { return rows_[static_cast<std::size_t>(seq % rows_.size())]; }
+  const VectorRow& at(std::uint64_t seq) const {
+    return rows_[static_cast<std::size_t>(seq % rows_.size())];
+  }
+
+ private:
+  std::vector<VectorRow> rows_;
+};
+
+class VectorSource : public sc_core::sc_module, public Traceable {
+ public:
+  sc_core::sc_in<bool> clk;
+  sc_core::sc_in<bool> ready;  // from the comparator
+
+  sc_core::sc_signal<bool> valid;
+  sc_core::sc_signal<Request> request;
+
+  SC_HAS_PROCESS(VectorSource);
+  // Reads the first rows now (elaboration), so a malformed stream fails before simulation.
+  VectorSource(sc_core::sc_module_name name, RowStream& stream, const SpecularUnit& unit,
+               const SlotMap& slots, RowRing& ring, SimControl& control, bool tracing);
+
+  // Rows presented so far (the stream's length once it is drained).
+  std::uint64_t presented() const { return presented_; }
+  bool empty() const { return presented_ == 0; }
+
+  void add_traces(sc_core::sc_trace_file* tf, const std::string& prefix,
+                  std::vector<TracedSignal>& out) const override;
+
+ private:
+  void tick();
+  void load();  // presents the read-ahead row (or drops valid at the end) and reads the next one
+
+  RowStream& stream_;
+  const SpecularUnit& unit_;
+  const SlotMap& slots_;
+  RowRing& ring_;
+  SimControl& control_;
+  const bool tracing_;
+
+  VectorRow ahead_;
+  bool have_ahead_ = false;
+  bool valid_ = false;
+  std::uint64_t presented_ = 0;
+
+  RawBits t_trace_, slot_trace_, seq_trace_;
+};
+
+}  // namespace glint::rtl
