@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <systemc>
 
+#include "clocked_sim.h"
+
 namespace glint {
 namespace {
 
@@ -19,7 +21,8 @@ class FastLanes : public sc_core::sc_module {
         options_(options),
         accumulators_(accumulators),
         on_result_(on_result) {
-    for (const SpecularUnit* u : units) engines_.emplace_back(u->timing(), options.sink);
+    for (const SpecularUnit* u : units)
+      engines_.emplace_back(clocked_timing(*u, options.colour_stage), options.sink);
     SC_HAS_PROCESS(FastLanes);
     SC_THREAD(run);
   }

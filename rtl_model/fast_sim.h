@@ -24,6 +24,7 @@ struct FastOptions {
   SinkReady sink;
   std::size_t batch = 4096;  // requests per temporal-decoupling quantum
   double clock_period_ns = 1.0;
+  bool colour_stage = false;  // per-channel i*m stage on the computed path (+1 latency)
 };
 
 struct FastResult {

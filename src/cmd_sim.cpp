@@ -10,6 +10,7 @@
 
 #include "atomic_file.h"
 #include "cli.h"
+#include "clocked_sim.h"
 #include "fast_sim.h"
 #include "sim_report.h"
 #include "vectors.h"
@@ -26,17 +27,6 @@ struct SimOptions {
   std::size_t batch = 4096;
   bool json = false;
 };
-
-// The colour multiply is built only when the stream needs it: some light or material not white.
-bool stream_is_coloured(const VectorHeader& h) {
-  for (int l = 0; l < h.lights; ++l) {
-    const auto i = h.intensity(l);
-    if (i[0] != i[1] || i[1] != i[2]) return true;
-  }
-  for (const auto& m : h.materials)
-    if (m.specular[0] != m.specular[1] || m.specular[1] != m.specular[2]) return true;
-  return false;
-}
 
 void write_atomic(const std::string& path, const std::string& option, const std::string& text) {
   try {
@@ -64,11 +54,30 @@ int run_sim(const SimOptions& o) {
   const bool clocked = o.mode == "clocked" || (o.mode == "auto" && !o.vcd.empty());
   if (!clocked && !o.vcd.empty())
     throw std::invalid_argument("--vcd needs the clocked mode (--mode clocked or auto)");
-  if (clocked) throw std::invalid_argument("the clocked mode is not built yet");
+  ClockedOptions co;
+  co.vcd_path = o.vcd;
+  if (!o.vcd_window.empty()) {
+    const auto colon = o.vcd_window.find(':');
+    try {
+      if (colon == std::string::npos) throw std::invalid_argument("no ':'");
+      std::size_t used = 0;
+      co.vcd_first = std::stoull(o.vcd_window.substr(0, colon), &used);
+      if (used != colon) throw std::invalid_argument("first");
+      const std::string last = o.vcd_window.substr(colon + 1);
+      co.vcd_last = std::stoull(last, &used);
+      if (used != last.size() || co.vcd_last < co.vcd_first) throw std::invalid_argument("last");
+    } catch (const std::exception&) {
+      throw std::invalid_argument(
+          fmt::format("--vcd-window '{}': expected FIRST:LAST vector indices with FIRST <= LAST",
+                      o.vcd_window));
+    }
+  }
 
   VectorReader reader(o.vectors);
   const SlotMap slots = make_slots(reader.header());
   const bool colour = stream_is_coloured(reader.header());
+  co.colour_stage = colour;
+  co.sink = SinkReady{o.sink_ready, o.seed};
   std::vector<std::unique_ptr<SpecularUnit>> owned;
   std::vector<const SpecularUnit*> units;
   for (const auto& s : specs) {
@@ -98,25 +107,47 @@ int run_sim(const SimOptions& o) {
       std::fprintf(stderr, "\r%llu vectors", static_cast<unsigned long long>(reader.rows_read()));
     return ok;
   };
-  std::function<void(const FastResult&)> on_result;
-  if (dump) {
-    on_result = [&](const FastResult& r) {
-      dump->stream() << fmt::format(
-          "{},{},{:.17g},{},{},{},{:.17g},{},{},{}\n", r.row->line, acc[r.lane].stats().name,
-          r.row->t, r.t_raw, r.skipped ? 1 : 0, r.out_raw,
-          std::ldexp(static_cast<double>(r.out_raw), -units[r.lane]->out_format().frac_bits),
-          r.timing.issue, r.timing.done, r.timing.retire);
+  auto dump_row = [&](std::size_t lane, const VectorRow& row, std::int64_t t_raw, bool skipped,
+                      std::int64_t out_raw, const ResultTiming& t) {
+    dump->stream() << fmt::format(
+        "{},{},{:.17g},{},{},{},{:.17g},{},{},{}\n", row.line, acc[lane].stats().name, row.t, t_raw,
+        skipped ? 1 : 0, out_raw,
+        std::ldexp(static_cast<double>(out_raw), -units[lane]->out_format().frac_bits), t.issue,
+        t.done, t.retire);
+  };
+  std::vector<TimingStats> timing;
+  std::uint64_t rows = 0;
+  if (clocked) {
+    // Each lane reads its own stream (lanes run independently); `reader` only supplied the header.
+    auto open = [&]() -> std::unique_ptr<RowStream> {
+      return std::make_unique<VectorReaderStream>(o.vectors);
     };
+    auto on_result = [&](const LaneOutput& r) {
+      const std::size_t slot = slots.slot(r.row);
+      acc[r.lane].add(slot, make_reference(slots, slot, r.row.t), r.t_raw, r.skipped, r.out_raw);
+      if (dump) dump_row(r.lane, r.row, r.t_raw, r.skipped, r.out_raw, r.timing);
+    };
+    timing = run_clocked(units, slots, open, co, on_result);
+    rows = timing.empty() ? 0 : timing[0].results;
+  } else {
+    std::function<void(const FastResult&)> on_result;
+    if (dump) {
+      on_result = [&](const FastResult& r) {
+        dump_row(r.lane, *r.row, r.t_raw, r.skipped, r.out_raw, r.timing);
+      };
+    }
+    FastOptions fo;
+    fo.sink = co.sink;
+    fo.batch = o.batch;
+    fo.colour_stage = colour;
+    timing = run_fast(units, slots, next, fo, &acc, on_result);
+    rows = reader.rows_read();
   }
-  FastOptions fo;
-  fo.sink = SinkReady{o.sink_ready, o.seed};
-  fo.batch = o.batch;
-  const std::vector<TimingStats> timing = run_fast(units, slots, next, fo, &acc, on_result);
-  if (progress && reader.rows_read() >= 0x100000) std::fprintf(stderr, "\n");
+  if (progress && rows >= 0x100000) std::fprintf(stderr, "\n");
 
   nlohmann::json report = {{"glint_sim_report", kSimReportVersion},
                            {"vectors_file", std::filesystem::path(o.vectors).filename().string()},
-                           {"rows", reader.rows_read()},
+                           {"rows", rows},
                            {"mode", clocked ? "clocked" : "fast"},
                            {"sink_ready", o.sink_ready},
                            {"seed", o.seed},
@@ -138,8 +169,9 @@ int run_sim(const SimOptions& o) {
   if (o.json) {
     print_json(report);
   } else {
-    std::cout << fmt::format("{}: {} vectors, {} mode, sink ready {}\n", o.vectors,
-                             reader.rows_read(), clocked ? "clocked" : "fast", o.sink_ready)
+    std::cout << fmt::format("{}: {} vectors, {} mode, sink ready {}{}\n", o.vectors, rows,
+                             clocked ? "clocked" : "fast", o.sink_ready,
+                             o.vcd.empty() ? "" : ", VCD " + o.vcd)
               << format_sim_table(report);
     for (const auto& u : report["units"])
       std::cout << fmt::format("  {}: {}\n", u["unit"].get<std::string>(),
