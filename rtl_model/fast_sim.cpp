@@ -1,6 +1,7 @@
 #include "fast_sim.h"
 
 #include <algorithm>
+#include <exception>
 #include <systemc>
 
 #include "clocked_sim.h"
@@ -27,6 +28,10 @@ class FastLanes : public sc_core::sc_module {
     SC_THREAD(run);
   }
 
+  // An exception thrown inside the thread (a bad row, a failing callback) would reach SystemC as
+  // an "uncaught exception" report; it is kept here and rethrown after sc_start() returns.
+  std::exception_ptr error() const { return error_; }
+
   std::vector<TimingStats> stats() const {
     std::vector<TimingStats> s;
     for (const auto& e : engines_) s.push_back(e.stats());
@@ -35,6 +40,14 @@ class FastLanes : public sc_core::sc_module {
 
  private:
   void run() {
+    try {
+      work();
+    } catch (...) {
+      error_ = std::current_exception();
+    }
+  }
+
+  void work() {
     const std::size_t batch = std::max<std::size_t>(1, options_.batch);
     std::vector<VectorRow> rows(batch);
     std::vector<RowReference> refs(batch);
@@ -82,6 +95,7 @@ class FastLanes : public sc_core::sc_module {
   std::vector<LaneAccumulator>* accumulators_;
   const std::function<void(const FastResult&)>& on_result_;
   std::vector<TimingEngine> engines_;
+  std::exception_ptr error_;
 };
 
 }  // namespace
@@ -94,6 +108,7 @@ std::vector<TimingStats> run_fast(const std::vector<const SpecularUnit*>& units,
                                   const std::function<void(const FastResult&)>& on_result) {
   FastLanes lanes("fast", units, slots, next_row, options, accumulators, on_result);
   sc_core::sc_start();
+  if (lanes.error()) std::rethrow_exception(lanes.error());
   return lanes.stats();
 }
 

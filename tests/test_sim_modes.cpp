@@ -3,6 +3,8 @@
 // both must equal `glint eval`'s untimed datapaths bit for bit. Each run is its own `glint`
 // process (SystemC elaborates once per process).
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -180,6 +182,71 @@ TEST_F(SimModes, SkippingRaisesIterativeThroughputAndLowersPipelinedActivity) {
   // Pipelined: one result per cycle either way, so throughput barely moves.
   EXPECT_NEAR(pl["units"][0]["throughput"].get<double>(),
               pl["units"][1]["throughput"].get<double>(), 0.05);
+}
+
+TEST_F(SimModes, BadInputExitsTwoAndLeavesNoFiles) {
+  const fs::path vec = dir_ / "bad.vec";
+  std::ofstream(vec) << "glint-vectors 1\neps 1e-3\nlights 1\n"
+                     << "material a specular=1,1,1 shininess=50 lobe=phong\n"
+                     << "columns t material\ndata\n0.9 a\n0.95 a\nnot_a_number a\n";
+  for (const char* mode : {"fast", "clocked"}) {
+    const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
+    const std::string cmd =
+        quote(kGlint) + " sim " + quote(vec.string()) + " --mode " + mode + " --dump " +
+        quote((dir_ / "d.csv").string()) + " --report " + quote((dir_ / "r.json").string()) +
+        (std::string(mode) == "clocked" ? " --vcd " + quote((dir_ / "t.vcd").string())
+                                        : std::string()) +
+        " >" + quote(out.string()) + " 2>" + quote(err.string());
+    const int st = std::system(cmd.c_str());
+    ASSERT_TRUE(WIFEXITED(st)) << cmd;
+    EXPECT_EQ(WEXITSTATUS(st), 2) << mode;
+    const std::string msg = read_text(err);
+    EXPECT_NE(msg.find("bad.vec:9:"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("'t'"), std::string::npos) << msg;
+    for (const auto& e : fs::directory_iterator(dir_)) {
+      const std::string name = e.path().filename().string();
+      EXPECT_TRUE(name == "bad.vec" || name == "stdout.txt" || name == "stderr.txt")
+          << mode << " left " << name;
+    }
+  }
+}
+
+TEST_F(SimModes, BadWindowAndSinkAreUsageErrors) {
+  const std::string vec = quote((kTraces / "phong_basic.vec").string());
+  for (const char* args : {" --vcd-window 5", " --vcd-window 9:3", " --vcd-window a:b",
+                           " --sink-ready 0", " --sink-ready 1.5", " --mode fast --vcd x.vcd"}) {
+    const std::string cmd = "cd " + quote(dir_.string()) + " && " + quote(kGlint) + " sim " + vec +
+                            args + " >/dev/null 2>&1";
+    const int st = std::system(cmd.c_str());
+    ASSERT_TRUE(WIFEXITED(st));
+    EXPECT_EQ(WEXITSTATUS(st), 2) << args;
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "x.vcd"));
+}
+
+TEST_F(SimModes, RegressReportsEveryDifferingField) {
+  // A golden with a wrong cycle count and a float statistic beyond tolerance: exit 1 and one
+  // readable line per field; the untouched golden passes.
+  fs::create_directories(dir_ / "golden");
+  fs::copy_file(kTraces / "phong_basic.vec", dir_ / "phong_basic.vec");
+  fs::copy_file(kTraces / "golden" / "phong_basic.json", dir_ / "golden" / "phong_basic.json");
+  EXPECT_NE(run("regress --traces " + quote(dir_.string())).find("1 traces checked, 0 failed"),
+            std::string::npos);
+  json g = json::parse(read_text(dir_ / "golden" / "phong_basic.json"));
+  g["report"]["units"][0]["cycles"] = g["report"]["units"][0]["cycles"].get<int>() + 1;
+  g["report"]["units"][1]["errors"]["rms"] =
+      g["report"]["units"][1]["errors"]["rms"].get<double>() * 1.001;
+  std::ofstream(dir_ / "golden" / "phong_basic.json") << g.dump(2);
+  const std::string cmd = quote(kGlint) + " regress --traces " + quote(dir_.string()) + " >" +
+                          quote((dir_ / "out.txt").string()) + " 2>&1";
+  const int st = std::system(cmd.c_str());
+  ASSERT_TRUE(WIFEXITED(st));
+  EXPECT_EQ(WEXITSTATUS(st), 1);
+  const std::string out = read_text(dir_ / "out.txt");
+  const std::string u0 = g["report"]["units"][0]["unit"], u1 = g["report"]["units"][1]["unit"];
+  EXPECT_NE(out.find(u0 + ".cycles"), std::string::npos) << out;
+  EXPECT_NE(out.find(u1 + ".errors.rms"), std::string::npos) << out;
+  EXPECT_NE(out.find("2 differences"), std::string::npos) << out;
 }
 
 }  // namespace
