@@ -21,6 +21,8 @@
 #include <string>
 #include <vector>
 
+#include "test_support.h"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -32,23 +34,8 @@ const std::string kPhongBasic = kTraces + "/phong_basic.vec";
 
 const std::vector<std::string> kAllUnits = {"pow", "schlick", "hast", "horner", "lut"};
 
-std::string quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) {
-    if (c == '\'')
-      out += "'\\''";
-    else
-      out += c;
-  }
-  return out + "'";
-}
-
-std::string read_text(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+const auto quote = glint::test::shell_quote;
+const auto read_text = glint::test::read_file;
 
 void write_text(const fs::path& p, const std::string& text) {
   std::ofstream out(p, std::ios::binary);

@@ -12,11 +12,14 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "test_support.h"
 
 namespace {
 
@@ -26,18 +29,8 @@ using nlohmann::json;
 const std::string kGlint = GLINT_BINARY_DIR "/glint";
 const fs::path kTraces = GLINT_SOURCE_DIR "/traces";
 
-std::string quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-std::string read_text(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using glint::test::read_file;
+const auto quote = glint::test::shell_quote;
 
 std::vector<std::string> sorted_lines_without_header(const std::string& text) {
   std::vector<std::string> lines;
@@ -52,12 +45,10 @@ std::vector<std::string> sorted_lines_without_header(const std::string& text) {
 class SimModes : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("glint_sim_modes_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
+    tmp_ = std::make_unique<glint::test::TempDir>();
+    dir_ = tmp_->path();
   }
-  void TearDown() override { fs::remove_all(dir_); }
+  void TearDown() override { tmp_.reset(); }
 
   // Runs glint; returns stdout, asserts exit status 0.
   std::string run(const std::string& args) {
@@ -65,8 +56,8 @@ class SimModes : public ::testing::Test {
     const std::string cmd =
         quote(kGlint) + " " + args + " >" + quote(out.string()) + " 2>" + quote(err.string());
     const int st = std::system(cmd.c_str());
-    EXPECT_EQ(st, 0) << cmd << "\n" << read_text(err);
-    return read_text(out);
+    EXPECT_EQ(st, 0) << cmd << "\n" << read_file(err);
+    return read_file(out);
   }
 
   // Runs both modes with the same units and sink, compares dumps (results and cycle stamps) and
@@ -81,8 +72,8 @@ class SimModes : public ::testing::Test {
         json::parse(run("sim " + common + " --mode fast --dump " + quote(fast_csv.string())));
     const json clocked =
         json::parse(run("sim " + common + " --mode clocked --dump " + quote(clocked_csv.string())));
-    const auto a = sorted_lines_without_header(read_text(fast_csv));
-    const auto b = sorted_lines_without_header(read_text(clocked_csv));
+    const auto a = sorted_lines_without_header(read_file(fast_csv));
+    const auto b = sorted_lines_without_header(read_file(clocked_csv));
     ASSERT_EQ(a.size(), b.size()) << vectors;
     ASSERT_FALSE(a.empty());
     for (std::size_t i = 0; i < a.size(); ++i) ASSERT_EQ(a[i], b[i]) << vectors << " row " << i;
@@ -97,6 +88,7 @@ class SimModes : public ::testing::Test {
     }
   }
 
+  std::unique_ptr<glint::test::TempDir> tmp_;
   fs::path dir_;
 };
 
@@ -163,8 +155,8 @@ TEST_F(SimModes, SimOutputsEqualEvalBitForBit) {
     };
     // eval: line,material,light,x,y,t,t_raw,unit,reference,model,fixed,fixed_raw,skipped
     // sim:  line,unit,t,t_raw,skipped,fixed_raw,fixed,issue,done,retire
-    const auto e = index(read_text(eval_csv), 11, 12);
-    const auto s = index(read_text(sim_csv), 5, 4);
+    const auto e = index(read_file(eval_csv), 11, 12);
+    const auto s = index(read_file(sim_csv), 5, 4);
     ASSERT_EQ(e.size(), s.size()) << t;
     ASSERT_FALSE(e.empty());
     EXPECT_TRUE(e == s) << t;
@@ -200,7 +192,7 @@ TEST_F(SimModes, BadInputExitsTwoAndLeavesNoFiles) {
     const int st = std::system(cmd.c_str());
     ASSERT_TRUE(WIFEXITED(st)) << cmd;
     EXPECT_EQ(WEXITSTATUS(st), 2) << mode;
-    const std::string msg = read_text(err);
+    const std::string msg = read_file(err);
     EXPECT_NE(msg.find("bad.vec:9:"), std::string::npos) << msg;
     EXPECT_NE(msg.find("'t'"), std::string::npos) << msg;
     for (const auto& e : fs::directory_iterator(dir_)) {
@@ -232,7 +224,7 @@ TEST_F(SimModes, RegressReportsEveryDifferingField) {
   fs::copy_file(kTraces / "golden" / "phong_basic.json", dir_ / "golden" / "phong_basic.json");
   EXPECT_NE(run("regress --traces " + quote(dir_.string())).find("1 traces checked, 0 failed"),
             std::string::npos);
-  json g = json::parse(read_text(dir_ / "golden" / "phong_basic.json"));
+  json g = json::parse(read_file(dir_ / "golden" / "phong_basic.json"));
   g["report"]["units"][0]["cycles"] = g["report"]["units"][0]["cycles"].get<int>() + 1;
   g["report"]["units"][1]["errors"]["rms"] =
       g["report"]["units"][1]["errors"]["rms"].get<double>() * 1.001;
@@ -242,7 +234,7 @@ TEST_F(SimModes, RegressReportsEveryDifferingField) {
   const int st = std::system(cmd.c_str());
   ASSERT_TRUE(WIFEXITED(st));
   EXPECT_EQ(WEXITSTATUS(st), 1);
-  const std::string out = read_text(dir_ / "out.txt");
+  const std::string out = read_file(dir_ / "out.txt");
   const std::string u0 = g["report"]["units"][0]["unit"], u1 = g["report"]["units"][1]["unit"];
   EXPECT_NE(out.find(u0 + ".cycles"), std::string::npos) << out;
   EXPECT_NE(out.find(u1 + ".errors.rms"), std::string::npos) << out;

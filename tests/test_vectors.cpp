@@ -16,6 +16,7 @@
 
 #include "atomic_file.h"
 #include "input_error.h"
+#include "test_support.h"
 #include "vectors.h"
 
 namespace fs = std::filesystem;
@@ -25,32 +26,7 @@ namespace {
 
 const std::string kTraces = std::string(GLINT_SOURCE_DIR) + "/traces";
 
-// A fresh, empty scratch directory per test, removed afterwards.
-class TempDir {
- public:
-  TempDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = fs::path(GLINT_BINARY_DIR) / "test_vectors_tmp" /
-            (std::string(info->test_suite_name()) + "." + info->name() + "." +
-             std::to_string(::getpid()));
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  std::string file(const std::string& name) const { return (path_ / name).string(); }
-  std::vector<std::string> entries() const {
-    std::vector<std::string> out;
-    for (const auto& e : fs::directory_iterator(path_)) out.push_back(e.path().filename());
-    std::sort(out.begin(), out.end());
-    return out;
-  }
-
- private:
-  fs::path path_;
-};
+using glint::test::TempDir;
 
 std::vector<VectorRow> read_all(VectorReader& reader) {
   std::vector<VectorRow> rows;
