@@ -1,7 +1,5 @@
 #include "clocked_sim.h"
 
-#include <sysc/tracing/sc_tracing_ids.h>
-
 #include <algorithm>
 #include <stdexcept>
 
@@ -102,14 +100,13 @@ class Lane : public sc_core::sc_module {
   }
   std::size_t max_occupancy() const { return merge_->max_occupancy(); }
 
-  void add_traces(sc_core::sc_trace_file* tf, const std::string& prefix,
-                  std::vector<TracedSignal>& out) const {
-    source_->add_traces(tf, prefix, out);
-    comparator_->add_traces(tf, prefix, out);
-    compute_->add_traces(tf, prefix, out);
-    if (colour_) colour_->add_traces(tf, prefix, out);
-    merge_->add_traces(tf, prefix, out);
-    sink_->add_traces(tf, prefix, out);
+  void add_traces(VcdWriter& vcd, const std::string& prefix) const {
+    source_->add_traces(vcd, prefix);
+    comparator_->add_traces(vcd, prefix);
+    compute_->add_traces(vcd, prefix);
+    if (colour_) colour_->add_traces(vcd, prefix);
+    merge_->add_traces(vcd, prefix);
+    sink_->add_traces(vcd, prefix);
   }
 
  private:
@@ -126,7 +123,9 @@ class Lane : public sc_core::sc_module {
   std::unique_ptr<Scoreboard> sink_;
 };
 
-// The clock, the lanes, and the per-edge control (end of run, VCD window, cycle counter).
+// The clock, the lanes, the per-edge control (end of run, VCD window, cycle counter) and the VCD
+// sampling: once the values of cycle c have settled, at the falling edge after it (and once for the
+// reset state, halfway to the first rising edge).
 class Top : public sc_core::sc_module {
  public:
   sc_core::sc_clock clk;
@@ -135,31 +134,36 @@ class Top : public sc_core::sc_module {
   Top(sc_core::sc_module_name name, const std::vector<const SpecularUnit*>& units,
       const std::vector<std::string>& labels, const SlotMap& slots,
       const std::function<std::unique_ptr<RowStream>()>& open_stream, const ClockedOptions& options,
-      SimControl& control, const std::function<void(const LaneOutput&)>& on_result, bool tracing)
+      SimControl& control, const std::function<void(const LaneOutput&)>& on_result,
+      TraceControl* vcd)
       : sc_core::sc_module(name),
         clk("clk", clock_period(), 0.5, clock_first_edge(), true),
         control_(control),
-        tracing_(tracing),
+        vcd_(vcd),
+        tracing_(vcd != nullptr),
         cycle_trace_(32, false) {
     for (std::size_t i = 0; i < units.size(); ++i) {
       lanes_.push_back(std::make_unique<Lane>(labels[i].c_str(), i, *units[i], slots, open_stream(),
-                                              options, control, clk, on_result, tracing));
+                                              options, control, clk, on_result, tracing_));
     }
     SC_METHOD(edge);
     sensitive << clk.posedge_event();
     dont_initialize();
+    if (vcd_) {
+      SC_METHOD(sample);
+      sensitive << clk.negedge_event() << reset_sample_;
+      dont_initialize();
+      reset_sample_.notify(clock_first_edge() / 2);
+    }
   }
 
   const std::vector<std::unique_ptr<Lane>>& lanes() const { return lanes_; }
   std::uint64_t cycles() const { return cycle_; }
 
-  void add_traces(sc_core::sc_trace_file* tf, const std::vector<std::string>& labels,
-                  std::vector<TracedSignal>& out) const {
-    sc_core::sc_trace(tf, clk, "top.clk");
-    out.push_back({"top.clk", 1, false});
-    trace_raw(tf, cycle_trace_, "top.cycle", out);
-    for (std::size_t i = 0; i < lanes_.size(); ++i)
-      lanes_[i]->add_traces(tf, "top." + labels[i], out);
+  void add_traces(VcdWriter& vcd, const std::vector<std::string>& labels) const {
+    vcd.add_clock("top.clk");
+    trace_raw(vcd, cycle_trace_, "top.cycle");
+    for (std::size_t i = 0; i < lanes_.size(); ++i) lanes_[i]->add_traces(vcd, "top." + labels[i]);
   }
 
  private:
@@ -169,8 +173,18 @@ class Top : public sc_core::sc_module {
     control_.on_edge(c);
   }
 
+  void sample() {
+    if (cycle_ == 0) {
+      vcd_->sample_reset();
+    } else {
+      vcd_->sample_cycle(cycle_time_ns(cycle_ - 1), fall_time_ns(cycle_ - 1));
+    }
+  }
+
   SimControl& control_;
+  TraceControl* const vcd_;
   const bool tracing_;
+  sc_core::sc_event reset_sample_;
   std::uint64_t cycle_ = 0;
   RawBits cycle_trace_;
   std::vector<std::unique_ptr<Lane>> lanes_;
@@ -188,11 +202,8 @@ std::vector<std::string> lane_labels(const std::vector<const SpecularUnit*>& uni
 
 void quiet_reports() {
   using sc_core::sc_report_handler;
-  // "Simulation stopped by user" and the VCD timescale note would go to stdout, which carries
-  // glint's results.
+  // "Simulation stopped by user" would go to stdout, which carries glint's results.
   sc_report_handler::set_actions("/OSCI/SystemC", sc_core::SC_INFO, sc_core::SC_DO_NOTHING);
-  sc_report_handler::set_actions(sc_core::SC_ID_TRACING_TIMESCALE_UNIT_, sc_core::SC_INFO,
-                                 sc_core::SC_DO_NOTHING);
 }
 
 }  // namespace
@@ -237,17 +248,15 @@ std::vector<TimingStats> run_clocked(const std::vector<const SpecularUnit*>& uni
   std::unique_ptr<Top> top;
   std::unique_ptr<TraceControl> vcd;
   if (tracing) {
-    vcd = std::make_unique<TraceControl>(
-        options.vcd_path, [&](sc_core::sc_trace_file* tf, std::vector<TracedSignal>& out) {
-          top->add_traces(tf, labels, out);
-        });
+    vcd = std::make_unique<TraceControl>(options.vcd_path,
+                                         [&](VcdWriter& w) { top->add_traces(w, labels); });
     control.set_window(
         options.vcd_first, options.vcd_last, units.size(), [&] { vcd->open(); },
         [&] { vcd->close(); });
   }
   control.hold_window(true);  // sources present vector 0 during elaboration
   top = std::make_unique<Top>("top", units, labels, slots, open_stream, options, control, on_result,
-                              tracing);
+                              vcd.get());
   control.hold_window(false);
 
   sc_core::sc_start();

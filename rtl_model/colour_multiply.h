@@ -34,11 +34,10 @@ class ColourMultiply : public sc_core::sc_module, public Traceable {
     dont_initialize();
   }
 
-  void add_traces(sc_core::sc_trace_file* tf, const std::string& prefix,
-                  std::vector<TracedSignal>& traced) const override {
+  void add_traces(VcdWriter& vcd, const std::string& prefix) const override {
     const std::string p = prefix + ".colour.";
-    trace_bool(tf, valid_trace_, p + "valid", traced);
-    trace_raw(tf, result_trace_, p + "result", traced);
+    trace_bool(vcd, valid_trace_, p + "valid");
+    trace_raw(vcd, result_trace_, p + "result");
   }
 
  private:

@@ -102,9 +102,19 @@ void ComputePipeline::update_traces(std::size_t head, const Result* output) {
   for (std::size_t k = 0; k < stages_.size(); ++k) {
     const StageSpec& s = stages_[k];
     StageTrace& tr = *traces_[k];
+    if (s.first == s.last) {
+      // One position (most stages): without branches, as `valid` follows the request pattern.
+      const std::size_t up = static_cast<std::size_t>(s.first);
+      const Entry& e = ring_[head >= up ? head - up : head + depth_ - up];
+      tr.valid = e.valid;
+      tr.t.set_if(e.valid, e.request.t_raw);
+      if (s.last == latency_ && output) tr.result.set(output->value);
+      continue;
+    }
     tr.valid = false;
     for (int p = s.first; p <= s.last; ++p) {
-      const Entry& e = ring_[(head + depth_ - static_cast<std::size_t>(p)) % depth_];
+      const std::size_t up = static_cast<std::size_t>(p);  // < depth_
+      const Entry& e = ring_[head >= up ? head - up : head + depth_ - up];
       if (!e.valid) continue;
       tr.valid = true;
       tr.t.set(e.request.t_raw);
@@ -115,17 +125,16 @@ void ComputePipeline::update_traces(std::size_t head, const Result* output) {
   }
 }
 
-void ComputePipeline::add_traces(sc_core::sc_trace_file* tf, const std::string& prefix,
-                                 std::vector<TracedSignal>& out) const {
+void ComputePipeline::add_traces(VcdWriter& vcd, const std::string& prefix) const {
   for (std::size_t k = 0; k < stages_.size(); ++k) {
     const StageSpec& s = stages_[k];
     const StageTrace& tr = *traces_[k];
     const std::string p = prefix + "." + s.name + ".";
-    trace_bool(tf, tr.valid, p + "valid", out);
-    if (k == 0) trace_bool(tf, ready, p + "ready", out);
-    trace_raw(tf, tr.t, p + "t", out);
-    if (s.last > s.first) trace_raw(tf, tr.bit, p + "bit", out);
-    if (s.last == latency_) trace_raw(tf, tr.result, p + "result", out);
+    trace_bool(vcd, tr.valid, p + "valid");
+    if (k == 0) trace_bool(vcd, ready, p + "ready");
+    trace_raw(vcd, tr.t, p + "t");
+    if (s.last > s.first) trace_raw(vcd, tr.bit, p + "bit");
+    if (s.last == latency_) trace_raw(vcd, tr.result, p + "result");
   }
 }
 

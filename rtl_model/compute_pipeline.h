@@ -58,8 +58,7 @@ class ComputePipeline : public sc_core::sc_module, public Traceable {
   // True when `stages` covers 0..latency contiguously, each stage non-empty, names unique.
   static bool valid_layout(const std::vector<StageSpec>& stages, int latency);
 
-  void add_traces(sc_core::sc_trace_file* tf, const std::string& prefix,
-                  std::vector<TracedSignal>& out) const override;
+  void add_traces(VcdWriter& vcd, const std::string& prefix) const override;
 
  private:
   struct Entry {

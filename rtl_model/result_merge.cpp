@@ -82,14 +82,13 @@ void ResultMerge::tick() {
   if (tracing_) count_trace_.set(static_cast<std::int64_t>(count_));
 }
 
-void ResultMerge::add_traces(sc_core::sc_trace_file* tf, const std::string& prefix,
-                             std::vector<TracedSignal>& out) const {
+void ResultMerge::add_traces(VcdWriter& vcd, const std::string& prefix) const {
   const std::string p = prefix + ".merge.";
-  trace_bool(tf, head_valid, p + "valid", out);
-  trace_port(tf, sink_ready, p + "ready", out);
-  trace_raw(tf, result_trace_, p + "result", out);
-  trace_raw(tf, count_trace_, p + "count", out);
-  trace_bool(tf, credit_return, p + "credit", out);
+  trace_bool(vcd, head_valid, p + "valid");
+  trace_port(vcd, sink_ready, p + "ready");
+  trace_raw(vcd, result_trace_, p + "result");
+  trace_raw(vcd, count_trace_, p + "count");
+  trace_bool(vcd, credit_return, p + "credit");
 }
 
 }  // namespace glint::rtl

@@ -41,8 +41,7 @@ class ResultMerge : public sc_core::sc_module, public Traceable {
   std::uint64_t overflows() const { return overflows_; }  // always 0 with credit flow control
   std::uint64_t retired() const { return next_seq_; }
 
-  void add_traces(sc_core::sc_trace_file* tf, const std::string& prefix,
-                  std::vector<TracedSignal>& out) const override;
+  void add_traces(VcdWriter& vcd, const std::string& prefix) const override;
 
  private:
   void comb();

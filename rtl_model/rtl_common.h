@@ -16,6 +16,8 @@
 #include <systemc>
 #include <vector>
 
+#include "vcd_writer.h"
+
 namespace glint::rtl {
 
 // Cycle c is the rising edge at clock_first_edge() + c * clock_period(): (t_ns - 5) / 10.
@@ -27,6 +29,14 @@ inline sc_core::sc_time clock_first_edge() {
 }
 inline std::uint64_t cycle_time_ns(std::uint64_t cycle) {
   return 5 + 10 * cycle;
+}
+// The falling edge after cycle c (the clock is high for the first half of each period).
+inline std::uint64_t fall_time_ns(std::uint64_t cycle) {
+  return cycle_time_ns(cycle) + 5;
+}
+// The clock's level at time t_ns (low before the first edge).
+inline bool clock_high_at_ns(std::uint64_t t_ns) {
+  return t_ns >= 5 && (t_ns - 5) % 10 < 5;
 }
 
 // A shading request as the source presents it: the stream index, t in the unit's input format
@@ -67,36 +77,26 @@ std::ostream& operator<<(std::ostream& os, const Request& r);
 std::ostream& operator<<(std::ostream& os, const Result& r);
 
 // sc_signal<T> wants an sc_trace overload for its payload; the payloads are traced field by field
-// through RawBits mirrors instead (true widths), so these add nothing.
+// through RawBits mirrors instead (true widths, VcdWriter), so these add nothing.
 inline void sc_trace(sc_core::sc_trace_file*, const Request&, const std::string&) {}
 inline void sc_trace(sc_core::sc_trace_file*, const Result&, const std::string&) {}
 
-// A raw fixed-point (or integer) value traced with its true bit width, known only at run time. It
-// is traced as a 64-bit integer with an explicit width (sc_trace(tf, uint64/int64, name, width)):
-// the VCD declares exactly `width` bits, and SystemC's writer formats these by shifting, several
-// times faster than the per-bit proxies of sc_uint_base / sc_bv_base of the same runtime length.
-// Signed formats are written as two's complement of `width` bits. Updated by the process that
-// owns the register.
+// A raw fixed-point (or integer) value traced with its true bit width, known only at run time:
+// the VCD declares exactly `width` bits. Signed formats are kept as two's complement of `width`
+// bits. Updated by the process that owns the register; VcdWriter reads it once per cycle.
 class RawBits {
  public:
   RawBits(int width, bool is_signed)
       : width_(width),
         is_signed_(is_signed),
         mask_(width >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << width) - 1) {}
-  void set(std::int64_t raw) {
-    if (is_signed_) {
-      signed_ = raw;
-    } else {
-      unsigned_ = static_cast<std::uint64_t>(raw) & mask_;
-    }
+  void set(std::int64_t raw) { bits_ = static_cast<std::uint64_t>(raw) & mask_; }
+  // set(raw) when `cond` (branch-free: for values that change with an unpredictable valid bit).
+  void set_if(bool cond, std::int64_t raw) {
+    const std::uint64_t v = static_cast<std::uint64_t>(raw) & mask_;
+    bits_ = cond ? v : bits_;
   }
-  void trace(sc_core::sc_trace_file* tf, const std::string& name) const {
-    if (is_signed_) {
-      sc_core::sc_trace(tf, signed_, name, width_);
-    } else {
-      sc_core::sc_trace(tf, unsigned_, name, width_);
-    }
-  }
+  const std::uint64_t& bits() const { return bits_; }
   int width() const { return width_; }
   bool is_signed() const { return is_signed_; }
 
@@ -104,8 +104,7 @@ class RawBits {
   int width_;
   bool is_signed_;
   std::uint64_t mask_;
-  sc_dt::uint64 unsigned_ = 0;
-  sc_dt::int64 signed_ = 0;
+  std::uint64_t bits_ = 0;
 };
 
 // Bits needed to hold values 0..max_value (at least 1).
@@ -115,46 +114,29 @@ inline int bits_for(std::uint64_t max_value) {
   return b;
 }
 
-// One traced signal as the GTKWave save file lists it.
-struct TracedSignal {
-  std::string name;  // hierarchical, e.g. "top.hast.in.t"
-  int width = 1;
-  bool is_signed = false;
-};
-
-// The traced signals of one module, and where they were registered. Every module implements it;
-// TraceControl (vcd_trace.h) calls add_traces once when it opens the VCD file.
+// The traced signals of one module. Every module implements it; TraceControl (vcd_trace.h) calls
+// add_traces once when it opens the VCD file.
 class Traceable {
  public:
   virtual ~Traceable() = default;
-  // Registers this module's signals and mirrors under `prefix` (e.g. "top.hast") and appends
-  // their descriptions to `out`.
-  virtual void add_traces(sc_core::sc_trace_file* tf, const std::string& prefix,
-                          std::vector<TracedSignal>& out) const = 0;
+  // Registers this module's signals and mirrors under `prefix` (e.g. "top.hast").
+  virtual void add_traces(VcdWriter& vcd, const std::string& prefix) const = 0;
 };
 
-// Helpers for add_traces implementations.
-inline void trace_bool(sc_core::sc_trace_file* tf, const bool& v, const std::string& name,
-                       std::vector<TracedSignal>& out) {
-  sc_core::sc_trace(tf, v, name);
-  out.push_back({name, 1, false});
+// Helpers for add_traces implementations. Every traced value is a plain memory location the writer
+// samples: a mirror, or the current value of an sc_signal<bool> (read() returns a reference to it).
+inline void trace_bool(VcdWriter& vcd, const bool& v, const std::string& name) {
+  vcd.add_bool(v, name);
 }
-inline void trace_bool(sc_core::sc_trace_file* tf, const sc_core::sc_signal<bool>& v,
-                       const std::string& name, std::vector<TracedSignal>& out) {
-  sc_core::sc_trace(tf, v, name);
-  out.push_back({name, 1, false});
+inline void trace_bool(VcdWriter& vcd, const sc_core::sc_signal<bool>& v, const std::string& name) {
+  vcd.add_bool(v.read(), name);
 }
-// An input port traces the signal it is bound to (sc_trace on the port itself would only take
-// effect at end of elaboration, and the VCD may be opened later).
-inline void trace_port(sc_core::sc_trace_file* tf, const sc_core::sc_in<bool>& port,
-                       const std::string& name, std::vector<TracedSignal>& out) {
-  sc_core::sc_trace(tf, port->read(), name);
-  out.push_back({name, 1, false});
+// An input port traces the signal it is bound to.
+inline void trace_port(VcdWriter& vcd, const sc_core::sc_in<bool>& port, const std::string& name) {
+  vcd.add_bool(port->read(), name);
 }
-inline void trace_raw(sc_core::sc_trace_file* tf, const RawBits& v, const std::string& name,
-                      std::vector<TracedSignal>& out) {
-  v.trace(tf, name);
-  out.push_back({name, v.width(), v.is_signed()});
+inline void trace_raw(VcdWriter& vcd, const RawBits& v, const std::string& name) {
+  vcd.add_bits(v.bits(), v.width(), v.is_signed(), name);
 }
 
 }  // namespace glint::rtl

@@ -81,12 +81,11 @@ void Scoreboard::retire(const Result& r, std::uint64_t cycle) {
   }
 }
 
-void Scoreboard::add_traces(sc_core::sc_trace_file* tf, const std::string& prefix,
-                            std::vector<TracedSignal>& out) const {
+void Scoreboard::add_traces(VcdWriter& vcd, const std::string& prefix) const {
   const std::string p = prefix + ".sink.";
-  trace_bool(tf, retire_trace_, p + "valid", out);
-  trace_bool(tf, ready, p + "ready", out);
-  trace_raw(tf, result_trace_, p + "result", out);
+  trace_bool(vcd, retire_trace_, p + "valid");
+  trace_bool(vcd, ready, p + "ready");
+  trace_raw(vcd, result_trace_, p + "result");
 }
 
 }  // namespace glint::rtl

@@ -44,8 +44,7 @@ class Scoreboard : public sc_core::sc_module, public Traceable {
   std::uint64_t mismatches() const { return mismatches_; }
   bool done() const { return done_; }
 
-  void add_traces(sc_core::sc_trace_file* tf, const std::string& prefix,
-                  std::vector<TracedSignal>& out) const override;
+  void add_traces(VcdWriter& vcd, const std::string& prefix) const override;
 
  private:
   void tick();

@@ -90,7 +90,7 @@ class SimControl {
     if (all_done() && cycle > done_cycle_) {
       if (!window_opened_ && open_) {
         // A window that no vector reached still yields a VCD: the final state, traced through the
-        // next edge (SystemC writes nothing for a file closed before its first traced cycle).
+        // next edge (its initial dump is sampled once this cycle's values have settled).
         open_window();
         return;
       }

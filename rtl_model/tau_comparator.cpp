@@ -104,20 +104,19 @@ void TauComparator::tick() {
   }
 }
 
-void TauComparator::add_traces(sc_core::sc_trace_file* tf, const std::string& prefix,
-                               std::vector<TracedSignal>& out) const {
+void TauComparator::add_traces(VcdWriter& vcd, const std::string& prefix) const {
   const std::string p = prefix + ".comparator.";
-  trace_raw(tf, tau_trace_, p + "tau", out);
-  trace_bool(tf, skip_trace_, p + "skip", out);
-  trace_bool(tf, issue_trace_, p + "issue", out);
-  trace_bool(tf, stall_trace_, p + "stall", out);
-  trace_raw(tf, credits_trace_, p + "credits", out);
-  trace_bool(tf, compute_valid, p + "compute_valid", out);
-  trace_port(tf, unit_ready, p + "compute_ready", out);
+  trace_raw(vcd, tau_trace_, p + "tau");
+  trace_bool(vcd, skip_trace_, p + "skip");
+  trace_bool(vcd, issue_trace_, p + "issue");
+  trace_bool(vcd, stall_trace_, p + "stall");
+  trace_raw(vcd, credits_trace_, p + "credits");
+  trace_bool(vcd, compute_valid, p + "compute_valid");
+  trace_port(vcd, unit_ready, p + "compute_ready");
   const std::string b = prefix + ".bypass.";
-  trace_bool(tf, bypass_valid_trace_, b + "valid", out);
-  trace_raw(tf, bypass_t_trace_, b + "t", out);
-  trace_raw(tf, bypass_result_trace_, b + "result", out);
+  trace_bool(vcd, bypass_valid_trace_, b + "valid");
+  trace_raw(vcd, bypass_t_trace_, b + "t");
+  trace_raw(vcd, bypass_result_trace_, b + "result");
 }
 
 }  // namespace glint::rtl

@@ -48,8 +48,7 @@ class TauComparator : public sc_core::sc_module, public Traceable {
   std::uint64_t issued() const { return issued_; }
   int credits() const { return credits_; }
 
-  void add_traces(sc_core::sc_trace_file* tf, const std::string& prefix,
-                  std::vector<TracedSignal>& out) const override;
+  void add_traces(VcdWriter& vcd, const std::string& prefix) const override;
 
  private:
   void comb();

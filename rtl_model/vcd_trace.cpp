@@ -2,51 +2,88 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <sstream>
 #include <stdexcept>
+#include <systemc>
 
 #include "atomic_file.h"
+#include "rtl_common.h"
 
 namespace glint::rtl {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// The root $scope, kept from SystemC's writer so the names (and GTKWave save files) stay the same.
+const char* const kRootScope = "SystemC";
+
+std::uint64_t now_ns() {
+  return static_cast<std::uint64_t>(sc_core::sc_time_stamp().to_seconds() * 1e9 + 0.5);
+}
+
+}  // namespace
+
 TraceControl::TraceControl(std::string vcd_path, AddTraces add_traces)
-    : vcd_path_(std::move(vcd_path)), add_traces_(std::move(add_traces)) {
-  temp_base_ = vcd_path_ + ".tmp." + std::to_string(::getpid());
-  const std::string temp = temp_base_ + ".vcd";
-  std::FILE* f = std::fopen(temp.c_str(), "w");
+    : vcd_path_(std::move(vcd_path)), add_traces_(std::move(add_traces)), writer_(kRootScope) {
+  temp_path_ = vcd_path_ + ".tmp." + std::to_string(::getpid()) + ".vcd";
+  std::FILE* f = std::fopen(temp_path_.c_str(), "wb");
   if (!f) {
     throw std::runtime_error("cannot write VCD '" + vcd_path_ + "': " + std::strerror(errno));
   }
-  std::fclose(f);
+  writer_.open(f);
 }
 
 TraceControl::~TraceControl() {
-  close();
   if (!committed_) {
+    writer_.close(0);  // the values it refers to may be gone: nothing is sampled
     std::error_code ec;
-    fs::remove(temp_base_ + ".vcd", ec);
+    fs::remove(temp_path_, ec);
   }
 }
 
 void TraceControl::open() {
   if (opened_) return;
   opened_ = true;
-  tf_ = sc_core::sc_create_vcd_trace_file(temp_base_.c_str());
-  tf_->set_time_unit(1, sc_core::SC_NS);
-  start_ns_ = static_cast<std::uint64_t>(sc_core::sc_time_stamp().to_seconds() * 1e9 + 0.5);
-  add_traces_(tf_, signals_);
+  start_ns_ = now_ns();
+  add_traces_(writer_);
+  writer_.header("ns", "glint clocked SystemC model (glint VcdWriter)");
+  dump_pending_ = true;
+}
+
+void TraceControl::initial_dump(std::uint64_t t_ns) {
+  dump_pending_ = false;
+  writer_.dump_all(t_ns, clock_high_at_ns(t_ns));
+}
+
+void TraceControl::sample_reset() {
+  if (tracing() && dump_pending_) initial_dump(start_ns_);
+}
+
+void TraceControl::sample_cycle(std::uint64_t rise_ns, std::uint64_t fall_ns) {
+  if (!tracing()) return;
+  if (dump_pending_) {
+    initial_dump(start_ns_);
+  } else {
+    writer_.time(rise_ns);
+    writer_.clock(true);
+    writer_.changes();
+  }
+  writer_.time(fall_ns);
+  writer_.clock(false);
 }
 
 void TraceControl::close() {
-  if (!tf_) return;
-  sc_core::sc_close_vcd_trace_file(tf_);
-  tf_ = nullptr;
+  if (!opened_ || closed_) return;
+  // Closed before any sample (not in a normal run): the initial dump holds the values as they are.
+  if (dump_pending_) initial_dump(start_ns_);
+  closed_ = true;
+  writer_.time(std::max(now_ns(), writer_.last_time()));  // where the trace ends
 }
 
 std::string TraceControl::gtkw_path() const {
@@ -56,17 +93,19 @@ std::string TraceControl::gtkw_path() const {
 }
 
 void TraceControl::commit() {
+  open();  // a window no sample reached: the VCD of the final state
   close();
-  const std::string temp = temp_base_ + ".vcd";
+  if (!writer_.close(writer_.last_time()))
+    throw std::runtime_error("cannot write VCD '" + vcd_path_ + "': " + std::strerror(errno));
   std::error_code ec;
-  fs::rename(temp, vcd_path_, ec);
+  fs::rename(temp_path_, vcd_path_, ec);
   if (ec) {
-    fs::remove(temp, ec);
+    fs::remove(temp_path_, ec);
     throw std::runtime_error("cannot rename VCD into '" + vcd_path_ + "': " + ec.message());
   }
   committed_ = true;
   AtomicOutputFile gtkw(gtkw_path());
-  gtkw.stream() << gtkw_text(fs::absolute(vcd_path_).string(), start_ns_, signals_);
+  gtkw.stream() << gtkw_text(fs::absolute(vcd_path_).string(), start_ns_, signals());
   gtkw.commit(false);
 }
 
@@ -80,7 +119,7 @@ const char* flags_of(const TracedSignal& s) {
 }
 
 std::string gtkw_name(const TracedSignal& s) {
-  std::string n = "SystemC." + s.name;
+  std::string n = std::string(kRootScope) + "." + s.name;
   if (s.width > 1) n += "[" + std::to_string(s.width - 1) + ":0]";
   return n;
 }

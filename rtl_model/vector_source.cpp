@@ -71,14 +71,13 @@ void VectorSource::tick() {
   }
 }
 
-void VectorSource::add_traces(sc_core::sc_trace_file* tf, const std::string& prefix,
-                              std::vector<TracedSignal>& out) const {
+void VectorSource::add_traces(VcdWriter& vcd, const std::string& prefix) const {
   const std::string p = prefix + ".source.";
-  trace_bool(tf, valid, p + "valid", out);
-  trace_port(tf, ready, p + "ready", out);
-  trace_raw(tf, t_trace_, p + "t", out);
-  trace_raw(tf, slot_trace_, p + "slot", out);
-  trace_raw(tf, seq_trace_, p + "seq", out);
+  trace_bool(vcd, valid, p + "valid");
+  trace_port(vcd, ready, p + "ready");
+  trace_raw(vcd, t_trace_, p + "t");
+  trace_raw(vcd, slot_trace_, p + "slot");
+  trace_raw(vcd, seq_trace_, p + "seq");
 }
 
 }  // namespace glint::rtl

@@ -53,8 +53,7 @@ class VectorSource : public sc_core::sc_module, public Traceable {
   std::uint64_t presented() const { return presented_; }
   bool empty() const { return presented_ == 0; }
 
-  void add_traces(sc_core::sc_trace_file* tf, const std::string& prefix,
-                  std::vector<TracedSignal>& out) const override;
+  void add_traces(VcdWriter& vcd, const std::string& prefix) const override;
 
  private:
   void tick();

@@ -1,6 +1,8 @@
 // VCD output of the clocked mode: scopes and signals (parsed from the $scope/$var header), widths
-// of the raw fixed-point values, the GTKWave save file, conversion by vcd2fst, the vector window,
-// and that a failed run leaves no file behind. One elaboration per TEST.
+// of the raw fixed-point values, the values cycle by cycle (clock, cycle counter, retired results),
+// the GTKWave save file, conversion by vcd2fst, the vector window, and that a failed run leaves no
+// file behind; and VcdWriter on its own (exact text, random values read back). One elaboration per
+// TEST.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -23,6 +25,7 @@
 #include "timing.h"
 #include "unit_common.h"
 #include "units.h"
+#include "vcd_writer.h"
 
 namespace fs = std::filesystem;
 
@@ -85,11 +88,32 @@ Stream make_stream(std::size_t n, bool coloured) {
   return s;
 }
 
-// $scope / $var of a VCD: full dotted name -> width, and the time stamps.
+// $scope / $var of a VCD: full dotted name -> width, the time stamps, and every value change.
 struct VcdInfo {
   std::map<std::string, int> vars;
+  std::map<std::string, std::string> ids;  // full name -> identifier code
   std::vector<std::uint64_t> times;
   std::uint64_t value_changes = 0;
+  bool dumpvars_before_first_time = false;
+  // identifier code -> (time, value) in file order (the $dumpvars values at their time stamp).
+  std::map<std::string, std::vector<std::pair<std::uint64_t, std::uint64_t>>> changes;
+
+  // The value of `name` at time t (after every change at t).
+  std::uint64_t value_at(const std::string& name, std::uint64_t t) const {
+    const auto id = ids.find(name);
+    if (id == ids.end()) throw std::out_of_range("no VCD variable " + name);
+    const auto c = changes.find(id->second);
+    if (c == changes.end()) throw std::out_of_range("no value for " + name);
+    std::uint64_t v = 0;
+    bool found = false;
+    for (const auto& [time, value] : c->second) {
+      if (time > t) break;
+      v = value;
+      found = true;
+    }
+    if (!found) throw std::out_of_range("no value of " + name + " at " + std::to_string(t));
+    return v;
+  }
 };
 
 VcdInfo parse_vcd(const std::string& path) {
@@ -116,13 +140,24 @@ VcdInfo parse_vcd(const std::string& path) {
         std::string full;
         for (const std::string& s : scope) full += s + ".";
         info.vars[full + name] = width;
+        info.ids[full + name] = id;
       } else if (tok == "$enddefinitions") {
         header = false;
       }
     } else if (!tok.empty() && tok[0] == '#') {
       info.times.push_back(std::stoull(tok.substr(1)));
+    } else if (tok == "$dumpvars" && info.times.empty()) {
+      info.dumpvars_before_first_time = true;
     } else if (!tok.empty() && tok[0] != '$') {
       ++info.value_changes;
+      const std::uint64_t t = info.times.empty() ? 0 : info.times.back();
+      if (tok[0] == 'b') {
+        std::string id;
+        ls >> id;
+        info.changes[id].push_back({t, std::stoull(tok.substr(1), nullptr, 2)});
+      } else {
+        info.changes[tok.substr(1)].push_back({t, tok[0] == '1' ? 1u : 0u});
+      }
     }
   }
   return info;
@@ -153,9 +188,14 @@ TEST(RtlVcd, ScopesSignalsWidthsGtkwAndFst) {
   ASSERT_TRUE(options.colour_stage);
   ClockedRunInfo info;
   std::vector<std::vector<ResultTiming>> timing(units.size());
+  std::vector<std::vector<std::int64_t>> out_raw(units.size());
   const auto stats = run_clocked(
       units, slots, [&] { return std::make_unique<MemoryRowStream>(s.rows); }, options,
-      [&](const LaneOutput& o) { timing[o.lane].push_back(o.timing); }, &info);
+      [&](const LaneOutput& o) {
+        timing[o.lane].push_back(o.timing);
+        out_raw[o.lane].push_back(o.out_raw);
+      },
+      &info);
 
   // Tracing changes nothing: the timing is still TimingEngine's.
   for (std::size_t u = 0; u < units.size(); ++u) {
@@ -229,6 +269,35 @@ TEST(RtlVcd, ScopesSignalsWidthsGtkwAndFst) {
   EXPECT_GE(vcd.times.back(), rtl::cycle_time_ns(max_cycles - 1));
   EXPECT_GT(vcd.value_changes, 10 * max_cycles);
 
+  // The values are those of each cycle: the initial dump at time 0 (the reset state), the clock
+  // rising at every cycle's time and falling halfway, the cycle counter counting the edges, and
+  // each lane's sink showing exactly its retired results, at their retire cycles.
+  EXPECT_FALSE(vcd.dumpvars_before_first_time);
+  EXPECT_EQ(vcd.times.front(), 0u);
+  EXPECT_EQ(vcd.value_at("SystemC.top.clk", 0), 0u);
+  for (std::uint64_t c = 0; c < max_cycles; ++c) {
+    ASSERT_EQ(vcd.value_at("SystemC.top.clk", rtl::cycle_time_ns(c)), 1u) << c;
+    ASSERT_EQ(vcd.value_at("SystemC.top.clk", rtl::fall_time_ns(c)), 0u) << c;
+    ASSERT_EQ(vcd.value_at("SystemC.top.cycle", rtl::cycle_time_ns(c)), c);
+  }
+  for (std::size_t u = 0; u < units.size(); ++u) {
+    std::map<std::uint64_t, std::uint64_t> retired;  // retire cycle -> raw result bits
+    const int rw = units[u]->out_format().width();
+    for (std::size_t i = 0; i < timing[u].size(); ++i)
+      retired[timing[u][i].retire] =
+          static_cast<std::uint64_t>(out_raw[u][i]) & ((std::uint64_t{1} << rw) - 1);
+    const std::string p = "SystemC.top." + info.labels[u] + ".sink.";
+    for (std::uint64_t c = 0; c < max_cycles; ++c) {
+      const auto it = retired.find(c);
+      const std::uint64_t t = rtl::cycle_time_ns(c);
+      ASSERT_EQ(vcd.value_at(p + "valid", t), it != retired.end() ? 1u : 0u)
+          << info.labels[u] << " cycle " << c;
+      if (it != retired.end()) {
+        ASSERT_EQ(vcd.value_at(p + "result", t), it->second) << info.labels[u] << " cycle " << c;
+      }
+    }
+  }
+
   // GTKWave save file: the dump, one group per unit, every traced signal.
   std::ifstream g(dir.file("run.gtkw"));
   std::stringstream gs;
@@ -277,7 +346,13 @@ TEST(RtlVcd, WindowTracesFromFirstPresentedToLastRetired) {
   EXPECT_EQ(info.vcd_start_ns, open_ns);
   const VcdInfo vcd = parse_vcd(dir.file("w.vcd"));
   ASSERT_GE(vcd.times.size(), 2u);
-  EXPECT_GT(vcd.times.front(), open_ns);  // the first change after the initial dump at open_ns
+  EXPECT_FALSE(vcd.dumpvars_before_first_time);
+  EXPECT_EQ(vcd.times.front(), open_ns);  // the initial dump, at the opening time
+  EXPECT_GT(vcd.times[1], open_ns);
+  EXPECT_EQ(vcd.value_at("SystemC.top.schlick.source.seq", open_ns), 100u);
+  EXPECT_EQ(vcd.value_at("SystemC.top.clk", open_ns), 1u);
+  EXPECT_EQ(vcd.value_at("SystemC.top.schlick.sink.valid", rtl::cycle_time_ns(timing[120].retire)),
+            1u);
   EXPECT_LE(vcd.times.back(), rtl::cycle_time_ns(timing[120].retire + 1));
   EXPECT_GE(vcd.times.back(), rtl::cycle_time_ns(timing[120].retire));
   std::ifstream g(dir.file("w.gtkw"));
@@ -349,6 +424,166 @@ TEST(RtlVcd, UnwritablePathAndSecondRunAreRejected) {
   // The first real run elaborates; SystemC cannot elaborate again in this process.
   EXPECT_EQ(run_clocked({unit.get()}, slots, open, ClockedOptions{}, {})[0].results, 20u);
   EXPECT_THROW(run_clocked({unit.get()}, slots, open, ClockedOptions{}, {}), std::logic_error);
+}
+
+// VcdWriter on its own (no elaboration): the exact text it writes.
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+TEST(RtlVcdWriter, WritesScopesValuesAndTimesExactly) {
+  TempDir dir;
+  bool a = false, b = true;
+  std::uint64_t narrow = 0, neg = 0, wide = 0, one = 1;
+  rtl::VcdWriter w("root");
+  w.add_clock("top.clk");
+  w.add_bool(a, "top.x.a");
+  w.add_bits(narrow, 3, false, "top.x.n");
+  w.add_bits(neg, 17, true, "top.y.s");
+  w.add_bool(b, "top.x.b");  // joins the scope opened by top.x.a
+  w.add_bits(wide, 64, false, "top.w");
+  w.add_bits(one, 1, false, "top.one");
+  EXPECT_THROW(w.add_bool(a, "top.x.a"), std::invalid_argument);
+  EXPECT_THROW(w.add_bool(a, "top..c"), std::invalid_argument);
+  EXPECT_THROW(w.add_bool(a, "top.c d"), std::invalid_argument);
+  EXPECT_THROW(w.add_bits(wide, 65, false, "top.z"), std::invalid_argument);
+  EXPECT_THROW(w.add_clock("top.clk2"), std::invalid_argument);
+  ASSERT_EQ(w.signals().size(), 7u);
+  EXPECT_EQ(w.signals()[3].name, "top.y.s");
+  EXPECT_EQ(w.signals()[3].width, 17);
+  EXPECT_TRUE(w.signals()[3].is_signed);
+
+  const std::string path = dir.file("w.vcd");
+  w.open(std::fopen(path.c_str(), "wb"));
+  ASSERT_TRUE(w.is_open());
+  w.header("ns", "test");
+  EXPECT_THROW(w.add_bool(a, "top.late"), std::logic_error);
+  w.dump_all(0, false);
+  narrow = 0xff;                                       // 3 bits: 7
+  neg = static_cast<std::uint64_t>(std::int64_t{-2});  // 17-bit two's complement
+  w.time(5);
+  w.clock(true);
+  w.changes();
+  a = true;
+  wide = ~std::uint64_t{0};
+  one = 0;
+  w.time(10);
+  w.clock(false);
+  w.changes();
+  w.time(15);
+  w.clock(true);
+  w.changes();  // only the clock changed
+  EXPECT_THROW(w.time(12), std::logic_error);
+  EXPECT_TRUE(w.close(20));
+
+  const std::string text = read_text(path);
+  const std::string defs =
+      "$scope module root $end\n"
+      "$scope module top $end\n"
+      "$var wire 1 ! clk $end\n"
+      "$var wire 64 ( w [63:0] $end\n"
+      "$var wire 1 ) one $end\n"
+      "$scope module x $end\n"
+      "$var wire 1 \" a $end\n"
+      "$var wire 3 % n [2:0] $end\n"
+      "$var wire 1 ' b $end\n"
+      "$upscope $end\n"
+      "$scope module y $end\n"
+      "$var wire 17 & s [16:0] $end\n"
+      "$upscope $end\n"
+      "$upscope $end\n"
+      "$upscope $end\n"
+      "$enddefinitions $end\n";
+  const std::string body =
+      "#0\n$dumpvars\n0!\n0\"\n1'\nb0 %\nb0 &\nb0 (\n1)\n$end\n"
+      "#5\n1!\nb111 %\nb11111111111111110 &\n"
+      "#10\n0!\n1\"\nb" +
+      std::string(64, '1') +
+      " (\n0)\n"
+      "#15\n1!\n"
+      "#20\n";
+  EXPECT_EQ(text.rfind("$date\n", 0), 0u);
+  EXPECT_NE(text.find("$timescale\n  1 ns\n$end\n"), std::string::npos);
+  const auto d = text.find("$scope");
+  ASSERT_NE(d, std::string::npos);
+  EXPECT_EQ(text.substr(d), defs + body);
+}
+
+// Many signals (two-character identifier codes) of every width with random values, read back
+// change by change; vcd2fst accepts the file.
+TEST(RtlVcdWriter, RandomValuesReadBack) {
+  TempDir dir;
+  constexpr int kSignals = 300, kSteps = 200;
+  std::mt19937_64 rng(7);
+  std::vector<std::uint64_t> bits(kSignals);
+  std::unique_ptr<bool[]> flags(new bool[kSignals]());
+  std::vector<int> width(kSignals);
+  rtl::VcdWriter w("SystemC");
+  w.add_clock("top.clk");
+  for (int i = 0; i < kSignals; ++i) {
+    width[i] = 1 + i % 64;
+    const std::string name = "top.g" + std::to_string(i % 7) + ".s" + std::to_string(i);
+    if (i % 5 == 0) {
+      w.add_bool(flags[i], name);
+    } else {
+      w.add_bits(bits[i], width[i], i % 2 == 0, name);
+    }
+  }
+  const std::string path = dir.file("r.vcd");
+  w.open(std::fopen(path.c_str(), "wb"));
+  w.header("ns", "test");
+  auto mask = [](int wd) { return wd == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << wd) - 1; };
+  // expected[step][signal]
+  std::vector<std::vector<std::uint64_t>> expected;
+  auto snapshot = [&] {
+    std::vector<std::uint64_t> v(kSignals);
+    for (int i = 0; i < kSignals; ++i) v[i] = i % 5 == 0 ? flags[i] : bits[i] & mask(width[i]);
+    expected.push_back(v);
+  };
+  w.dump_all(0, false);
+  snapshot();
+  for (int step = 1; step < kSteps; ++step) {
+    for (int i = 0; i < kSignals; ++i) {
+      if (rng() % 3 != 0) continue;  // a third of the values change
+      if (i % 5 == 0) {
+        flags[i] = rng() & 1;
+      } else {
+        bits[i] = rng() >> (rng() % 64);  // small and large values; upper bits ignored
+      }
+    }
+    w.time(10 * static_cast<std::uint64_t>(step));
+    w.clock(step % 2 == 1);
+    w.changes();
+    snapshot();
+  }
+  ASSERT_TRUE(w.close(10 * kSteps));
+
+  const VcdInfo vcd = parse_vcd(path);
+  ASSERT_EQ(vcd.vars.size(), static_cast<std::size_t>(kSignals + 1));
+  std::set<std::string> ids;
+  for (const auto& [name, id] : vcd.ids) ids.insert(id);
+  EXPECT_EQ(ids.size(), vcd.vars.size());
+  for (int i = 0; i < kSignals; ++i) {
+    const std::string name = "SystemC.top.g" + std::to_string(i % 7) + ".s" + std::to_string(i);
+    ASSERT_EQ(vcd.vars.at(name), i % 5 == 0 ? 1 : width[i]) << name;
+    for (int step = 0; step < kSteps; ++step) {
+      ASSERT_EQ(vcd.value_at(name, 10 * static_cast<std::uint64_t>(step)), expected[step][i])
+          << name << " step " << step;
+    }
+  }
+  EXPECT_EQ(vcd.times.back(), 10u * kSteps);
+
+  if (::access(kVcd2Fst, X_OK) != 0) GTEST_SKIP() << kVcd2Fst << " not installed (gtkwave)";
+  const std::string fst = dir.file("r.fst");
+  const std::string cmd =
+      std::string(kVcd2Fst) + " -v '" + path + "' -f '" + fst + "' > /dev/null 2>&1";
+  const int rc = std::system(cmd.c_str());
+  ASSERT_TRUE(WIFEXITED(rc)) << cmd;
+  EXPECT_EQ(WEXITSTATUS(rc), 0) << cmd;
+  EXPECT_GT(fs::file_size(fst), 0u);
 }
 
 }  // namespace

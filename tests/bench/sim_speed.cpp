@@ -1,18 +1,53 @@
 // Simulation speed: one run per process (SystemC elaborates once), printing figures.
-//   sim_speed [--vectors N] [--units all|SPEC[,SPEC...]] [--mode fast|clocked] [--vcd FILE]
+//   sim_speed [--vectors N] [--units all|SPEC[;SPEC...]] [--mode fast|clocked]
+//             [--vcd FILE] [--vcd-window FIRST:LAST]
 // The stream is generated on the fly (no storage, so memory stays flat in N): t uniform over
-// [-1, 1] from a fixed-seed generator, one white Blinn material n = 50, eps = 1e-3.
+// [-1, 1] from a fixed-seed generator, one white Blinn material n = 50, eps = 1e-3. Clocked mode
+// gives every lane its own generator (same seed, same rows); the sink is always ready. --vcd (and
+// --vcd-window) trace the clocked run as `glint sim --vcd` does.
 #include <fmt/format.h>
 #include <sys/resource.h>
 
 #include <chrono>
+#include <cstdint>
+#include <cstdio>
 #include <cstring>
+#include <memory>
 #include <string>
 #include <systemc>
+#include <vector>
 
+#include "clocked_sim.h"
 #include "fast_sim.h"
+#include "row_stream.h"
 
 namespace {
+
+// The benchmark stream: `count` rows from a 64-bit LCG.
+class GeneratedRows {
+ public:
+  explicit GeneratedRows(std::uint64_t count) : count_(count) {}
+  bool next(glint::VectorRow& row) {
+    if (produced_ == count_) return false;
+    state_ = state_ * 6364136223846793005ULL + 1442695040888963407ULL;
+    row.t = static_cast<double>(state_ >> 11) * 0x1.0p-52 - 1.0;
+    row.material = 0;
+    row.line = ++produced_;
+    return true;
+  }
+
+ private:
+  std::uint64_t count_, produced_ = 0, state_ = 0x243F6A8885A308D3ULL;
+};
+
+class GeneratedStream final : public glint::RowStream {
+ public:
+  explicit GeneratedStream(std::uint64_t count) : rows_(count) {}
+  bool next(glint::VectorRow& row) override { return rows_.next(row); }
+
+ private:
+  GeneratedRows rows_;
+};
 
 std::vector<std::string> split(const std::string& s) {
   std::vector<std::string> out;
@@ -30,11 +65,17 @@ std::vector<std::string> split(const std::string& s) {
 
 int sc_main(int argc, char* argv[]) {
   std::uint64_t vectors = 10'000'000;
-  std::string units_arg = "schlick", mode = "fast";
+  std::string units_arg = "schlick", mode = "fast", vcd, window;
   for (int i = 1; i + 1 < argc; i += 2) {
     if (!std::strcmp(argv[i], "--vectors")) vectors = std::stoull(argv[i + 1]);
     if (!std::strcmp(argv[i], "--units")) units_arg = argv[i + 1];
     if (!std::strcmp(argv[i], "--mode")) mode = argv[i + 1];
+    if (!std::strcmp(argv[i], "--vcd")) vcd = argv[i + 1];
+    if (!std::strcmp(argv[i], "--vcd-window")) window = argv[i + 1];
+  }
+  if (!vcd.empty() && mode != "clocked") {
+    std::fprintf(stderr, "--vcd needs --mode clocked\n");
+    return 2;
   }
   if (units_arg == "all") units_arg = "pow;schlick;hast;horner;lut";
   glint::VectorHeader header;
@@ -50,19 +91,27 @@ int sc_main(int argc, char* argv[]) {
   }
   std::vector<glint::LaneAccumulator> acc;
   for (const auto* u : units) acc.emplace_back(*u);
-  std::uint64_t produced = 0, state = 0x243F6A8885A308D3ULL;
-  std::function<bool(glint::VectorRow&)> next = [&](glint::VectorRow& row) {
-    if (produced == vectors) return false;
-    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-    row.t = static_cast<double>(state >> 11) * 0x1.0p-52 - 1.0;
-    row.material = 0;
-    row.line = ++produced;
-    return true;
-  };
+  std::vector<std::uint64_t> skipped(units.size(), 0);
   const auto start = std::chrono::steady_clock::now();
   std::vector<glint::TimingStats> stats;
   if (mode == "fast") {
-    stats = glint::run_fast(units, slots, next, glint::FastOptions{}, &acc);
+    GeneratedRows rows(vectors);
+    stats = glint::run_fast(
+        units, slots, [&](glint::VectorRow& row) { return rows.next(row); }, glint::FastOptions{},
+        &acc);
+    for (std::size_t i = 0; i < units.size(); ++i) skipped[i] = acc[i].stats().skipped;
+  } else if (mode == "clocked") {
+    glint::ClockedOptions options;
+    options.vcd_path = vcd;
+    if (!window.empty()) {
+      const auto colon = window.find(':');
+      options.vcd_first = std::stoull(window.substr(0, colon));
+      options.vcd_last = std::stoull(window.substr(colon + 1));
+    }
+    stats = glint::run_clocked(
+        units, slots, [&] { return std::make_unique<GeneratedStream>(vectors); }, options, {});
+    for (std::size_t i = 0; i < units.size(); ++i)
+      skipped[i] = stats[i].results - stats[i].computed;
   } else {
     std::fprintf(stderr, "mode %s not available\n", mode.c_str());
     return 2;
@@ -71,11 +120,10 @@ int sc_main(int argc, char* argv[]) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   rusage ru{};
   getrusage(RUSAGE_SELF, &ru);
-  fmt::print("mode {} units {} vectors {}: {:.3f} s, {:.2f} M vectors/s, max RSS {:.1f} MB\n", mode,
-             units.size(), vectors, secs, static_cast<double>(vectors) / secs / 1e6,
-             static_cast<double>(ru.ru_maxrss) / 1024.0);
+  fmt::print("mode {}{} units {} vectors {}: {:.3f} s, {:.2f} M vectors/s, max RSS {:.1f} MB\n",
+             mode, vcd.empty() ? "" : " (VCD)", units.size(), vectors, secs,
+             static_cast<double>(vectors) / secs / 1e6, static_cast<double>(ru.ru_maxrss) / 1024.0);
   for (std::size_t i = 0; i < units.size(); ++i)
-    fmt::print("  {:<8} cycles {} skipped {}\n", units[i]->name(), stats[i].cycles,
-               acc[i].stats().skipped);
+    fmt::print("  {:<8} cycles {} skipped {}\n", units[i]->name(), stats[i].cycles, skipped[i]);
   return 0;
 }
