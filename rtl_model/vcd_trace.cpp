@@ -31,6 +31,8 @@ std::uint64_t now_ns() {
 
 TraceControl::TraceControl(std::string vcd_path, AddTraces add_traces)
     : vcd_path_(std::move(vcd_path)), add_traces_(std::move(add_traces)), writer_(kRootScope) {
+  check_output_path(vcd_path_);
+  check_output_path(gtkw_path());
   temp_path_ = vcd_path_ + ".tmp." + std::to_string(::getpid()) + ".vcd";
   std::FILE* f = std::fopen(temp_path_.c_str(), "wb");
   if (!f) {

@@ -136,8 +136,17 @@ class AtomicOutputFile::FdBuf : public std::streambuf {
   std::vector<char> buffer_;
 };
 
+void check_output_path(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
+    throw std::runtime_error("cannot write '" + path +
+                             "': it exists and is not a regular file (it would be replaced)");
+  }
+}
+
 AtomicOutputFile::AtomicOutputFile(std::string path) : path_(std::move(path)) {
   if (path_.empty()) throw std::runtime_error("cannot write output file: empty path");
+  check_output_path(path_);
   int fd = -1;
   int err = 0;
   for (int attempt = 0; attempt < 100; ++attempt) {

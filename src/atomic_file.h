@@ -18,6 +18,10 @@
 
 namespace glint {
 
+// Throws std::runtime_error when `path` exists and is not a regular file (a device such as
+// /dev/null, a directory, a FIFO): the write-to-temporary-then-rename scheme would replace it.
+void check_output_path(const std::string& path);
+
 class AtomicOutputFile {
  public:
   explicit AtomicOutputFile(std::string path);

@@ -47,9 +47,15 @@ int run_sim(const SimOptions& o) {
   if (!(o.sink_ready > 0 && o.sink_ready <= 1))
     throw std::invalid_argument("--sink-ready must be in (0, 1]");
   for (const auto* out : {&o.report, &o.dump, &o.vcd}) {
+    if (out->empty()) continue;
     std::error_code ec;
-    if (!out->empty() && std::filesystem::equivalent(o.vectors, *out, ec))
+    if (std::filesystem::equivalent(o.vectors, *out, ec))
       throw std::invalid_argument(fmt::format("output {} is the input vector file", *out));
+    try {
+      check_output_path(*out);
+    } catch (const std::runtime_error& e) {
+      throw std::invalid_argument(e.what());
+    }
   }
   const bool clocked = o.mode == "clocked" || (o.mode == "auto" && !o.vcd.empty());
   if (!clocked && !o.vcd.empty())

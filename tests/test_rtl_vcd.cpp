@@ -22,6 +22,7 @@
 #include "evaluate.h"
 #include "input_error.h"
 #include "rtl_common.h"
+#include "test_support.h"
 #include "timing.h"
 #include "unit_common.h"
 #include "units.h"
@@ -32,30 +33,7 @@ namespace fs = std::filesystem;
 namespace glint {
 namespace {
 
-class TempDir {
- public:
-  TempDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = fs::path(GLINT_BINARY_DIR) / "test_rtl_tmp" /
-            (std::string(info->test_suite_name()) + "." + info->name() + "." +
-             std::to_string(::getpid()));
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  std::string file(const std::string& name) const { return (path_ / name).string(); }
-  std::set<std::string> entries() const {
-    std::set<std::string> out;
-    for (const auto& e : fs::directory_iterator(path_)) out.insert(e.path().filename());
-    return out;
-  }
-
- private:
-  fs::path path_;
-};
+using glint::test::TempDir;
 
 struct Stream {
   VectorHeader header;
@@ -211,7 +189,7 @@ TEST(RtlVcd, ScopesSignalsWidthsGtkwAndFst) {
 
   EXPECT_EQ(info.labels,
             (std::vector<std::string>{"hast_1", "hast_2", "horner", "schlick", "lut", "pow"}));
-  EXPECT_EQ(dir.entries(), (std::set<std::string>{"run.vcd", "run.gtkw"}));
+  EXPECT_EQ(dir.entries(), (std::vector<std::string>{"run.gtkw", "run.vcd"}));
   EXPECT_EQ(info.vcd_path, dir.file("run.vcd"));
   EXPECT_EQ(info.gtkw_path, dir.file("run.gtkw"));
 
@@ -377,7 +355,7 @@ TEST(RtlVcd, WindowBeyondTheStreamStillWritesTheFinalState) {
   const VcdInfo vcd = parse_vcd(dir.file("late.vcd"));
   EXPECT_EQ(vcd.vars.size(), info.traced.size());
   EXPECT_FALSE(vcd.times.empty());
-  EXPECT_EQ(dir.entries(), (std::set<std::string>{"late.vcd", "late.gtkw"}));
+  EXPECT_EQ(dir.entries(), (std::vector<std::string>{"late.gtkw", "late.vcd"}));
 }
 
 // A stream that fails mid-way: the error surfaces from run_clocked unchanged and no VCD (nor

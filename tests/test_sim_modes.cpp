@@ -3,6 +3,7 @@
 // both must equal `glint eval`'s untimed datapaths bit for bit. Each run is its own `glint`
 // process (SystemC elaborates once per process).
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -214,6 +215,21 @@ TEST_F(SimModes, BadWindowAndSinkAreUsageErrors) {
     EXPECT_EQ(WEXITSTATUS(st), 2) << args;
   }
   EXPECT_FALSE(fs::exists(dir_ / "x.vcd"));
+}
+
+TEST_F(SimModes, OutputsThatAreNotRegularFilesAreRefused) {
+  // Writing through a temporary file and a rename would replace a FIFO or device: refuse instead.
+  const fs::path fifo = dir_ / "fifo";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const std::string vec = quote((kTraces / "phong_basic.vec").string());
+  for (const char* opt : {" --dump ", " --report ", " --vcd "}) {
+    const std::string cmd =
+        quote(kGlint) + " sim " + vec + opt + quote(fifo.string()) + " >/dev/null 2>&1";
+    const int st = std::system(cmd.c_str());
+    ASSERT_TRUE(WIFEXITED(st));
+    EXPECT_EQ(WEXITSTATUS(st), 2) << opt;
+    EXPECT_TRUE(fs::is_fifo(fifo)) << opt;
+  }
 }
 
 TEST_F(SimModes, RegressReportsEveryDifferingField) {
