@@ -55,10 +55,12 @@ inline bool is_blank(char c) {
 
 enum class Num { kOk, kNotNumber, kOutOfRange, kNotFinite };
 
-// Decimal floating point via std::from_chars (locale-independent). An optional leading '+' is
-// accepted. Hex floats are not (from_chars' general format has no "0x"). nan/inf are parsed but
-// reported as kNotFinite; magnitudes beyond the double range (1e999, 1e-999) as kOutOfRange.
-inline Num parse_double(std::string_view s, double& out) {
+// Decimal numbers via std::from_chars (locale-independent), for doubles and 32-bit integers. An
+// optional leading '+' is accepted. Hex floats are not (from_chars' general format has no "0x").
+// nan/inf are parsed but reported as kNotFinite; magnitudes beyond the type's range (1e999,
+// 1e-999, 2^31) as kOutOfRange.
+template <class T>
+Num parse_number(std::string_view s, T& out) {
   const char* b = s.data();
   const char* const e = b + s.size();
   if (b != e && *b == '+') {
@@ -66,31 +68,22 @@ inline Num parse_double(std::string_view s, double& out) {
     if (b != e && *b == '-') return Num::kNotNumber;
   }
   if (b == e) return Num::kNotNumber;
-  double v = 0;
+  T v = 0;
   const auto r = std::from_chars(b, e, v);
   if (r.ptr != e) return Num::kNotNumber;
   if (r.ec == std::errc::result_out_of_range) return Num::kOutOfRange;
   if (r.ec != std::errc()) return Num::kNotNumber;
-  if (!std::isfinite(v)) return Num::kNotFinite;
+  if constexpr (std::is_floating_point_v<T>) {
+    if (!std::isfinite(v)) return Num::kNotFinite;
+  }
   out = v;
   return Num::kOk;
 }
-
+inline Num parse_double(std::string_view s, double& out) {
+  return parse_number(s, out);
+}
 inline Num parse_int(std::string_view s, std::int32_t& out) {
-  const char* b = s.data();
-  const char* const e = b + s.size();
-  if (b != e && *b == '+') {
-    ++b;
-    if (b != e && *b == '-') return Num::kNotNumber;
-  }
-  if (b == e) return Num::kNotNumber;
-  std::int32_t v = 0;
-  const auto r = std::from_chars(b, e, v);
-  if (r.ptr != e) return Num::kNotNumber;
-  if (r.ec == std::errc::result_out_of_range) return Num::kOutOfRange;
-  if (r.ec != std::errc()) return Num::kNotNumber;
-  out = v;
-  return Num::kOk;
+  return parse_number(s, out);
 }
 
 std::string num_problem(Num status, std::string_view text, bool integer) {
