@@ -13,7 +13,6 @@
 #include <vector>
 
 #include "evaluate.h"
-#include "lane_stats.h"
 #include "timing.h"
 #include "units.h"
 #include "vectors.h"

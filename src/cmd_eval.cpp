@@ -51,7 +51,7 @@ int run_eval(const EvalOptions& o) {
   auto write = [&](const EvalRecord& r) {
     dump->stream() << fmt::format("{},{},{},{},{},{:.17g},{},{},{:.17g},{:.17g},{:.17g},{},{}\n",
                                   r.row->line, materials[r.row->material].name, r.row->light,
-                                  r.row->x, r.row->y, r.row->t, r.t_raw, ev.stats()[r.unit].name,
+                                  r.row->x, r.row->y, r.row->t, r.t_raw, ev.label(r.unit),
                                   r.reference, r.model, r.fixed, r.fixed_raw, r.skipped ? 1 : 0);
   };
   const bool progress = isatty(STDERR_FILENO);

@@ -80,61 +80,99 @@ nlohmann::json UnitStats::to_json() const {
           {"description", description}};
 }
 
+RowReference make_reference(const SlotMap& slots, std::size_t slot, double t) {
+  RowReference r;
+  r.t = t;
+  r.value = reference_value(slots, slot, t);
+  r.value8 = std::lround(std::clamp(r.value, 0.0, 1.0) * 255.0);
+  return r;
+}
+
+LaneAccumulator::LaneAccumulator(const SpecularUnit& unit) : unit_(unit) {
+  stats_.name = unit.name();
+  stats_.spec = unit.canonical_spec();
+  stats_.error_bound = std::numeric_limits<double>::quiet_NaN();
+  for (std::size_t k = 0; k < unit.slots(); ++k) {
+    const double b = unit.error_bound(k);
+    if (std::isfinite(b))
+      stats_.error_bound = std::isfinite(stats_.error_bound) ? std::max(stats_.error_bound, b) : b;
+  }
+  ulp_ = unit.out_format().ulp();
+  out_scale_ = ulp_;  // raw -> value: exact power-of-two scale
+  if (unit.in_format().width() <= 20) memo_.resize(unit.slots());
+}
+
+double LaneAccumulator::model(std::size_t slot, std::int64_t t_raw) {
+  if (memo_.empty()) return unit_.model(slot, t_raw);
+  std::vector<double>& m = memo_[slot];
+  if (m.empty()) m.assign(std::size_t{1} << unit_.in_format().width(), -1.0);
+  double& v = m[static_cast<std::size_t>(t_raw - unit_.in_format().raw_min())];
+  if (v < 0) v = unit_.model(slot, t_raw);
+  return v;
+}
+
+void LaneAccumulator::add(std::size_t slot, const RowReference& ref, std::int64_t t_raw,
+                          bool skipped, std::int64_t out_raw) {
+  const double fixed = static_cast<double>(out_raw) * out_scale_;
+  ++stats_.vectors;
+  stats_.skipped += skipped;
+  stats_.total.add(fixed - ref.value, ref.t);
+  if (!skipped) {
+    const double ulps = std::fabs(fixed - model(slot, t_raw)) / ulp_;
+    if (ulps > stats_.max_ulps) {
+      stats_.max_ulps = ulps;
+      stats_.t_at_max_ulps = ref.t;
+    }
+  }
+  if (std::lround(std::clamp(fixed, 0.0, 1.0) * 255.0) != ref.value8) ++stats_.mismatch8;
+  // FNV-1a style over the whole result word (skip flag in bit 63), with a shift-xor so every bit
+  // of the word reaches every bit of the digest.
+  const std::uint64_t word = static_cast<std::uint64_t>(out_raw) ^ (std::uint64_t{skipped} << 63);
+  digest_ = (digest_ ^ word) * 0x100000001b3ULL;
+  digest_ ^= digest_ >> 29;
+}
+
 Evaluator::Evaluator(const VectorHeader& header, const std::vector<UnitSpec>& specs)
     : slots_(make_slots(header)) {
-  for (const UnitSpec& spec : specs) {
-    units_.push_back(make_unit(spec, slots_.params));
-    UnitStats s;
-    s.name = units_.back()->name();
-    s.spec = units_.back()->canonical_spec();
-    s.description = units_.back()->describe();
-    s.error_bound = std::numeric_limits<double>::quiet_NaN();
-    for (std::size_t k = 0; k < slots_.params.size(); ++k) {
-      const double b = units_.back()->error_bound(k);
-      if (std::isfinite(b))
-        s.error_bound = std::isfinite(s.error_bound) ? std::max(s.error_bound, b) : b;
-    }
-    stats_.push_back(std::move(s));
-  }
+  for (const UnitSpec& spec : specs) units_.push_back(make_unit(spec, slots_.params));
   std::vector<std::string> names;
   for (const auto& u : units_) names.push_back(u->name());
   const auto labels = unit_labels(names);
-  for (std::size_t i = 0; i < stats_.size(); ++i) stats_[i].name = labels[i];
+  for (std::size_t i = 0; i < units_.size(); ++i) {
+    lanes_.emplace_back(*units_[i]);
+    lanes_.back().stats().name = labels[i];
+    lanes_.back().stats().description = units_[i]->describe();
+  }
 }
 
 void Evaluator::add(const VectorRow& row, const std::function<void(const EvalRecord&)>& dump) {
   const std::size_t slot = slots_.slot(row);
-  const double ref = reference_value(slots_, slot, row.t);
-  const long ref8 = std::lround(std::clamp(ref, 0.0, 1.0) * 255.0);
+  const RowReference ref = make_reference(slots_, slot, row.t);
   for (std::size_t u = 0; u < units_.size(); ++u) {
     const SpecularUnit& unit = *units_[u];
-    UnitStats& st = stats_[u];
-    const QFormat in = unit.in_format(), out = unit.out_format();
-    const std::int64_t t_raw = quantize_input(row.t, in);
+    const std::int64_t t_raw = quantize_input(row.t, unit.in_format());
     const bool skipped = unit.skip(slot, t_raw);
     const std::int64_t raw = skipped ? 0 : unit.eval(slot, t_raw);
-    const double fixed = std::ldexp(static_cast<double>(raw), -out.frac_bits);
+    lanes_[u].add(slot, ref, t_raw, skipped, raw);
     // The float model includes the skip decision: a skipped request is 0 in every view.
     const double model = skipped ? 0.0 : unit.float_model(slot, row.t);
-    ++st.vectors;
-    st.skipped += skipped;
-    st.total.add(fixed - ref, row.t);
-    st.model.add(model - ref, row.t);
-    if (!skipped) {
-      const double ulps = std::fabs(fixed - unit.model(slot, t_raw)) / out.ulp();
-      if (ulps > st.max_ulps) {
-        st.max_ulps = ulps;
-        st.t_at_max_ulps = row.t;
-      }
+    lanes_[u].stats().model.add(model - ref.value, row.t);
+    if (dump) {
+      const double fixed = std::ldexp(static_cast<double>(raw), -unit.out_format().frac_bits);
+      dump(EvalRecord{&row, u, t_raw, ref.value, model, fixed, raw, skipped});
     }
-    if (std::lround(std::clamp(fixed, 0.0, 1.0) * 255.0) != ref8) ++st.mismatch8;
-    if (dump) dump(EvalRecord{&row, u, t_raw, ref, model, fixed, raw, skipped});
   }
+}
+
+std::vector<UnitStats> Evaluator::stats() const {
+  std::vector<UnitStats> out;
+  for (const auto& lane : lanes_) out.push_back(lane.stats());
+  return out;
 }
 
 nlohmann::json Evaluator::to_json() const {
   nlohmann::json units = nlohmann::json::array();
-  for (const auto& s : stats_) units.push_back(s.to_json());
+  for (const auto& lane : lanes_) units.push_back(lane.stats().to_json());
   return {{"slots", slots_.params.size()}, {"per_light_slots", slots_.per_light}, {"units", units}};
 }
 

@@ -73,6 +73,39 @@ struct UnitStats {
   nlohmann::json to_json() const;
 };
 
+// Accuracy statistics of one lane (a unit), fed one result at a time: by `glint eval`, by the fast
+// mode's batch loop and by the clocked mode's scoreboard. One accumulation for every path.
+// The float reference of one request, computed once and shared by every lane.
+struct RowReference {
+  double t = 0;
+  double value = 0;  // reference_value(): max(0,t)^n or the Gaussian lobe
+  long value8 = 0;   // round(255 * value): the 8-bit display code
+};
+RowReference make_reference(const SlotMap& slots, std::size_t slot, double t);
+
+class LaneAccumulator {
+ public:
+  explicit LaneAccumulator(const SpecularUnit& unit);
+
+  void add(std::size_t slot, const RowReference& ref, std::int64_t t_raw, bool skipped,
+           std::int64_t out_raw);
+  // A digest of every (skipped, out_raw) in stream order: bit-accurate regression in 64 bits.
+  std::uint64_t digest() const { return digest_; }
+  const UnitStats& stats() const { return stats_; }
+  UnitStats& stats() { return stats_; }
+
+ private:
+  double model(std::size_t slot, std::int64_t t_raw);
+
+  const SpecularUnit& unit_;
+  UnitStats stats_;
+  std::uint64_t digest_ = 0xcbf29ce484222325ULL;
+  double ulp_ = 0, out_scale_ = 0;
+  // The unit's real-valued model per (slot, input raw), memoised when the input is <= 20 bits:
+  // a long stream revisits the same 2^16 inputs, and the model is the costly part of the check.
+  std::vector<std::vector<double>> memo_;
+};
+
 // One evaluated request for the optional per-vector dump.
 struct EvalRecord {
   const VectorRow* row;
@@ -88,7 +121,8 @@ class Evaluator {
   Evaluator(const VectorHeader& header, const std::vector<UnitSpec>& specs);
 
   void add(const VectorRow& row, const std::function<void(const EvalRecord&)>& dump = {});
-  const std::vector<UnitStats>& stats() const { return stats_; }
+  std::vector<UnitStats> stats() const;
+  const std::string& label(std::size_t unit) const { return lanes_[unit].stats().name; }
   const std::vector<std::unique_ptr<SpecularUnit>>& units() const { return units_; }
   const SlotMap& slots() const { return slots_; }
   nlohmann::json to_json() const;
@@ -96,7 +130,7 @@ class Evaluator {
  private:
   SlotMap slots_;
   std::vector<std::unique_ptr<SpecularUnit>> units_;
-  std::vector<UnitStats> stats_;
+  std::vector<LaneAccumulator> lanes_;
 };
 
 // The summary table printed by `glint eval`.
