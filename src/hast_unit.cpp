@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -28,10 +29,8 @@ HastUnit::HastUnit(const HastConfig& cfg, const MaterialParams& m) : cfg_(cfg) {
   if (2 * (fh_ + 1) > 62) throw std::invalid_argument("hast: chain register wider than 31 bits");
   // The root: the material's tau (Källberg) clamped into [0, 1); the comparator and the root are
   // the same floor-rounded threshold, so skipping changes activity, never the result.
-  tau_ = m.tau < 0 ? 0.0 : (m.tau >= 1 ? 1.0 : m.tau);
-  MaterialParams root_params = m;
-  root_params.tau = tau_;
-  const std::int64_t root_raw = tau_threshold_raw(root_params, cfg.in);
+  tau_ = std::clamp(m.tau, 0.0, 1.0);
+  const std::int64_t root_raw = root_threshold_raw(m, cfg.in);
   scaler_ = UScaler(cfg.in, root_raw, fh_);
   tau_raw_ = cfg.skip ? root_raw : -1;
   first_shift_ = fh_ - cfg.out.frac_bits;

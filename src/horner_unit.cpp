@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -54,10 +55,8 @@ HornerUnit::HornerUnit(const HornerConfig& cfg, const MaterialParams& m,
   one_out_ = cfg.out.raw_one();
   last_shift_ = 2 * fh_ - cfg.out.frac_bits;
 
-  tau_ = m.tau < 0 ? 0.0 : (m.tau >= 1 ? 1.0 : m.tau);
-  MaterialParams root_params = m;
-  root_params.tau = tau_;
-  const std::int64_t tau_q = tau_threshold_raw(root_params, cfg.in);
+  tau_ = std::clamp(m.tau, 0.0, 1.0);
+  const std::int64_t tau_q = root_threshold_raw(m, cfg.in);
   // Full domain: u = t (root 0, k = 1). The comparator still uses the material's tau.
   scaler_ = UScaler(cfg.in, coeffs.tau_domain ? tau_q : 0, fh_);
   tau_raw_ = cfg.skip ? tau_q : -1;

@@ -57,6 +57,14 @@ inline std::int64_t tau_threshold_raw(const MaterialParams& m, const QFormat& in
   return Fixed::from_double(m.tau, in, Quant::kTrn, Overflow::kSat).raw();
 }
 
+// The root of the u scaler (Hast's tau, the origin of the Horner variable u): the comparator
+// threshold clamped at 0, because max(0,t)^n has no lobe below t = 0 even when the material's
+// threshold is "never skip" (-1).
+inline std::int64_t root_threshold_raw(const MaterialParams& m, const QFormat& in) {
+  const std::int64_t raw = tau_threshold_raw(m, in);
+  return raw < 0 ? 0 : raw;
+}
+
 // TauComparator datapath: skip the highlight when t <= tau (Källberg eq.5).
 inline bool tau_skip(std::int64_t t_raw, std::int64_t tau_raw) {
   return t_raw <= tau_raw;
