@@ -36,7 +36,7 @@ TraceControl::TraceControl(std::string vcd_path, AddTraces add_traces)
   temp_path_ = vcd_path_ + ".tmp." + std::to_string(::getpid()) + ".vcd";
   std::FILE* f = std::fopen(temp_path_.c_str(), "wb");
   if (!f) {
-    throw std::runtime_error("cannot write VCD '" + vcd_path_ + "': " + std::strerror(errno));
+    throw OutputError("cannot write VCD '" + vcd_path_ + "': " + std::strerror(errno));
   }
   writer_.open(f);
 }
@@ -98,12 +98,12 @@ void TraceControl::commit() {
   open();  // a window no sample reached: the VCD of the final state
   close();
   if (!writer_.close(writer_.last_time()))
-    throw std::runtime_error("cannot write VCD '" + vcd_path_ + "': " + std::strerror(errno));
+    throw OutputError("cannot write VCD '" + vcd_path_ + "': " + std::strerror(errno));
   std::error_code ec;
   fs::rename(temp_path_, vcd_path_, ec);
   if (ec) {
     fs::remove(temp_path_, ec);
-    throw std::runtime_error("cannot rename VCD into '" + vcd_path_ + "': " + ec.message());
+    throw OutputError("cannot rename VCD into '" + vcd_path_ + "': " + ec.message());
   }
   committed_ = true;
   AtomicOutputFile gtkw(gtkw_path());

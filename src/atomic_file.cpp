@@ -139,13 +139,13 @@ class AtomicOutputFile::FdBuf : public std::streambuf {
 void check_output_path(const std::string& path) {
   struct stat st {};
   if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
-    throw std::runtime_error("cannot write '" + path +
-                             "': it exists and is not a regular file (it would be replaced)");
+    throw OutputError("cannot write '" + path +
+                      "': it exists and is not a regular file (it would be replaced)");
   }
 }
 
 AtomicOutputFile::AtomicOutputFile(std::string path) : path_(std::move(path)) {
-  if (path_.empty()) throw std::runtime_error("cannot write output file: empty path");
+  if (path_.empty()) throw OutputError("cannot write output file: empty path");
   check_output_path(path_);
   int fd = -1;
   int err = 0;
@@ -157,8 +157,8 @@ AtomicOutputFile::AtomicOutputFile(std::string path) : path_(std::move(path)) {
     if (err != EEXIST && err != EINTR) break;
   }
   if (fd < 0) {
-    throw std::runtime_error("cannot create temporary file '" + temp_path_ + "' for '" + path_ +
-                             "': " + errno_text(err));
+    throw OutputError("cannot create temporary file '" + temp_path_ + "' for '" + path_ +
+                      "': " + errno_text(err));
   }
   buf_ = std::make_unique<FdBuf>(fd);
   stream_ = std::make_unique<std::ostream>(buf_.get());
@@ -201,8 +201,8 @@ void AtomicOutputFile::commit(bool durable) {
   }
   if (err != 0) {
     abort();
-    throw std::runtime_error("cannot write output file '" + path_ + "': " + what + " of '" +
-                             temp_path_ + "' failed: " + errno_text(err));
+    throw OutputError("cannot write output file '" + path_ + "': " + what + " of '" + temp_path_ +
+                      "' failed: " + errno_text(err));
   }
   committed_ = true;
   stream_.reset();

@@ -14,12 +14,20 @@
 
 #include <memory>
 #include <ostream>
+#include <stdexcept>
 #include <string>
 
 namespace glint {
 
-// Throws std::runtime_error when `path` exists and is not a regular file (a device such as
-// /dev/null, a directory, a FIFO): the write-to-temporary-then-rename scheme would replace it.
+// An output file that cannot be written: the user's path is wrong (missing directory, not a
+// regular file, no permission, disk full), so the CLI reports it as bad input (exit 2).
+class OutputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Throws OutputError when `path` exists and is not a regular file (a device such as /dev/null, a
+// directory, a FIFO): the write-to-temporary-then-rename scheme would replace it.
 void check_output_path(const std::string& path);
 
 class AtomicOutputFile {

@@ -13,7 +13,8 @@ inline constexpr int kExitOk = 0;
 inline constexpr int kExitBadInput = 2;
 
 // Runs `body` and turns glint's exceptions into a message on stderr and an exit status:
-// InputError and std::invalid_argument are bad input (2); anything else is an internal error (3).
+// InputError, OutputError and std::invalid_argument are bad input (2); anything else is an
+// internal error (3).
 int guarded(const std::function<int()>& body);
 
 // Prints a JSON document on stdout (one document, newline-terminated).

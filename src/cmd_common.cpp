@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "atomic_file.h"
 #include "cli.h"
 #include "input_error.h"
 
@@ -14,6 +15,9 @@ int guarded(const std::function<int()>& body) {
   try {
     return body();
   } catch (const InputError& e) {
+    std::fprintf(stderr, "glint: %s\n", e.what());
+    return kExitBadInput;
+  } catch (const OutputError& e) {
     std::fprintf(stderr, "glint: %s\n", e.what());
     return kExitBadInput;
   } catch (const std::invalid_argument& e) {

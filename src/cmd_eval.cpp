@@ -22,14 +22,9 @@ struct EvalOptions {
   bool json = false;
 };
 
-const std::vector<std::string>& default_units() {
-  static const std::vector<std::string> all = {"pow", "schlick", "hast", "horner", "lut"};
-  return all;
-}
-
 int run_eval(const EvalOptions& o) {
   std::vector<UnitSpec> specs;
-  for (const auto& s : o.units.empty() ? default_units() : o.units)
+  for (const auto& s : o.units.empty() ? unit_names() : o.units)
     specs.push_back(parse_unit_spec(s));
   VectorReader reader(o.vectors);
   Evaluator ev(reader.header(), specs);
@@ -39,11 +34,7 @@ int run_eval(const EvalOptions& o) {
     std::error_code ec;
     if (std::filesystem::equivalent(o.vectors, o.dump, ec))
       throw std::invalid_argument(fmt::format("--dump {}: is the input vector file", o.dump));
-    try {
-      dump = std::make_unique<AtomicOutputFile>(o.dump);
-    } catch (const std::runtime_error& e) {
-      throw std::invalid_argument(fmt::format("--dump: {}", e.what()));
-    }
+    dump = std::make_unique<AtomicOutputFile>(o.dump);
     dump->stream() << "line,material,light,x,y,t,t_raw,unit,reference,model,fixed,fixed_raw,"
                       "skipped\n";
   }
@@ -66,13 +57,7 @@ int run_eval(const EvalOptions& o) {
       std::fprintf(stderr, "\r%llu vectors", static_cast<unsigned long long>(reader.rows_read()));
   }
   if (progress && reader.rows_read() >= 0x100000) std::fprintf(stderr, "\n");
-  if (dump) {
-    try {
-      dump->commit();
-    } catch (const std::runtime_error& e) {
-      throw std::invalid_argument(fmt::format("--dump: {}", e.what()));
-    }
-  }
+  if (dump) dump->commit();
 
   if (o.json) {
     nlohmann::json j = ev.to_json();

@@ -297,6 +297,12 @@ const std::vector<UnitInfo>& unit_catalog() {
   return catalog;
 }
 
+std::vector<std::string> unit_names() {
+  std::vector<std::string> names;
+  for (const auto& u : unit_catalog()) names.push_back(u.name);
+  return names;
+}
+
 const UnitInfo& unit_info(std::string_view name) {
   for (const auto& u : unit_catalog())
     if (u.name == name) return u;

@@ -37,6 +37,8 @@ struct UnitInfo {
 // Every unit with every key (common keys included), for `glint units` and for validation.
 const std::vector<UnitInfo>& unit_catalog();
 const UnitInfo& unit_info(std::string_view name);  // throws std::invalid_argument
+// Every unit's name in catalogue order: the default set of `glint eval` and `glint sim`.
+std::vector<std::string> unit_names();
 
 // One unit built for a set of slots (materials or light x material pairs).
 class SpecularUnit {

@@ -77,7 +77,10 @@ int sc_main(int argc, char* argv[]) {
     std::fprintf(stderr, "--vcd needs --mode clocked\n");
     return 2;
   }
-  if (units_arg == "all") units_arg = "pow;schlick;hast;horner;lut";
+  if (units_arg == "all") {
+    units_arg.clear();
+    for (const auto& n : glint::unit_names()) units_arg += (units_arg.empty() ? "" : ";") + n;
+  }
   glint::VectorHeader header;
   header.eps = 1e-3;
   header.lights = 1;
