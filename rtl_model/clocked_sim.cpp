@@ -1,18 +1,18 @@
-#include "clocked_sim.h"
+#include "rtl_model/clocked_sim.h"
 
 #include <algorithm>
 #include <stdexcept>
 
-#include "colour_multiply.h"
-#include "compute_units.h"
-#include "result_merge.h"
-#include "rtl_common.h"
-#include "sc_setup.h"
-#include "scoreboard.h"
-#include "sim_control.h"
-#include "tau_comparator.h"
-#include "vcd_trace.h"
-#include "vector_source.h"
+#include "rtl_model/colour_multiply.h"
+#include "rtl_model/compute_units.h"
+#include "rtl_model/result_merge.h"
+#include "rtl_model/rtl_common.h"
+#include "rtl_model/sc_setup.h"
+#include "rtl_model/scoreboard.h"
+#include "rtl_model/sim_control.h"
+#include "rtl_model/tau_comparator.h"
+#include "rtl_model/vcd_trace.h"
+#include "rtl_model/vector_source.h"
 
 namespace glint {
 

@@ -19,11 +19,11 @@
 #include <string>
 #include <vector>
 
-#include "evaluate.h"
-#include "row_stream.h"
-#include "timing.h"
-#include "units.h"
-#include "vectors.h"
+#include "eval/evaluate.h"
+#include "io/vectors.h"
+#include "rtl_model/row_stream.h"
+#include "timing/timing.h"
+#include "units/catalogue.h"
 
 namespace glint {
 

@@ -1,4 +1,4 @@
-#include "compute_pipeline.h"
+#include "rtl_model/compute_pipeline.h"
 
 #include <set>
 #include <stdexcept>

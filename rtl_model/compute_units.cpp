@@ -1,10 +1,10 @@
-#include "compute_units.h"
+#include "rtl_model/compute_units.h"
 
-#include "hast_chain.h"
-#include "horner_pipeline.h"
-#include "lut_interp.h"
-#include "pow_pipeline.h"
-#include "schlick_divider.h"
+#include "rtl_model/hast_chain.h"
+#include "rtl_model/horner_pipeline.h"
+#include "rtl_model/lut_interp.h"
+#include "rtl_model/pow_pipeline.h"
+#include "rtl_model/schlick_divider.h"
 
 namespace glint::rtl {
 

@@ -3,8 +3,8 @@
 
 #include <memory>
 
-#include "compute_pipeline.h"
-#include "units.h"
+#include "rtl_model/compute_pipeline.h"
+#include "units/catalogue.h"
 
 namespace glint::rtl {
 

@@ -1,10 +1,10 @@
-#include "fast_sim.h"
+#include "rtl_model/fast_sim.h"
 
 #include <algorithm>
 #include <exception>
 #include <systemc>
 
-#include "clocked_sim.h"
+#include "rtl_model/clocked_sim.h"
 
 namespace glint {
 namespace {

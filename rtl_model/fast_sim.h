@@ -12,10 +12,10 @@
 #include <functional>
 #include <vector>
 
-#include "evaluate.h"
-#include "timing.h"
-#include "units.h"
-#include "vectors.h"
+#include "eval/evaluate.h"
+#include "io/vectors.h"
+#include "timing/timing.h"
+#include "units/catalogue.h"
 
 namespace glint {
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "compute_pipeline.h"
+#include "rtl_model/compute_pipeline.h"
 
 namespace glint::rtl {
 

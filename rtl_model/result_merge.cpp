@@ -1,4 +1,4 @@
-#include "result_merge.h"
+#include "rtl_model/result_merge.h"
 
 #include <algorithm>
 #include <stdexcept>

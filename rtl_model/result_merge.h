@@ -16,7 +16,7 @@
 #include <systemc>
 #include <vector>
 
-#include "rtl_common.h"
+#include "rtl_model/rtl_common.h"
 
 namespace glint::rtl {
 

@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "vectors.h"
+#include "io/vectors.h"
 
 namespace glint {
 

@@ -1,4 +1,4 @@
-#include "rtl_common.h"
+#include "rtl_model/rtl_common.h"
 
 namespace glint::rtl {
 

@@ -16,7 +16,7 @@
 #include <systemc>
 #include <vector>
 
-#include "vcd_writer.h"
+#include "io/vcd_writer.h"
 
 namespace glint::rtl {
 

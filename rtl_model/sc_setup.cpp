@@ -1,5 +1,5 @@
 // Process-wide SystemC setup shared by every entry point that elaborates modules.
-#include "sc_setup.h"
+#include "rtl_model/sc_setup.h"
 
 #include <cstdlib>
 

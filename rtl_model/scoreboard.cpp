@@ -1,4 +1,4 @@
-#include "scoreboard.h"
+#include "rtl_model/scoreboard.h"
 
 #include <algorithm>
 

@@ -15,11 +15,11 @@
 #include <systemc>
 #include <vector>
 
-#include "rtl_common.h"
-#include "sim_control.h"
-#include "timing.h"
-#include "units.h"
-#include "vector_source.h"
+#include "rtl_model/rtl_common.h"
+#include "rtl_model/sim_control.h"
+#include "rtl_model/vector_source.h"
+#include "timing/timing.h"
+#include "units/catalogue.h"
 
 namespace glint::rtl {
 

@@ -1,8 +1,8 @@
-#include "tau_comparator.h"
+#include "rtl_model/tau_comparator.h"
 
 #include <stdexcept>
 
-#include "unit_common.h"
+#include "units/common.h"
 
 namespace glint::rtl {
 

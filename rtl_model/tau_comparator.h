@@ -22,8 +22,8 @@
 #include <systemc>
 #include <vector>
 
-#include "rtl_common.h"
-#include "units.h"
+#include "rtl_model/rtl_common.h"
+#include "units/catalogue.h"
 
 namespace glint::rtl {
 

@@ -1,4 +1,4 @@
-#include "vcd_trace.h"
+#include "rtl_model/vcd_trace.h"
 
 #include <unistd.h>
 
@@ -11,8 +11,8 @@
 #include <stdexcept>
 #include <systemc>
 
-#include "atomic_file.h"
-#include "rtl_common.h"
+#include "io/atomic_file.h"
+#include "rtl_model/rtl_common.h"
 
 namespace glint::rtl {
 

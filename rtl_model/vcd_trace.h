@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "vcd_writer.h"
+#include "io/vcd_writer.h"
 
 namespace glint::rtl {
 

@@ -1,9 +1,9 @@
-#include "vector_source.h"
+#include "rtl_model/vector_source.h"
 
 #include <stdexcept>
 #include <string>
 
-#include "unit_common.h"
+#include "units/common.h"
 
 namespace glint::rtl {
 

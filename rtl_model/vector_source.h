@@ -14,11 +14,11 @@
 #include <systemc>
 #include <vector>
 
-#include "evaluate.h"
-#include "row_stream.h"
-#include "rtl_common.h"
-#include "sim_control.h"
-#include "units.h"
+#include "eval/evaluate.h"
+#include "rtl_model/row_stream.h"
+#include "rtl_model/rtl_common.h"
+#include "rtl_model/sim_control.h"
+#include "units/catalogue.h"
 
 namespace glint::rtl {
 

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "cost_model.h"
-#include "reference.h"
-#include "units.h"
+#include "cost/cost_model.h"
+#include "reference/reference.h"
+#include "units/catalogue.h"
 
 namespace glint {
 namespace {

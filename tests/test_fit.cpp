@@ -8,8 +8,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "fit.h"
-#include "reference.h"
+#include "fit/fit.h"
+#include "reference/reference.h"
 
 namespace glint {
 namespace {

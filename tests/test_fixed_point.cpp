@@ -33,7 +33,7 @@
 #include <systemc>
 #include <vector>
 
-#include "fixed_point.h"
+#include "fixed/fixed_point.h"
 
 namespace {
 

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "reference.h"
+#include "reference/reference.h"
 
 namespace glint {
 namespace {

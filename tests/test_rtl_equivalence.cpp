@@ -11,12 +11,12 @@
 #include <string>
 #include <vector>
 
-#include "clocked_sim.h"
-#include "evaluate.h"
-#include "timing.h"
-#include "unit_common.h"
-#include "units.h"
-#include "vectors.h"
+#include "eval/evaluate.h"
+#include "io/vectors.h"
+#include "rtl_model/clocked_sim.h"
+#include "timing/timing.h"
+#include "units/catalogue.h"
+#include "units/common.h"
 
 namespace glint {
 namespace {

@@ -11,18 +11,18 @@
 #include <systemc>
 #include <vector>
 
-#include "compute_units.h"
-#include "evaluate.h"
-#include "result_merge.h"
-#include "row_stream.h"
-#include "rtl_common.h"
-#include "schlick_divider.h"
-#include "scoreboard.h"
-#include "sim_control.h"
-#include "tau_comparator.h"
-#include "unit_common.h"
-#include "units.h"
-#include "vector_source.h"
+#include "eval/evaluate.h"
+#include "rtl_model/compute_units.h"
+#include "rtl_model/result_merge.h"
+#include "rtl_model/row_stream.h"
+#include "rtl_model/rtl_common.h"
+#include "rtl_model/schlick_divider.h"
+#include "rtl_model/scoreboard.h"
+#include "rtl_model/sim_control.h"
+#include "rtl_model/tau_comparator.h"
+#include "rtl_model/vector_source.h"
+#include "units/catalogue.h"
+#include "units/common.h"
 
 namespace glint::rtl {
 namespace {

@@ -18,15 +18,15 @@
 #include <string>
 #include <vector>
 
-#include "clocked_sim.h"
-#include "evaluate.h"
-#include "input_error.h"
-#include "rtl_common.h"
+#include "eval/evaluate.h"
+#include "io/input_error.h"
+#include "io/vcd_writer.h"
+#include "rtl_model/clocked_sim.h"
+#include "rtl_model/rtl_common.h"
 #include "test_support.h"
-#include "timing.h"
-#include "unit_common.h"
-#include "units.h"
-#include "vcd_writer.h"
+#include "timing/timing.h"
+#include "units/catalogue.h"
+#include "units/common.h"
 
 namespace fs = std::filesystem;
 

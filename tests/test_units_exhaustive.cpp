@@ -11,8 +11,8 @@
 #include <cmath>
 #include <vector>
 
-#include "reference.h"
-#include "units.h"
+#include "reference/reference.h"
+#include "units/catalogue.h"
 
 namespace glint {
 namespace {

@@ -14,10 +14,10 @@
 #include <string>
 #include <vector>
 
-#include "atomic_file.h"
-#include "input_error.h"
+#include "io/atomic_file.h"
+#include "io/input_error.h"
+#include "io/vectors.h"
 #include "test_support.h"
-#include "vectors.h"
 
 namespace fs = std::filesystem;
 

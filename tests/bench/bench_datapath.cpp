@@ -7,13 +7,13 @@
 #include <random>
 #include <vector>
 
-#include "hast_unit.h"
-#include "horner_unit.h"
-#include "lut_unit.h"
-#include "pow_unit.h"
-#include "reference.h"
-#include "schlick_unit.h"
-#include "units.h"
+#include "reference/reference.h"
+#include "units/catalogue.h"
+#include "units/hast/datapath.h"
+#include "units/horner/datapath.h"
+#include "units/lut/datapath.h"
+#include "units/pow/datapath.h"
+#include "units/schlick/datapath.h"
 
 namespace glint {
 namespace {

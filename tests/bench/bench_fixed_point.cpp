@@ -19,7 +19,7 @@
 #include <systemc>
 #include <vector>
 
-#include "fixed_point.h"
+#include "fixed/fixed_point.h"
 
 namespace {
 

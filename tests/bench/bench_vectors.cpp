@@ -19,7 +19,7 @@
 #include <sstream>
 #include <string>
 
-#include "vectors.h"
+#include "io/vectors.h"
 
 namespace {
 

@@ -17,9 +17,9 @@
 #include <systemc>
 #include <vector>
 
-#include "clocked_sim.h"
-#include "fast_sim.h"
-#include "row_stream.h"
+#include "rtl_model/clocked_sim.h"
+#include "rtl_model/fast_sim.h"
+#include "rtl_model/row_stream.h"
 
 namespace {
 

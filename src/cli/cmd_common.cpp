@@ -1,0 +1,55 @@
+#include <fmt/format.h>
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+
+#include "cli/cli.h"
+#include "io/atomic_file.h"
+#include "io/input_error.h"
+
+namespace glint::cli {
+
+int guarded(const std::function<int()>& body) {
+  try {
+    return body();
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "glint: %s\n", e.what());
+    return kExitBadInput;
+  } catch (const OutputError& e) {
+    std::fprintf(stderr, "glint: %s\n", e.what());
+    return kExitBadInput;
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "glint: %s\n", e.what());
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "glint: internal error: %s\n", e.what());
+    return 3;
+  }
+}
+
+void print_json(const nlohmann::json& j) {
+  std::cout << j.dump(2) << '\n';
+}
+
+std::array<double, 3> parse_rgb(const std::string& text, const std::string& option) {
+  std::array<double, 3> out{};
+  std::size_t pos = 0;
+  for (int i = 0; i < 3; ++i) {
+    const std::size_t end = i < 2 ? text.find(',', pos) : text.size();
+    if (end == std::string::npos) break;
+    const char* b = text.data() + pos;
+    const char* e = text.data() + end;
+    auto [p, ec] = std::from_chars(b, e, out[i]);
+    if (ec != std::errc() || p != e || !std::isfinite(out[i]) || out[i] < 0) {
+      throw std::invalid_argument(
+          fmt::format("{} '{}': expected three finite non-negative numbers r,g,b", option, text));
+    }
+    if (i == 2) return out;
+    pos = end + 1;
+  }
+  throw std::invalid_argument(fmt::format("{} '{}': expected r,g,b", option, text));
+}
+
+}  // namespace glint::cli

@@ -1,0 +1,98 @@
+// glint fit: polynomial fits of t^n (Öztürk et al. 2006, and our fits on [tau, 1]).
+#include <fmt/format.h>
+
+#include <iostream>
+
+#include "cli/cli.h"
+#include "fit/fit.h"
+#include "reference/reference.h"
+
+namespace glint::cli {
+namespace {
+
+struct FitCliOptions {
+  double shininess = 0;
+  int degree = 4;
+  std::string method = "ls";
+  std::string domain = "full";
+  double eps = 1e-3;
+  std::string color = "1,1,1";
+  bool constrain = false;
+  bool json = false;
+};
+
+int run_fit(const FitCliOptions& o) {
+  FitOptions f;
+  f.shininess = o.shininess;
+  f.degree = o.degree;
+  f.method = parse_fit_method(o.method);
+  f.domain = parse_fit_domain(o.domain);
+  const auto m = parse_rgb(o.color, "--color");
+  const TauResult tau = tau_power(o.shininess, o.eps, c_y(Rgb{m[0], m[1], m[2]}));
+  if (f.domain == FitDomain::kTau) {
+    if (tau.always_skip)
+      throw std::invalid_argument("c_y <= eps: the lobe is never visible, nothing to fit");
+    f.tau = tau.tau;
+  }
+  f.constrain_one = o.constrain;
+  f.constrain_zero = o.constrain && f.domain == FitDomain::kTau;
+  const FitResult r = fit_power(f);
+  const char* var = r.variable == FitVariable::kU ? "u = (t - tau)/(1 - tau)" : "t";
+  if (o.json) {
+    print_json({{"shininess", o.shininess},
+                {"degree", o.degree},
+                {"method", to_string(f.method)},
+                {"domain", to_string(f.domain)},
+                {"tau", r.tau},
+                {"variable", to_string(r.variable)},
+                {"constrain_one", f.constrain_one},
+                {"constrain_zero", f.constrain_zero},
+                {"coefficients", r.coeffs},
+                {"max_abs_error", r.max_abs_error},
+                {"rms_error", r.rms_error},
+                {"t_at_max_error", r.t_at_max_error},
+                {"skipped_error_bound", r.skipped_error_bound},
+                {"monotone", r.monotone},
+                {"iterations", r.iterations},
+                {"converged", r.converged}});
+    return kExitOk;
+  }
+  std::cout << fmt::format("fit of t^{} by a degree-{} polynomial, method {}, domain {}{}\n",
+                           o.shininess, o.degree, to_string(f.method), to_string(f.domain),
+                           o.constrain ? " (constrained)" : "");
+  if (f.domain == FitDomain::kTau) std::cout << fmt::format("tau {:.6f}\n", r.tau);
+  std::cout << fmt::format("variable {}\ncoefficients (c0 first):\n", var);
+  for (std::size_t k = 0; k < r.coeffs.size(); ++k)
+    std::cout << fmt::format("  c{:<2} {: .17g}\n", k, r.coeffs[k]);
+  std::cout << fmt::format("max abs error {:.6e} at t = {:.6f}\nrms error     {:.6e}\n",
+                           r.max_abs_error, r.t_at_max_error, r.rms_error)
+            << fmt::format("monotone      {}\n", r.monotone ? "yes" : "no");
+  if (f.domain == FitDomain::kTau)
+    std::cout << fmt::format("skipped t <= tau contributes at most {:.3e}\n",
+                             r.skipped_error_bound);
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_fit_command(CLI::App& app, int& status) {
+  auto o = std::make_shared<FitCliOptions>();
+  CLI::App* sub = app.add_subcommand("fit", "Fit a polynomial to t^n and report its error");
+  sub->add_option("--shininess", o->shininess, "Shininess exponent n (> 0)")->required();
+  sub->add_option("--degree", o->degree, "Polynomial degree p")
+      ->check(CLI::Range(1, 10))
+      ->capture_default_str();
+  sub->add_option("--method", o->method, "ls | robust | minimax")
+      ->check(CLI::IsMember({"ls", "robust", "minimax"}))
+      ->capture_default_str();
+  sub->add_option("--domain", o->domain, "full: x in (0, 1] | tau: [tau, 1] in u")
+      ->check(CLI::IsMember({"full", "tau"}))
+      ->capture_default_str();
+  sub->add_option("--eps", o->eps, "eps for tau (domain tau)")->capture_default_str();
+  sub->add_option("--color", o->color, "Specular colour r,g,b for c_y")->capture_default_str();
+  sub->add_flag("--constrain", o->constrain, "Force f(1) = 1 (and f(tau) = 0 on domain tau)");
+  sub->add_flag("--json", o->json, "Print one JSON document on stdout");
+  sub->callback([o, &status] { status = guarded([&] { return run_fit(*o); }); });
+}
+
+}  // namespace glint::cli

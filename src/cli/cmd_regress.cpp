@@ -1,0 +1,148 @@
+// glint regress: re-runs `glint sim` on the shipped traces and compares with traces/golden/.
+//
+// Each golden (traces/golden/NAME.json) records the trace, the unit specs and the sink settings it
+// was made with, and the report. Every run happens in a child `glint sim` process: SystemC allows
+// one elaboration per process, and the child is exactly what a user runs.
+#include <fmt/format.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include "cli/cli.h"
+#include "eval/sim_report.h"
+#include "io/atomic_file.h"
+
+namespace glint::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RegressOptions {
+  std::string traces = "traces";
+  bool update = false;
+  double tolerance = 1e-9;
+  bool json = false;
+};
+
+// The goldens made by --update for a trace that has none: every unit, the iterative divider,
+// a full-domain Öztürk fit, and a starved merge buffer under sink backpressure.
+const std::vector<std::string>& default_specs() {
+  static const std::vector<std::string> specs = {
+      "pow",
+      "schlick",
+      "schlick:divider=iterative",
+      "hast",
+      "horner",
+      "horner:degree=6,method=ls,domain=full,constrain=off",
+      "lut",
+      "lut:bits=4,buffer=2"};
+  return specs;
+}
+
+std::string shell_quote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+nlohmann::json run_child(const std::string& trace, const nlohmann::json& setup) {
+  std::string cmd = shell_quote(fs::read_symlink("/proc/self/exe").string()) + " sim " +
+                    shell_quote(trace) + " --json";
+  for (const auto& u : setup.at("units")) cmd += " --unit " + shell_quote(u.get<std::string>());
+  cmd += fmt::format(" --sink-ready {:.17g} --seed {}", setup.at("sink_ready").get<double>(),
+                     setup.at("seed").get<std::uint64_t>());
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) throw std::runtime_error("cannot run " + cmd);
+  std::string out;
+  char buf[65536];
+  for (std::size_t n; (n = fread(buf, 1, sizeof buf, p)) > 0;) out.append(buf, n);
+  const int st = pclose(p);
+  if (st != 0)
+    throw std::invalid_argument(fmt::format("{}: `glint sim` failed (status {})", trace, st));
+  return nlohmann::json::parse(out);
+}
+
+int run_regress(const RegressOptions& o) {
+  const fs::path dir(o.traces), golden_dir = fs::path(o.traces) / "golden";
+  if (!fs::is_directory(dir))
+    throw std::invalid_argument(fmt::format("--traces {}: not a directory", o.traces));
+  std::vector<fs::path> traces;
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().extension() == ".vec") traces.push_back(e.path());
+  std::sort(traces.begin(), traces.end());
+  int failed = 0, checked = 0;
+  nlohmann::json summary = nlohmann::json::array();
+  for (const auto& trace : traces) {
+    const fs::path golden_path = golden_dir / (trace.stem().string() + ".json");
+    nlohmann::json golden;
+    if (fs::exists(golden_path)) {
+      std::ifstream in(golden_path);
+      try {
+        golden = nlohmann::json::parse(in);
+      } catch (const nlohmann::json::exception& e) {
+        throw std::invalid_argument(
+            fmt::format("{}: not valid JSON: {}", golden_path.string(), e.what()));
+      }
+    } else if (o.update) {
+      golden = {{"trace", trace.filename().string()},
+                {"units", default_specs()},
+                {"sink_ready", trace.stem() == "pixels" ? 0.7 : 1.0},
+                {"seed", 7}};
+    } else {
+      std::cerr << fmt::format("{}: no golden ({}); run `glint regress --update`\n", trace.string(),
+                               golden_path.string());
+      ++failed;
+      continue;
+    }
+    const nlohmann::json fresh = run_child(trace.string(), golden);
+    ++checked;
+    if (o.update) {
+      golden["report"] = fresh;
+      fs::create_directories(golden_dir);
+      AtomicOutputFile f(golden_path.string());
+      f.stream() << golden.dump(2) << '\n';
+      f.commit();
+      std::cerr << fmt::format("updated {}\n", golden_path.string());
+      summary.push_back({{"trace", trace.filename().string()}, {"updated", true}});
+      continue;
+    }
+    const auto diffs = diff_sim_reports(golden.at("report"), fresh, o.tolerance);
+    summary.push_back({{"trace", trace.filename().string()}, {"differences", diffs}});
+    if (diffs.empty()) {
+      if (!o.json) std::cout << fmt::format("ok    {}\n", trace.filename().string());
+    } else {
+      ++failed;
+      if (!o.json) {
+        std::cout << fmt::format("FAIL  {} ({} differences)\n", trace.filename().string(),
+                                 diffs.size());
+        for (const auto& d : diffs) std::cout << "      " << d << '\n';
+      }
+    }
+  }
+  if (o.json) {
+    print_json({{"checked", checked}, {"failed", failed}, {"traces", summary}});
+  } else {
+    std::cout << fmt::format("{} traces checked, {} failed\n", checked, failed);
+  }
+  return failed ? 1 : kExitOk;
+}
+
+}  // namespace
+
+void add_regress_command(CLI::App& app, int& status) {
+  auto o = std::make_shared<RegressOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "regress", "Accuracy regression: re-run the shipped traces against traces/golden/");
+  sub->add_option("--traces", o->traces, "Folder of *.vec traces with golden/ inside")
+      ->capture_default_str();
+  sub->add_flag("--update", o->update, "Rewrite the goldens from this build (deliberately)");
+  sub->add_option("--tolerance", o->tolerance, "Relative tolerance of float statistics")
+      ->capture_default_str();
+  sub->add_flag("--json", o->json, "Print one JSON document on stdout");
+  sub->callback([o, &status] { status = guarded([&] { return run_regress(*o); }); });
+}
+
+}  // namespace glint::cli

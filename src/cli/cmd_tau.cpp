@@ -1,0 +1,83 @@
+// glint tau: the skip threshold of one material (Källberg & Larsson 2014).
+#include <fmt/format.h>
+
+#include <cmath>
+#include <iostream>
+
+#include "cli/cli.h"
+#include "reference/reference.h"
+
+namespace glint::cli {
+namespace {
+
+struct TauOptions {
+  double shininess = 0;
+  double eps = 0;
+  std::string color = "1,1,1";
+  std::string light = "1,1,1";
+  int lights = 1;
+  std::string lobe = "phong";
+  double roughness = 0;
+  bool json = false;
+};
+
+int run_tau(const TauOptions& o) {
+  const Lobe lobe = parse_lobe(o.lobe);
+  const auto m = parse_rgb(o.color, "--color");
+  const auto i = parse_rgb(o.light, "--light");
+  const double cy = c_y(Rgb{i[0], i[1], i[2]}, Rgb{m[0], m[1], m[2]});
+  TauResult r;
+  double n = o.shininess;
+  if (lobe == Lobe::kGaussian) {
+    if (!(o.roughness > 0 && o.roughness <= 1))
+      throw std::invalid_argument("--roughness must be in (0, 1] for gaussian (Källberg eq.7)");
+    r = tau_gaussian(o.roughness, o.eps, cy, o.lights);
+    if (!(n > 0)) n = gaussian_equivalent_shininess(o.roughness);
+  } else {
+    if (!(n > 0)) throw std::invalid_argument("--shininess must be > 0");
+    r = tau_power(n, o.eps, cy, o.lights);
+  }
+  const char* verdict = r.always_skip ? "always" : (r.never_skip ? "never" : "t <= tau");
+  if (o.json) {
+    print_json({{"lobe", to_string(lobe)},
+                {"shininess", n},
+                {"roughness", o.roughness},
+                {"eps", o.eps},
+                {"lights", o.lights},
+                {"eps_effective", r.eps},
+                {"c_y", r.c_y},
+                {"tau", r.tau},
+                {"always_skip", r.always_skip},
+                {"never_skip", r.never_skip}});
+    return kExitOk;
+  }
+  std::cout << fmt::format("tau {:.6f}\nc_y {:.6f}\neps {:.6g} (effective {:.6g} for {} lights)\n",
+                           r.tau, r.c_y, o.eps, r.eps, o.lights)
+            << fmt::format("skip {}\n", verdict);
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_tau_command(CLI::App& app, int& status) {
+  auto o = std::make_shared<TauOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "tau", "Skip threshold tau = (eps/c_y)^(1/n) (Källberg eq.5; Gaussian lobes eq.9)");
+  sub->add_option("--shininess", o->shininess, "Shininess exponent n (> 0; gaussian: optional)");
+  sub->add_option("--eps", o->eps, "Perceptibility threshold eps (> 0)")->required();
+  sub->add_option("--color", o->color, "Specular colour r,g,b (c_y by Rec.709, eq.6)")
+      ->capture_default_str();
+  sub->add_option("--light", o->light, "Light intensity r,g,b (per-light tau, eq.3)")
+      ->capture_default_str();
+  sub->add_option("--lights", o->lights, "Number of lights K: eps/K (Källberg §2)")
+      ->check(CLI::Range(1, 1 << 20))
+      ->capture_default_str();
+  sub->add_option("--lobe", o->lobe, "phong | blinn | gaussian")
+      ->check(CLI::IsMember({"phong", "blinn", "gaussian"}))
+      ->capture_default_str();
+  sub->add_option("--roughness", o->roughness, "Gaussian roughness omega in (0, 1]");
+  sub->add_flag("--json", o->json, "Print one JSON document on stdout");
+  sub->callback([o, &status] { status = guarded([&] { return run_tau(*o); }); });
+}
+
+}  // namespace glint::cli

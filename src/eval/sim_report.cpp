@@ -1,0 +1,141 @@
+#include "eval/sim_report.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "cost/cost_model.h"
+
+namespace glint {
+
+nlohmann::json unit_sim_report(const SpecularUnit& unit, const TimingStats& t, const UnitStats& s,
+                               std::uint64_t digest, bool colour) {
+  const UnitCost cost = unit_cost(unit, colour);
+  nlohmann::json ops = nlohmann::json::object();
+  for (const auto& [kind, n] : cost.ops_per_computed)
+    ops[kind] = ops.value(kind, 0.0) + n * static_cast<double>(t.computed);
+  for (const auto& [kind, n] : cost.ops_per_request)
+    ops[kind] = ops.value(kind, 0.0) + n * static_cast<double>(t.results);
+  const nlohmann::json description = unit.describe();
+  return {
+      {"unit", s.name},
+      {"spec", unit.canonical_spec()},
+      {"config", description["config"]},
+      {"timing", description["timing"]},
+      {"colour_multiply", colour},
+      {"vectors", s.vectors},
+      {"skipped", s.skipped},
+      {"computed", t.computed},
+      {"cycles", t.cycles},
+      {"throughput", t.throughput()},
+      {"latency", {{"min", t.latency_min}, {"mean", t.latency_mean()}, {"max", t.latency_max}}},
+      {"stall_cycles", t.stall_cycles()},
+      {"stalls", {{"merge_buffer_full", t.stall_credit}, {"unit_busy", t.stall_unit}}},
+      {"sink_wait", t.sink_wait},
+      {"operations", ops},
+      {"area", {{"ge", cost.area_ge}, {"inventory", cost.to_json()["inventory"]}}},
+      {"critical_path", {{"delay", cost.critical_path}, {"stage", cost.critical_stage}}},
+      {"errors",
+       {{"max_abs", s.total.max_abs},
+        {"rms", s.total.rms()},
+        {"t_at_max", s.total.t_at_max},
+        {"max_datapath_ulps", s.max_ulps},
+        {"t_at_max_datapath_ulps", s.t_at_max_ulps},
+        {"mismatch_8bit_fraction",
+         s.vectors ? static_cast<double>(s.mismatch8) / static_cast<double>(s.vectors) : 0.0},
+        {"error_bound", std::isfinite(s.error_bound) ? nlohmann::json(s.error_bound) : nullptr}}},
+      {"digest", fmt::format("{:016x}", digest)},
+  };
+}
+
+std::string format_sim_table(const nlohmann::json& report) {
+  std::string out =
+      fmt::format("{:<9} {:>9} {:>7} {:>10} {:>7} {:>13} {:>8} {:>9} {:>8} {:>10} {:>8} {:>7}\n",
+                  "unit", "vectors", "skip%", "cycles", "res/cyc", "lat min/avg/max", "stalls",
+                  "area_ge", "cp", "max_err", "dp_ulps", "8bit%");
+  for (const auto& u : report.at("units")) {
+    const auto vectors = u.at("vectors").get<std::uint64_t>();
+    const double skip = vectors ? 100.0 * u.at("skipped").get<double>() / vectors : 0.0;
+    const auto& lat = u.at("latency");
+    out += fmt::format(
+        "{:<9} {:>9} {:>6.1f}% {:>10} {:>7.3f} {:>4}/{:>4.1f}/{:<4} {:>8} {:>9.0f} {:>8.1f} "
+        "{:>10.3e} {:>8.3f} {:>6.2f}%\n",
+        u.at("unit").get<std::string>(), vectors, skip, u.at("cycles").get<std::uint64_t>(),
+        u.at("throughput").get<double>(), lat.at("min").get<std::uint64_t>(),
+        lat.at("mean").get<double>(), lat.at("max").get<std::uint64_t>(),
+        u.at("stall_cycles").get<std::uint64_t>(), u.at("area").at("ge").get<double>(),
+        u.at("critical_path").at("delay").get<double>(), u.at("errors").at("max_abs").get<double>(),
+        u.at("errors").at("max_datapath_ulps").get<double>(),
+        100.0 * u.at("errors").at("mismatch_8bit_fraction").get<double>());
+  }
+  return out;
+}
+
+namespace {
+
+void diff_value(const std::string& path, const nlohmann::json& g, const nlohmann::json& f,
+                bool exact, double rel_tol, std::vector<std::string>& out) {
+  if (g.is_object() && f.is_object()) {
+    for (auto it = g.begin(); it != g.end(); ++it) {
+      if (!f.contains(it.key())) {
+        out.push_back(fmt::format("{}.{}: missing in the new report", path, it.key()));
+        continue;
+      }
+      diff_value(path + "." + it.key(), it.value(), f.at(it.key()), exact, rel_tol, out);
+    }
+    for (auto it = f.begin(); it != f.end(); ++it)
+      if (!g.contains(it.key()))
+        out.push_back(fmt::format("{}.{}: new field (not in the golden)", path, it.key()));
+    return;
+  }
+  if (g.is_array() && f.is_array()) {
+    if (g.size() != f.size()) {
+      out.push_back(fmt::format("{}: {} entries, golden {}", path, f.size(), g.size()));
+      return;
+    }
+    for (std::size_t i = 0; i < g.size(); ++i)
+      diff_value(fmt::format("{}[{}]", path, i), g[i], f[i], exact, rel_tol, out);
+    return;
+  }
+  if (!exact && g.is_number() && f.is_number()) {
+    const double a = g.get<double>(), b = f.get<double>();
+    if (std::fabs(a - b) > 1e-12 + rel_tol * std::max(std::fabs(a), std::fabs(b)))
+      out.push_back(
+          fmt::format("{}: {:.17g}, golden {:.17g} (beyond tolerance {:g})", path, b, a, rel_tol));
+    return;
+  }
+  if (g != f) out.push_back(fmt::format("{}: {}, golden {}", path, f.dump(), g.dump()));
+}
+
+}  // namespace
+
+std::vector<std::string> diff_sim_reports(const nlohmann::json& golden, const nlohmann::json& fresh,
+                                          double rel_tol) {
+  std::vector<std::string> out;
+  const auto& gu = golden.at("units");
+  const auto& fu = fresh.at("units");
+  if (gu.size() != fu.size()) {
+    out.push_back(
+        fmt::format("units: {} in the new report, {} in the golden", fu.size(), gu.size()));
+    return out;
+  }
+  // Float statistics (errors, area, critical path, throughput/latency means) get the tolerance;
+  // everything else is bit-accurate or an integer count and must match exactly.
+  static const char* kTolerant[] = {"errors", "area", "critical_path", "throughput", "latency"};
+  for (std::size_t i = 0; i < gu.size(); ++i) {
+    const std::string name = gu[i].value("unit", std::to_string(i));
+    for (auto it = gu[i].begin(); it != gu[i].end(); ++it) {
+      const std::string path = name + "." + it.key();
+      if (!fu[i].contains(it.key())) {
+        out.push_back(path + ": missing in the new report");
+        continue;
+      }
+      bool exact = true;
+      for (const char* k : kTolerant) exact = exact && it.key() != k;
+      diff_value(path, it.value(), fu[i].at(it.key()), exact, rel_tol, out);
+    }
+  }
+  return out;
+}
+
+}  // namespace glint

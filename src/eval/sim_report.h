@@ -1,0 +1,30 @@
+// The `glint sim` report: structured data first (JSON, schema in README.md), text second.
+#pragma once
+
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "eval/evaluate.h"
+#include "timing/timing.h"
+#include "units/catalogue.h"
+
+namespace glint {
+
+inline constexpr int kSimReportVersion = 1;
+
+// One unit's report: config, counts, timing, operations, area and critical path, errors.
+nlohmann::json unit_sim_report(const SpecularUnit& unit, const TimingStats& timing,
+                               const UnitStats& stats, std::uint64_t digest, bool colour);
+
+// The table printed on stdout.
+std::string format_sim_table(const nlohmann::json& report);
+
+// Regression: compares a fresh report with a golden one. Bit-accurate fields (digest, counts,
+// cycles, latencies, stalls, operations) must match exactly; float statistics within `rel_tol`
+// relative (plus 1e-12 absolute). Returns one readable line per difference.
+std::vector<std::string> diff_sim_reports(const nlohmann::json& golden, const nlohmann::json& fresh,
+                                          double rel_tol = 1e-9);
+
+}  // namespace glint

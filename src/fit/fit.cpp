@@ -1,0 +1,633 @@
+#include "fit/fit.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "fit/linalg.h"
+#include "reference/reference.h"
+
+namespace glint {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// The fit lives in v in [0, 1] for both domains (v = x = t for kFull, v = u for kTau), in the
+// constrained form f(v) = a(v) + w(v) q(v), with q = sum_j c_j T*_j(v) and T*_j(v) = T_j(2v - 1)
+// the shifted Chebyshev polynomials. Chebyshev rather than monomial columns keep the least
+// squares and Remez matrices near-orthogonal; w vanishes at the constrained points.
+struct Subspace {
+  bool zero = false;  // f(0) = 0
+  bool one = false;   // f(1) = 1
+  int m = 0;          // number of free coefficients c_j (degree + 1 - constraints)
+
+  double a(double v) const { return zero && one ? v : (one ? 1.0 : 0.0); }
+  double w(double v) const { return (zero ? v : 1.0) * (one ? 1.0 - v : 1.0); }
+
+  // phi_j(v) = w(v) T*_j(v), j < m.
+  void basis(double v, double* out) const {
+    if (m == 0) return;
+    const double s = 2.0 * v - 1.0;
+    const double wv = w(v);
+    double t0 = 1.0, t1 = s;
+    out[0] = wv;
+    for (int j = 1; j < m; ++j) {
+      out[j] = wv * t1;
+      const double t2 = 2.0 * s * t1 - t0;
+      t0 = t1;
+      t1 = t2;
+    }
+  }
+
+  // q(v) by Clenshaw's recurrence.
+  static double chebyshev(const std::vector<double>& c, double v) {
+    const double s = 2.0 * v - 1.0;
+    double b1 = 0.0, b2 = 0.0;
+    for (std::size_t j = c.size(); j-- > 1;) {
+      const double b0 = 2.0 * s * b1 - b2 + c[j];
+      b2 = b1;
+      b1 = b0;
+    }
+    return c.empty() ? 0.0 : s * b1 - b2 + c[0];
+  }
+
+  // Monomial coefficients in v of a + w q, padded to degree + 1 entries.
+  std::vector<double> monomial(const std::vector<double>& c, int degree) const {
+    const std::size_t len = static_cast<std::size_t>(degree) + 1;
+    std::vector<double> q(len, 0.0);
+    std::vector<double> prev{1.0}, cur{-1.0, 2.0};  // T*_0 = 1, T*_1 = 2v - 1
+    for (std::size_t j = 0; j < c.size(); ++j) {
+      const std::vector<double>& tj = j == 0 ? prev : cur;
+      for (std::size_t k = 0; k < tj.size() && k < len; ++k) q[k] += c[j] * tj[k];
+      if (j >= 1) {  // T*_{j+1} = 2(2v - 1) T*_j - T*_{j-1}
+        std::vector<double> next(cur.size() + 1, 0.0);
+        for (std::size_t k = 0; k < cur.size(); ++k) {
+          next[k + 1] += 4.0 * cur[k];
+          next[k] -= 2.0 * cur[k];
+        }
+        for (std::size_t k = 0; k < prev.size(); ++k) next[k] -= prev[k];
+        prev = std::move(cur);
+        cur = std::move(next);
+      }
+    }
+    std::vector<double> wpoly{1.0};
+    if (zero) wpoly = {0.0, 1.0};
+    if (one) {  // multiply by (1 - v)
+      std::vector<double> r(wpoly.size() + 1, 0.0);
+      for (std::size_t k = 0; k < wpoly.size(); ++k) {
+        r[k] += wpoly[k];
+        r[k + 1] -= wpoly[k];
+      }
+      wpoly = r;
+    }
+    std::vector<double> out(len, 0.0);
+    for (std::size_t i = 0; i < len; ++i) {
+      for (std::size_t k = 0; k < wpoly.size() && i + k < len; ++k) out[i + k] += q[i] * wpoly[k];
+    }
+    if (zero && one) {
+      out[1] += 1.0;
+    } else if (one) {
+      out[0] += 1.0;
+    }
+    return out;
+  }
+};
+
+// t^n seen from v, with t = t0 + (1 - t0) v. The two-sided formula makes both ends exact
+// (v = 0 gives t0, v = 1 gives 1), so f(1) = 1 constraints see a target of exactly 1.
+double t_from_v(double t0, double v) {
+  const double h = 1.0 - t0;
+  return v <= 0.5 ? t0 + h * v : 1.0 - h * (1.0 - v);
+}
+
+struct Target {
+  double t0 = 0.0;
+  double n = 1.0;
+  double t(double v) const { return t_from_v(t0, v); }
+  double y(double v) const { return glossy_scalar(t(v), n); }
+};
+
+struct CoeffFit {
+  std::vector<double> c;
+  std::vector<double> weights;
+  int iterations = 0;
+  bool converged = true;
+};
+
+linalg::Matrix design(const Subspace& sub, const std::vector<double>& v) {
+  linalg::Matrix a(v.size(), static_cast<std::size_t>(sub.m));
+  for (std::size_t i = 0; i < v.size(); ++i) sub.basis(v[i], &a.data[i * a.cols]);
+  return a;
+}
+
+std::vector<double> weighted_solve(const linalg::Matrix& x, const std::vector<double>& g,
+                                   const std::vector<double>& weights, bool* ok) {
+  linalg::Matrix a = x;
+  std::vector<double> b = g;
+  for (std::size_t i = 0; i < a.rows; ++i) {
+    const double s = std::sqrt(weights[i]);
+    for (std::size_t j = 0; j < a.cols; ++j) a(i, j) *= s;
+    b[i] *= s;
+  }
+  linalg::QR qr(std::move(a));
+  *ok = qr.full_rank();
+  return *ok ? qr.solve(b) : std::vector<double>{};
+}
+
+// Öztürk eq.10: ordinary least squares, through QR on the Chebyshev design.
+CoeffFit least_squares_fit(const Subspace& sub, const std::vector<double>& v,
+                           const std::vector<double>& g) {
+  CoeffFit out;
+  out.weights.assign(v.size(), 1.0);
+  if (sub.m == 0) return out;
+  out.c = linalg::least_squares(design(sub, v), g);
+  return out;
+}
+
+// MATLAB's madsigma: median of the |r| with the p - 1 smallest dropped, over 0.6745 (the MAD of a
+// unit normal), so that s estimates the noise sigma even when some residuals are outliers.
+double mad_sigma(const std::vector<double>& r, int p) {
+  std::vector<double> a(r.size());
+  for (std::size_t i = 0; i < r.size(); ++i) a[i] = std::abs(r[i]);
+  std::sort(a.begin(), a.end());
+  const std::size_t start = std::min(a.size() - 1, static_cast<std::size_t>(std::max(1, p) - 1));
+  const std::size_t cnt = a.size() - start;
+  const double med =
+      cnt % 2 == 1 ? a[start + cnt / 2] : 0.5 * (a[start + cnt / 2 - 1] + a[start + cnt / 2]);
+  return med / 0.6745;
+}
+
+// Öztürk §2.1: bisquare-weighted iteratively reweighted least squares, following MATLAB
+// robustfit (Öztürk §3 used it): leverage-adjusted residuals, MAD scale, Tukey bisquare, stop
+// when every coefficient moves by less than sqrt(DBL_EPSILON) relative.
+CoeffFit robust_fit(const Subspace& sub, const std::vector<double>& v, const std::vector<double>& g,
+                    const RobustOptions& opt) {
+  if (!(opt.tuning > 0.0)) throw std::invalid_argument("robust fit: tuning constant must be > 0");
+  CoeffFit out;
+  out.weights.assign(v.size(), 1.0);
+  if (sub.m == 0) return out;
+  const linalg::Matrix x = design(sub, v);
+  const linalg::QR qr0(x);
+  if (!qr0.full_rank()) throw std::runtime_error("robust fit: design matrix is rank deficient");
+  std::vector<double> adj(v.size(), 1.0);
+  if (opt.adjust_leverage) {
+    // High-leverage points pull the fit towards themselves, which shrinks their residuals;
+    // dividing by sqrt(1 - h) undoes that before the residuals are judged.
+    const std::vector<double> h = qr0.leverages();
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      adj[i] = 1.0 / std::sqrt(1.0 - std::min(h[i], 0.9999));
+    }
+  }
+  std::vector<double> b = qr0.solve(g);
+  // MATLAB's floor on the scale, 1e-6 std(y): data that lies exactly on a polynomial has
+  // rounding-noise residuals, and without a floor those would be judged against each other.
+  double mean = 0.0, var = 0.0;
+  for (double gi : g) mean += gi;
+  mean /= static_cast<double>(g.size());
+  for (double gi : g) var += (gi - mean) * (gi - mean);
+  double tiny_s = g.size() > 1 ? 1e-6 * std::sqrt(var / static_cast<double>(g.size() - 1)) : 0.0;
+  if (tiny_s == 0.0) tiny_s = 1.0;
+  std::vector<double> r(v.size());
+  out.converged = false;
+  for (int it = 1; it <= opt.max_iterations; ++it) {
+    out.iterations = it;
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      double fi = 0.0;
+      for (std::size_t j = 0; j < x.cols; ++j) fi += x(i, j) * b[j];
+      r[i] = (g[i] - fi) * adj[i];
+    }
+    const double s = std::max(mad_sigma(r, sub.m), tiny_s);
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const double u = r[i] / (opt.tuning * s);
+      out.weights[i] = std::abs(u) < 1.0 ? (1.0 - u * u) * (1.0 - u * u) : 0.0;
+    }
+    bool ok = false;
+    std::vector<double> nb = weighted_solve(x, g, out.weights, &ok);
+    if (!ok) break;  // too many points rejected to determine the polynomial: keep the last fit
+    bool small = true;
+    const double d = std::sqrt(DBL_EPSILON);
+    for (std::size_t j = 0; j < b.size(); ++j) {
+      if (std::abs(nb[j] - b[j]) > d * std::max(std::abs(nb[j]), std::abs(b[j]))) small = false;
+    }
+    b = std::move(nb);
+    if (small) {
+      out.converged = true;
+      break;
+    }
+  }
+  out.c = std::move(b);
+  return out;
+}
+
+// ---- Remez exchange ---------------------------------------------------------------------------
+
+struct Extremum {
+  double v;
+  double e;
+};
+
+struct RemezOut {
+  std::vector<double> c;
+  double levelled = 0.0;
+  std::vector<double> reference;
+  int iterations = 0;
+  bool converged = false;
+};
+
+// Best approximation of g = t^n - a in span{w T*_j}: the error g - w q equioscillates at m + 1
+// points (Chebyshev alternation; w T*_j is a Haar system wherever w != 0). Multi-point exchange:
+// each pass solves the levelled-error system on the reference, takes the extremum of every
+// sign-run of the error on a fine Chebyshev-spaced grid, polishes it by golden-section search,
+// and keeps m + 1 consecutive alternating extrema around the global maximum.
+RemezOut remez(const Subspace& sub, const Target& target, int max_iterations, double rtol) {
+  RemezOut out;
+  const int m = sub.m;
+  auto g_at = [&](double v) { return target.y(v) - sub.a(v); };
+  // Candidate grid, clustered at the ends where polynomial error extrema crowd (and where the
+  // steep part of t^n sits).
+  const int grid = std::max(4097, 256 * (m + 1));
+  std::vector<double> gv, gg;
+  gv.reserve(grid);
+  gg.reserve(grid);
+  double gscale = 0.0;
+  for (int i = 0; i < grid; ++i) {
+    const double v = i == grid - 1 ? 1.0 : 0.5 * (1.0 - std::cos(kPi * i / (grid - 1)));
+    const double g = g_at(v);
+    gscale = std::max(gscale, std::abs(g));
+    // A constrained point with zero error is fixed at zero and can never be an extremum.
+    if (sub.w(v) == 0.0 && g == 0.0) continue;
+    gv.push_back(v);
+    gg.push_back(g);
+  }
+  if (m == 0) {  // nothing free: f = a
+    for (std::size_t i = 0; i < gv.size(); ++i) {
+      out.levelled = std::max(out.levelled, std::abs(gg[i]));
+    }
+    out.converged = true;
+    return out;
+  }
+  const std::size_t ng = gv.size();
+  std::vector<double> phi(ng * m);
+  for (std::size_t i = 0; i < ng; ++i) sub.basis(gv[i], &phi[i * m]);
+
+  // Initial reference: Chebyshev extrema, leaving out the ends pinned by constraints (w = 0).
+  std::vector<double> ref;
+  {
+    const int lo = sub.zero ? 1 : 0;
+    const int hi = sub.one ? 1 : 0;
+    const int total = m + 1 + lo + hi;
+    for (int k = lo; k < total - hi; ++k) {
+      ref.push_back(0.5 * (1.0 - std::cos(kPi * k / (total - 1))));
+    }
+  }
+
+  // Below this the gap is rounding noise: t carries a relative error of ~DBL_EPSILON and t^n
+  // amplifies it n-fold, so for large n the target itself is only good to ~n ulps.
+  const double abs_floor = 16.0 * DBL_EPSILON * (1.0 + target.n) * std::max(gscale, 1e-300);
+  double best_gap = INFINITY;
+  std::vector<double> c(m);
+  std::vector<double> e(ng);
+  for (int it = 1; it <= max_iterations; ++it) {
+    linalg::Matrix a(m + 1, m + 1);
+    std::vector<double> rhs(m + 1);
+    for (int k = 0; k <= m; ++k) {
+      sub.basis(ref[k], &a.data[k * (m + 1)]);
+      a(k, m) = k % 2 == 0 ? 1.0 : -1.0;
+      rhs[k] = g_at(ref[k]);
+    }
+    linalg::QR qr(std::move(a));
+    if (!qr.full_rank()) break;
+    const std::vector<double> sol = qr.solve(rhs);
+    std::copy(sol.begin(), sol.begin() + m, c.begin());
+    const double levelled = std::abs(sol[m]);
+
+    auto err = [&](double v) { return g_at(v) - sub.w(v) * Subspace::chebyshev(c, v); };
+    for (std::size_t i = 0; i < ng; ++i) {
+      double f = 0.0;
+      for (int j = 0; j < m; ++j) f += phi[i * m + j] * c[j];
+      e[i] = gg[i] - f;
+    }
+    // One extremum per sign-run, polished between its grid neighbours.
+    std::vector<Extremum> ext;
+    std::size_t i = 0;
+    while (i < ng) {
+      const bool pos = e[i] >= 0.0;
+      std::size_t best = i;
+      std::size_t j = i;
+      for (; j < ng && (e[j] >= 0.0) == pos; ++j) {
+        if (std::abs(e[j]) > std::abs(e[best])) best = j;
+      }
+      const double sgn = pos ? 1.0 : -1.0;
+      double lo = gv[best > 0 ? best - 1 : best];
+      double hi = gv[best + 1 < ng ? best + 1 : best];
+      Extremum x{gv[best], e[best]};
+      const double gr = 0.5 * (std::sqrt(5.0) - 1.0);
+      double x1 = hi - gr * (hi - lo), x2 = lo + gr * (hi - lo);
+      double f1 = sgn * err(x1), f2 = sgn * err(x2);
+      for (int k = 0; k < 100 && hi - lo > 1e-15; ++k) {
+        if (f1 > f2) {
+          hi = x2;
+          x2 = x1;
+          f2 = f1;
+          x1 = hi - gr * (hi - lo);
+          f1 = sgn * err(x1);
+        } else {
+          lo = x1;
+          x1 = x2;
+          f1 = f2;
+          x2 = lo + gr * (hi - lo);
+          f2 = sgn * err(x2);
+        }
+      }
+      if (f1 > sgn * x.e) x = {x1, sgn * f1};
+      if (f2 > sgn * x.e) x = {x2, sgn * f2};
+      ext.push_back(x);
+      i = j;
+    }
+    std::size_t gi = 0;
+    for (std::size_t k = 1; k < ext.size(); ++k) {
+      if (std::abs(ext[k].e) > std::abs(ext[gi].e)) gi = k;
+    }
+    const double maxerr = std::abs(ext[gi].e);
+    const double gap = maxerr - levelled;
+    out.iterations = it;
+    if (gap < best_gap) {
+      best_gap = gap;
+      out.c = c;
+      out.levelled = levelled;
+      out.reference = ref;
+    }
+    // Levelled and true maximum error agree: the reference is the alternation set. The absolute
+    // floor covers fits that are exact up to rounding (t^n with integer n <= degree).
+    if (gap <= rtol * maxerr || gap <= abs_floor) {
+      out.converged = true;
+      break;
+    }
+    const std::size_t need = static_cast<std::size_t>(m) + 1;
+    if (ext.size() >= need) {
+      // Of the windows of m + 1 consecutive extrema that contain the global maximum, keep the one
+      // whose smallest extremum is largest: it raises the levelled error the most.
+      const std::size_t s_lo = gi >= need - 1 ? gi - (need - 1) : 0;
+      const std::size_t s_hi = std::min(gi, ext.size() - need);
+      std::size_t s_best = s_lo;
+      double s_val = -1.0;
+      for (std::size_t s = s_lo; s <= s_hi; ++s) {
+        double mn = INFINITY;
+        for (std::size_t k = s; k < s + need; ++k) mn = std::min(mn, std::abs(ext[k].e));
+        if (mn > s_val) {
+          s_val = mn;
+          s_best = s;
+        }
+      }
+      for (std::size_t k = 0; k < need; ++k) ref[k] = ext[s_best + k].v;
+    } else {
+      // Too few sign changes (rare, early passes only): single-point exchange of the global
+      // maximum into the old reference, keeping the signs alternating.
+      const Extremum z = ext[gi];
+      const bool zpos = z.e >= 0.0;
+      auto pos_at = [&](std::size_t k) { return err(ref[k]) >= 0.0; };
+      if (z.v < ref.front()) {
+        if (pos_at(0) == zpos) {
+          ref.front() = z.v;
+        } else {
+          ref.pop_back();
+          ref.insert(ref.begin(), z.v);
+        }
+      } else if (z.v > ref.back()) {
+        if (pos_at(need - 1) == zpos) {
+          ref.back() = z.v;
+        } else {
+          ref.erase(ref.begin());
+          ref.push_back(z.v);
+        }
+      } else {
+        std::size_t k = 0;
+        while (k + 1 < need && ref[k + 1] < z.v) ++k;
+        if (pos_at(k) == zpos) {
+          ref[k] = z.v;
+        } else {
+          ref[std::min(k + 1, need - 1)] = z.v;
+        }
+      }
+    }
+  }
+  return out;
+}
+
+void check_options(const FitOptions& o) {
+  if (!(o.shininess > 0.0) || !std::isfinite(o.shininess)) {
+    throw std::invalid_argument(
+        fmt::format("fit: shininess must be finite and > 0, got {}", o.shininess));
+  }
+  if (o.degree < 0 || o.degree > kMaxFitDegree) {
+    throw std::invalid_argument(
+        fmt::format("fit: degree must be in 0..{}, got {}", kMaxFitDegree, o.degree));
+  }
+  const int k = (o.constrain_one ? 1 : 0) + (o.constrain_zero ? 1 : 0);
+  if (o.degree + 1 < k) {
+    throw std::invalid_argument(
+        fmt::format("fit: degree {} cannot meet {} constraints", o.degree, k));
+  }
+  if (o.domain == FitDomain::kTau && !(o.tau >= 0.0 && o.tau < 1.0)) {
+    throw std::invalid_argument(fmt::format("fit: tau must be in [0, 1), got {}", o.tau));
+  }
+  if (o.method != FitMethod::kMinimax && o.samples < std::max(2, o.degree + 1)) {
+    throw std::invalid_argument(fmt::format(
+        "fit: {} samples cannot determine a degree-{} polynomial", o.samples, o.degree));
+  }
+  if (o.error_grid < 2) throw std::invalid_argument("fit: error_grid must be >= 2");
+  if (o.method == FitMethod::kMinimax && o.max_remez_iterations < 1) {
+    throw std::invalid_argument("fit: max_remez_iterations must be >= 1");
+  }
+}
+
+void measure(FitResult& r, const Target& target, int grid) {
+  const bool full = r.domain == FitDomain::kFull;
+  double max_err = -1.0, sum2 = 0.0, t_max = 0.0, prev = -INFINITY;
+  bool monotone = true;
+  // Horner on |v| <= 1 is good to about eps * sum|coeffs|; smaller dips are rounding, not shape.
+  double coeff_sum = 0.0;
+  for (double c : r.coeffs) coeff_sum += std::abs(c);
+  const double slack = 8.0 * DBL_EPSILON * coeff_sum;
+  // kFull: t_j = j/G, j = 1..G, the half-open (0, 1]. kTau: u_j = j/(G-1), the closed [0, 1].
+  for (int j = full ? 1 : 0; j < grid + (full ? 1 : 0); ++j) {
+    const double v = full ? static_cast<double>(j) / grid : static_cast<double>(j) / (grid - 1);
+    const double t = target.t(v);
+    const double f = r.value(v);
+    const double d = std::abs(f - target.y(v));
+    sum2 += d * d;
+    if (d > max_err) {
+      max_err = d;
+      t_max = t;
+    }
+    if (f < prev - slack) monotone = false;
+    prev = f;
+  }
+  r.max_abs_error = max_err;
+  r.rms_error = std::sqrt(sum2 / grid);
+  r.t_at_max_error = t_max;
+  r.monotone = monotone;
+}
+
+}  // namespace
+
+const char* to_string(FitMethod m) {
+  switch (m) {
+    case FitMethod::kLeastSquares:
+      return "ls";
+    case FitMethod::kRobust:
+      return "robust";
+    case FitMethod::kMinimax:
+      return "minimax";
+  }
+  return "?";
+}
+
+const char* to_string(FitDomain d) {
+  return d == FitDomain::kFull ? "full" : "tau";
+}
+const char* to_string(FitVariable v) {
+  return v == FitVariable::kT ? "t" : "u";
+}
+
+FitMethod parse_fit_method(std::string_view text) {
+  if (text == "ls" || text == "least-squares") return FitMethod::kLeastSquares;
+  if (text == "robust") return FitMethod::kRobust;
+  if (text == "minimax") return FitMethod::kMinimax;
+  throw std::invalid_argument("unknown fit method '" + std::string(text) +
+                              "': expected ls, robust or minimax");
+}
+
+FitDomain parse_fit_domain(std::string_view text) {
+  if (text == "full") return FitDomain::kFull;
+  if (text == "tau") return FitDomain::kTau;
+  throw std::invalid_argument("unknown fit domain '" + std::string(text) +
+                              "': expected full or tau");
+}
+
+double FitResult::to_variable(double t) const {
+  return variable == FitVariable::kT ? t : (t - tau) / (1.0 - tau);
+}
+
+double FitResult::to_t(double v) const {
+  return variable == FitVariable::kT ? v : t_from_v(tau, v);
+}
+
+double FitResult::value(double v) const {
+  return horner(coeffs, v);
+}
+
+FitResult fit_power(const FitOptions& o) {
+  check_options(o);
+  Subspace sub;
+  sub.zero = o.constrain_zero;
+  sub.one = o.constrain_one;
+  sub.m = o.degree + 1 - (sub.zero ? 1 : 0) - (sub.one ? 1 : 0);
+  Target target;
+  target.n = o.shininess;
+  target.t0 = o.domain == FitDomain::kTau ? o.tau : 0.0;
+
+  FitResult r;
+  r.variable = o.domain == FitDomain::kTau ? FitVariable::kU : FitVariable::kT;
+  r.tau = target.t0;
+  r.shininess = o.shininess;
+  r.degree = o.degree;
+  r.method = o.method;
+  r.domain = o.domain;
+  r.skipped_error_bound = o.domain == FitDomain::kTau ? glossy_scalar(o.tau, o.shininess) : 0.0;
+
+  std::vector<double> c;
+  if (o.method == FitMethod::kMinimax) {
+    RemezOut rz = remez(sub, target, o.max_remez_iterations, o.remez_tolerance);
+    c = std::move(rz.c);
+    r.iterations = rz.iterations;
+    r.converged = rz.converged;
+    r.levelled_error = rz.levelled;
+    r.reference = std::move(rz.reference);
+  } else {
+    std::vector<double> v(static_cast<std::size_t>(o.samples));
+    std::vector<double> g(v.size());
+    for (int i = 0; i < o.samples; ++i) {
+      v[i] = o.domain == FitDomain::kFull ? static_cast<double>(i + 1) / o.samples
+                                          : static_cast<double>(i) / (o.samples - 1);
+      g[i] = target.y(v[i]) - sub.a(v[i]);
+    }
+    CoeffFit cf = o.method == FitMethod::kRobust ? robust_fit(sub, v, g, o.robust)
+                                                 : least_squares_fit(sub, v, g);
+    c = std::move(cf.c);
+    r.iterations = cf.iterations;
+    r.converged = cf.converged;
+  }
+  r.coeffs = sub.monomial(c, o.degree);
+  if (sub.one) {
+    // The Chebyshev-to-monomial conversion rounds, and in t on (0, 1] the monomial coefficients
+    // of a degree-10 fit run into the thousands, so sum(coeffs) can miss 1 by ~1e-10. Fold the
+    // residual into the lowest coefficient the other constraint leaves free, so that Horner at
+    // v = 1 (a plain sum) gives exactly 1; f(0) = coeffs[0] = 0 is already exact.
+    const std::size_t k = sub.zero ? 1 : 0;
+    for (int pass = 0; pass < 4; ++pass) {
+      const double miss = 1.0 - horner(r.coeffs, 1.0);
+      if (miss == 0.0) break;
+      r.coeffs[k] += miss;
+    }
+  }
+  measure(r, target, o.error_grid);
+  return r;
+}
+
+SampleFit fit_samples(const std::vector<double>& x, const std::vector<double>& y, int degree,
+                      FitMethod method, const RobustOptions& robust) {
+  if (x.size() != y.size()) throw std::invalid_argument("fit_samples: x and y sizes differ");
+  if (degree < 0 || degree > kMaxFitDegree) {
+    throw std::invalid_argument(
+        fmt::format("fit_samples: degree must be in 0..{}, got {}", kMaxFitDegree, degree));
+  }
+  if (x.size() < static_cast<std::size_t>(degree) + 1) {
+    throw std::invalid_argument("fit_samples: fewer samples than coefficients");
+  }
+  if (method == FitMethod::kMinimax) {
+    throw std::invalid_argument("fit_samples: minimax needs a function, not samples");
+  }
+  const auto [mn, mx] = std::minmax_element(x.begin(), x.end());
+  const double lo = *mn;
+  const double span = *mx - *mn;
+  if (!(span > 0.0) && degree > 0) {
+    throw std::invalid_argument("fit_samples: all x are equal");
+  }
+  // Fit in v = (x - lo)/span in [0, 1], where the Chebyshev columns are well conditioned.
+  std::vector<double> v(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) v[i] = span > 0.0 ? (x[i] - lo) / span : 0.0;
+  Subspace sub;
+  sub.m = degree + 1;
+  CoeffFit cf =
+      method == FitMethod::kRobust ? robust_fit(sub, v, y, robust) : least_squares_fit(sub, v, y);
+  const std::vector<double> bv = sub.monomial(cf.c, degree);
+  // Substitute v = alpha x + beta by Horner's scheme on polynomials.
+  const double alpha = span > 0.0 ? 1.0 / span : 0.0;
+  const double beta = span > 0.0 ? -lo / span : 0.0;
+  std::vector<double> p{bv.back()};
+  for (std::size_t k = bv.size() - 1; k-- > 0;) {
+    std::vector<double> np(p.size() + 1, 0.0);
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      np[i] += beta * p[i];
+      np[i + 1] += alpha * p[i];
+    }
+    np[0] += bv[k];
+    p = std::move(np);
+  }
+  p.resize(bv.size());
+  SampleFit out;
+  out.coeffs = std::move(p);
+  out.weights = std::move(cf.weights);
+  out.iterations = cf.iterations;
+  out.converged = cf.converged;
+  return out;
+}
+
+}  // namespace glint

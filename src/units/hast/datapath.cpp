@@ -1,0 +1,49 @@
+#include "units/hast/datapath.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "reference/reference.h"
+
+namespace glint {
+
+int hast_default_guard(int d) {
+  const int need = 2 * d - 2;  // see the budget in hast_unit.h
+  int g = 0;
+  while ((1 << g) < need) ++g;
+  return g + 1;
+}
+
+HastUnit::HastUnit(const HastConfig& cfg, const MaterialParams& m) : cfg_(cfg) {
+  check_format(cfg.in);
+  check_format(cfg.out);
+  if (cfg.d < 1 || cfg.d > 16) throw std::invalid_argument("hast: d must be in 1..16");
+  if (cfg.in.raw_one() == 0 || cfg.out.raw_one() == 0 || cfg.in.frac_bits < 0)
+    throw std::invalid_argument("hast: input and output formats must represent 1.0");
+  const int g = cfg.guard >= 0 ? cfg.guard : hast_default_guard(cfg.d);
+  cfg_.guard = g;
+  fh_ = cfg.out.frac_bits + g;
+  if (2 * (fh_ + 1) > 62) throw std::invalid_argument("hast: chain register wider than 31 bits");
+  // The root: the material's tau (Källberg) clamped into [0, 1); the comparator and the root are
+  // the same floor-rounded threshold, so skipping changes activity, never the result.
+  tau_ = std::clamp(m.tau, 0.0, 1.0);
+  const std::int64_t root_raw = root_threshold_raw(m, cfg.in);
+  scaler_ = UScaler(cfg.in, root_raw, fh_);
+  tau_raw_ = cfg.skip ? root_raw : -1;
+  first_shift_ = fh_ - cfg.out.frac_bits;
+  last_shift_ = 2 * fh_ - cfg.out.frac_bits;
+}
+
+double HastUnit::model(std::int64_t t_raw) const {
+  return static_cast<double>(std::pow(scaler_.exact(t_raw), static_cast<long double>(cfg_.d)));
+}
+
+double HastUnit::float_model(double t) const {
+  if (scaler_.root_raw() >= cfg_.in.raw_one()) return 0.0;
+  return hast(t > 1 ? 1.0 : t, tau_, cfg_.d);
+}
+
+}  // namespace glint

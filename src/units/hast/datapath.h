@@ -1,0 +1,62 @@
+// Hast's highlight f(rho) = kappa (rho - tau)^d, kappa = 1/(1 - tau)^d (Hast et al. 2003, eq.2),
+// as a multiplier chain in the overflow-free form f = u^d, u = (rho - tau) k, k = 1/(1 - tau).
+//
+// Why not kappa (rho - tau)^d: as tau -> 1, kappa = (1 - tau)^-d explodes (tau = 0.99, d = 5:
+// 1e10, 34 integer bits) while (rho - tau)^d shrinks below the fraction LSB (0.01^5 = 1e-10 <
+// 2^-15), so the product needs ~50-bit registers or returns 0. Scaling first keeps every
+// intermediate in [0, 1]: u and all its powers fit the same unsigned 1.Fh register.
+//
+// Datapath: the u scaler (u_scaler.h), then d - 1 multiplies, the last one rounding straight to the
+// output format.
+//
+// Error budget (against the real-valued min(1, (rho_q - tau_q) k_q)^d): final rounding ½ ulp;
+// rounding u costs at most d * 2^-(Fh+1) (|d(u^d)/du| <= d), each of the d - 2 inner products
+// 2^-(Fh+1) (later factors are <= 1). Faithful needs (2d - 2) 2^-(Fh+1) < 2^-(Fo+1), i.e.
+// 2^g > 2d - 2 with g = Fh - Fo guard bits; the default g = ceil(log2(2d - 2)) + 1 meets it.
+#pragma once
+
+#include <cstdint>
+
+#include "units/common.h"
+#include "units/u_scaler.h"
+
+namespace glint {
+
+struct HastConfig {
+  QFormat in = kDefaultIn;
+  QFormat out = kDefaultOut;
+  int d = 4;       // exponent, one multiplier per step
+  int guard = -1;  // guard bits of the chain register; -1: derive from d (see budget)
+  bool skip = true;
+};
+
+int hast_default_guard(int d);
+
+class HastUnit {
+ public:
+  HastUnit(const HastConfig& cfg, const MaterialParams& m);
+
+  std::int64_t eval(std::int64_t t_raw) const {
+    const std::int64_t u = scaler_.apply(t_raw);
+    if (cfg_.d == 1) return round_nearest(u, first_shift_);
+    std::int64_t p = u;
+    for (int i = 2; i < cfg_.d; ++i) p = round_nearest(p * u, fh_);
+    return round_nearest(p * u, last_shift_);
+  }
+  double model(std::int64_t t_raw) const;  // real-valued at quantized t, tau and k
+  double float_model(double t) const;      // Hast's f at exact t and tau
+
+  std::int64_t tau_raw() const { return tau_raw_; }
+  const UScaler& scaler() const { return scaler_; }
+  int internal_frac() const { return fh_; }
+  const HastConfig& config() const { return cfg_; }
+
+ private:
+  HastConfig cfg_;
+  double tau_ = 0;  // Hast's root (the material's tau, clamped to [0, 1))
+  UScaler scaler_;
+  std::int64_t tau_raw_ = -1;  // comparator threshold (skip); -1 when skip is off
+  int fh_ = 0, first_shift_ = 0, last_shift_ = 0;
+};
+
+}  // namespace glint

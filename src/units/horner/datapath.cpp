@@ -1,0 +1,120 @@
+#include "units/horner/datapath.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace glint {
+
+namespace {
+int guard_for(double need) {
+  int g = 1;
+  while (std::ldexp(1.0, g) < need) ++g;
+  return g;
+}
+double derivative_bound(const HornerCoefficients& coeffs) {
+  double deriv = 0;  // bound on |P'| over [0, 1]
+  for (std::size_t k = 1; k < coeffs.c.size(); ++k)
+    deriv += static_cast<double>(k) * std::fabs(coeffs.c[k]);
+  return deriv;
+}
+}  // namespace
+
+int horner_required_guard(const HornerCoefficients& coeffs) {
+  const double p = static_cast<double>(coeffs.c.size() - 1);
+  // u is rounded only on the tau domain; on the full domain u = t exactly.
+  return guard_for(2.0 * (p - 1.0 + (coeffs.tau_domain ? derivative_bound(coeffs) : 0.0)));
+}
+
+int horner_preferred_guard(const HornerCoefficients& coeffs) {
+  const double p = static_cast<double>(coeffs.c.size() - 1);
+  return guard_for(2.0 * (p - 1.0 + derivative_bound(coeffs)));
+}
+
+int horner_max_guard(const HornerCoefficients& coeffs, const QFormat& out) {
+  double sum_abs = 0;
+  for (double c : coeffs.c) sum_abs += std::fabs(c);
+  int bits = 0;  // integer bits of the accumulator
+  while (std::ldexp(1.0, bits) <= sum_abs + 1) ++bits;
+  return (60 - bits) / 2 - out.frac_bits;  // acc * u: bits + 2 fh + sign <= 62
+}
+
+HornerUnit::HornerUnit(const HornerConfig& cfg, const MaterialParams& m,
+                       const HornerCoefficients& coeffs)
+    : cfg_(cfg), coeffs_(coeffs) {
+  check_format(cfg.in);
+  check_format(cfg.out);
+  if (cfg.in.raw_one() == 0 || cfg.out.raw_one() == 0 || cfg.in.frac_bits < 0)
+    throw std::invalid_argument("horner: input and output formats must represent 1.0");
+  if (coeffs.c.size() < 2 || coeffs.c.size() > 17)
+    throw std::invalid_argument("horner: degree must be in 1..16");
+  if (cfg_.guard < 0) cfg_.guard = horner_required_guard(coeffs);
+  fh_ = cfg.out.frac_bits + cfg_.guard;
+  one_out_ = cfg.out.raw_one();
+  last_shift_ = 2 * fh_ - cfg.out.frac_bits;
+
+  tau_ = std::clamp(m.tau, 0.0, 1.0);
+  const std::int64_t tau_q = root_threshold_raw(m, cfg.in);
+  // Full domain: u = t (root 0, k = 1). The comparator still uses the material's tau.
+  scaler_ = UScaler(cfg.in, coeffs.tau_domain ? tau_q : 0, fh_);
+  tau_raw_ = cfg.skip ? tau_q : -1;
+
+  // Coefficients: nearest at fh fraction bits, then repair the fit's constraints exactly.
+  const std::size_t p = coeffs.c.size() - 1;
+  c_raw_.resize(p + 1);
+  double sum_abs = 0;
+  for (std::size_t k = 0; k <= p; ++k) {
+    if (!std::isfinite(coeffs.c[k])) throw std::invalid_argument("horner: non-finite coefficient");
+    sum_abs += std::fabs(coeffs.c[k]);
+  }
+  if (sum_abs > std::ldexp(1.0, 60 - 2 * fh_))
+    throw std::invalid_argument(
+        fmt::format("horner: coefficients up to {} overflow 62-bit registers at {} fraction bits",
+                    sum_abs, fh_));
+  for (std::size_t k = 0; k <= p; ++k) c_raw_[k] = std::llround(std::ldexp(coeffs.c[k], fh_));
+  const std::int64_t one_h = std::int64_t{1} << fh_;
+  if (coeffs.constrain_zero) c_raw_[0] = 0;
+  if (coeffs.constrain_one) {
+    // P(1) = sum c_k must be exactly 1.0: absorb the rounding residue in the lowest free term.
+    const std::size_t free_k = coeffs.constrain_zero ? 1 : 0;
+    std::int64_t rest = 0;
+    for (std::size_t k = 0; k <= p; ++k)
+      if (k != free_k) rest += c_raw_[k];
+    c_raw_[free_k] = one_h - rest;
+  }
+  std::int64_t max_abs = 0, acc_bound = 0;
+  for (auto c : c_raw_) {
+    max_abs = std::max<std::int64_t>(max_abs, c < 0 ? -c : c);
+    acc_bound += c < 0 ? -c : c;
+  }
+  int ci = 1;
+  while ((std::int64_t{1} << (ci - 1 + fh_)) <= max_abs) ++ci;
+  coeff_fmt_ = sq(ci, fh_);
+  acc_int_ = 1;
+  while ((std::int64_t{1} << (acc_int_ - 1 + fh_)) <= acc_bound + static_cast<std::int64_t>(p))
+    ++acc_int_;
+}
+
+double HornerUnit::model(std::int64_t t_raw) const {
+  const long double u = scaler_.exact(t_raw);
+  long double acc = 0;
+  for (std::size_t k = c_raw_.size(); k-- > 0;)
+    acc = acc * u + std::ldexp(static_cast<long double>(c_raw_[k]), -fh_);
+  return static_cast<double>(std::clamp(acc, 0.0L, 1.0L));
+}
+
+double HornerUnit::float_model(double t) const {
+  t = std::clamp(t, 0.0, 1.0);
+  double u = t;
+  if (coeffs_.tau_domain) {
+    if (t <= tau_) return 0.0;
+    u = (t - tau_) / (1.0 - tau_);
+  }
+  double acc = 0;
+  for (std::size_t k = coeffs_.c.size(); k-- > 0;) acc = acc * u + coeffs_.c[k];
+  return std::clamp(acc, 0.0, 1.0);
+}
+
+}  // namespace glint

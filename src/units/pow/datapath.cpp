@@ -1,0 +1,118 @@
+#include "units/pow/datapath.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace glint {
+namespace {
+
+// Table of f on [a, a + 1] at 2^bits + 1 nodes, rounded to nearest, plus one padding entry so the
+// interpolation may read index + 1 at the last node (its slope is then multiplied by zero).
+template <class F>
+std::vector<std::int64_t> build_table(int bits, int frac, F f) {
+  const std::size_t n = (std::size_t{1} << bits) + 1;
+  std::vector<std::int64_t> t(n + 1);
+  for (std::size_t i = 0; i < n; ++i) {
+    t[i] = std::llround(std::ldexp(f(std::ldexp(static_cast<double>(i), -bits)), frac));
+  }
+  t[n] = t[n - 1];
+  return t;
+}
+
+// Largest |f - chord| over the segments [x_i, x_i + h] of a function with monotone derivative:
+// the maximum sits where f' equals the chord slope (df_inv maps a slope back to that point).
+template <class F, class DInv>
+double max_chord_error(int bits, F f, DInv df_inv) {
+  const double h = std::ldexp(1.0, -bits);
+  double worst = 0;
+  for (int i = 0; i < (1 << bits); ++i) {
+    const double a = i * h, b = a + h;
+    const double s = (f(b) - f(a)) / h;
+    const double x = std::clamp(df_inv(s), a, b);
+    worst = std::max(worst, std::fabs(f(a) + s * (x - a) - f(x)));
+  }
+  return worst;
+}
+
+}  // namespace
+
+PowUnit::PowUnit(const PowConfig& cfg, const MaterialParams& m) : cfg_(cfg) {
+  check_format(cfg.in);
+  check_format(cfg.out);
+  check_format(cfg.n_format);
+  if (cfg.in.raw_one() == 0 || cfg.out.raw_one() == 0 || cfg.in.frac_bits < 1)
+    throw std::invalid_argument("pow: input and output formats must represent 1.0");
+  if (cfg.log_bits < 1 || cfg.log_bits > 16 || cfg.exp_bits < 1 || cfg.exp_bits > 16)
+    throw std::invalid_argument("pow: table address bits must be in 1..16");
+  if (cfg.log_frac < 4 || cfg.log_frac > 30 || cfg.exp_frac < cfg.out.frac_bits ||
+      cfg.exp_frac > 30 || cfg.y_frac < 4 || cfg.y_frac > 30)
+    throw std::invalid_argument("pow: table/y fraction bits out of range");
+  if (!(m.shininess > 0) || m.shininess > cfg.n_format.max_value())
+    throw std::invalid_argument(fmt::format("pow: shininess {} outside the n register {}",
+                                            m.shininess, cfg.n_format.name()));
+  n_ = m.shininess;
+  n_raw_ = Fixed::from_double(n_, cfg.n_format, Quant::kRndConv, Overflow::kSat).raw();
+  if (n_raw_ == 0) n_raw_ = 1;
+  fi_ = cfg.in.frac_bits;
+  one_in_ = cfg.in.raw_one();
+  one_out_ = cfg.out.raw_one();
+  tau_raw_ = cfg.skip ? tau_threshold_raw(m, cfg.in) : -1;
+
+  // Mantissa fraction has fi bits: the top log_bits address the table (padded when fi is
+  // smaller), the rest interpolate.
+  log_r_bits_ = std::max(0, fi_ - cfg.log_bits);
+  log_pad_ = std::max(0, cfg.log_bits - fi_);
+  log_r_mask_ = (std::int64_t{1} << log_r_bits_) - 1;
+  exp_r_bits_ = std::max(0, cfg.y_frac - cfg.exp_bits);
+  exp_pad_ = std::max(0, cfg.exp_bits - cfg.y_frac);
+  exp_r_mask_ = (std::int64_t{1} << exp_r_bits_) - 1;
+  y_shift_ = cfg.n_format.frac_bits + cfg.log_frac - cfg.y_frac;
+  out_shift_ = cfg.exp_frac - cfg.out.frac_bits;
+  if (y_shift_ < 0) throw std::invalid_argument("pow: y_frac exceeds the product's fraction bits");
+  // n_raw * log2t must fit: |log2 t| <= fi, so it needs n width + log2(fi) + log_frac + 1 bits.
+  if (cfg.n_format.width() + 6 + cfg.log_frac > 62)
+    throw std::invalid_argument("pow: n register and log table too wide for 62-bit products");
+
+  log_table_ = build_table(cfg.log_bits, cfg.log_frac, [](double x) { return std::log2(1 + x); });
+  exp_table_ = build_table(cfg.exp_bits, cfg.exp_frac, [](double x) { return std::exp2(x); });
+
+  // Error bound, the terms named in the header comment. Interpolation with fewer remainder bits
+  // than the table resolution (pad) is exact at the nodes, so the chord terms still bound it.
+  const double ln2 = std::log(2.0);
+  eps_log_ = max_chord_error(
+                 cfg.log_bits, [](double x) { return std::log2(1 + x); },
+                 [ln2](double s) { return 1.0 / (s * ln2) - 1.0; }) +
+             std::ldexp(1.0, -cfg.log_frac);  // table ½ ulp + interpolation ½ ulp
+  eps_exp_ = max_chord_error(
+                 cfg.exp_bits, [](double x) { return std::exp2(x); },
+                 [ln2](double s) { return std::log2(s / ln2); }) +
+             std::ldexp(1.0, -cfg.exp_frac);
+  const double nq = shininess_q();
+  const double dy = nq * eps_log_ + std::ldexp(0.5, -cfg.y_frac);
+  bound_ = (std::exp2(dy) * (1 + eps_exp_) - 1) + std::ldexp(0.5, -cfg.out.frac_bits);
+  if (tau_raw_ >= 0) bound_ = std::max(bound_, std::pow(input_value(tau_raw_, cfg.in), nq));
+}
+
+double PowUnit::shininess_q() const {
+  return input_value(n_raw_, cfg_.n_format);
+}
+
+double PowUnit::model(std::int64_t t_raw) const {
+  const std::int64_t t = t_raw > one_in_ ? one_in_ : (t_raw < 0 ? 0 : t_raw);
+  return std::pow(input_value(t, cfg_.in), shininess_q());
+}
+
+double PowUnit::float_model(double t) const {
+  return t <= 0 ? 0.0 : std::pow(std::min(t, 1.0), n_);
+}
+
+std::size_t PowUnit::table_bits() const {
+  // log2 entries reach 1.0 (log_frac + 1 bits), exp2 entries reach 2.0 (exp_frac + 2 bits).
+  return ((std::size_t{1} << cfg_.log_bits) + 1) * static_cast<std::size_t>(cfg_.log_frac + 1) +
+         ((std::size_t{1} << cfg_.exp_bits) + 1) * static_cast<std::size_t>(cfg_.exp_frac + 2);
+}
+
+}  // namespace glint

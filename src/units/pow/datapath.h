@@ -1,0 +1,88 @@
+// Exact-power baseline the way a GPU special-function unit computes it: t^n = exp2(n log2 t).
+//
+// Datapath: leading-one detector normalises t = 2^e m, m in [1, 2); log2 m from a table of
+// 2^log_bits + 1 entries with linear interpolation on the remaining mantissa bits; y = n log2 t
+// (one multiplier, rounded to yfrac bits); y = yi + yf with yi = floor(y); 2^yf from a table of
+// 2^exp_bits + 1 entries with linear interpolation; a right shift by -yi and the final rounding.
+//
+// Error bound against t^n (n as quantized in the n register), stated per slot by error_bound():
+//   eps_L = max linear-interpolation error of log2 on the table segments (exact, computed from
+//           the tangent point of each segment) + ½ ulp table rounding + ½ ulp interpolation
+//           rounding
+//   dy    = n eps_L + ½ ulp of y
+//   eps_E = same for 2^x on [0, 1] (absolute; 2^x >= 1 makes it relative too)
+//   |out - t^n| <= (2^dy (1 + eps_E) - 1) + ½ ulp_out,     plus tau^n where skipping.
+// The bound grows linearly in n: with the defaults it stays under ½ LSB of an 8-bit display for
+// n <= 512 and under 1 LSB for n <= 1024 (tests/test_units_exhaustive.cpp holds it to that).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "units/common.h"
+
+namespace glint {
+
+struct PowConfig {
+  QFormat in = kDefaultIn;
+  QFormat out = kDefaultOut;
+  QFormat n_format = uq(14, 4);
+  int log_bits = 8;   // log2 table address bits
+  int log_frac = 24;  // log2 table entry fraction bits
+  int y_frac = 20;    // fraction bits of y = n log2 t
+  int exp_bits = 6;   // exp2 table address bits
+  int exp_frac = 24;  // exp2 table entry fraction bits
+  bool skip = true;
+};
+
+class PowUnit {
+ public:
+  PowUnit(const PowConfig& cfg, const MaterialParams& m);
+
+  std::int64_t eval(std::int64_t t_raw) const {
+    if (t_raw <= 0) return 0;
+    const std::int64_t t = t_raw > one_in_ ? one_in_ : t_raw;
+    const int e = 63 - __builtin_clzll(static_cast<unsigned long long>(t));  // leading one
+    const std::int64_t mf = (t << (fi_ - e)) - one_in_;  // mantissa fraction, fi bits
+    const std::int64_t li = mf >> log_r_bits_ << log_pad_;
+    const std::int64_t lr = mf & log_r_mask_;
+    const std::int64_t l0 = log_table_[li];
+    const std::int64_t lg = l0 + round_nearest((log_table_[li + 1] - l0) * lr, log_r_bits_);
+    const std::int64_t log2t = lg - (static_cast<std::int64_t>(fi_ - e) << cfg_.log_frac);
+    const std::int64_t y = round_nearest(n_raw_ * log2t, y_shift_);  // <= 0
+    const std::int64_t yi = y >> cfg_.y_frac;                        // floor
+    const std::int64_t yf = y - shift_left(yi, cfg_.y_frac);
+    const std::int64_t ei = yf >> exp_r_bits_ << exp_pad_;
+    const std::int64_t er = yf & exp_r_mask_;
+    const std::int64_t e0 = exp_table_[ei];
+    const std::int64_t ex = e0 + round_nearest((exp_table_[ei + 1] - e0) * er, exp_r_bits_);
+    const std::int64_t shift = out_shift_ - yi;
+    if (shift >= 62) return 0;
+    const std::int64_t r = round_nearest(ex, static_cast<int>(shift));
+    return r > one_out_ ? one_out_ : r;
+  }
+  // pow's own model is t^n itself (at the quantized t and n): every deviation is datapath error.
+  double model(std::int64_t t_raw) const;
+  double float_model(double t) const;
+  // Bound on |eval - t_q^n_q| over every input (see the header comment).
+  double error_bound() const { return bound_; }
+  double log_error() const { return eps_log_; }
+  double exp_error() const { return eps_exp_; }
+
+  std::int64_t tau_raw() const { return tau_raw_; }
+  double shininess_q() const;
+  const PowConfig& config() const { return cfg_; }
+  std::size_t table_bits() const;
+
+ private:
+  PowConfig cfg_;
+  double n_ = 1;
+  std::int64_t n_raw_ = 0, one_in_ = 0, one_out_ = 0, tau_raw_ = -1;
+  int fi_ = 0, log_r_bits_ = 0, log_pad_ = 0, exp_r_bits_ = 0, exp_pad_ = 0, y_shift_ = 0;
+  int out_shift_ = 0;
+  std::int64_t log_r_mask_ = 0, exp_r_mask_ = 0;
+  std::vector<std::int64_t> log_table_, exp_table_;
+  double eps_log_ = 0, eps_exp_ = 0, bound_ = 0;
+};
+
+}  // namespace glint

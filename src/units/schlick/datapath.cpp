@@ -1,0 +1,51 @@
+#include "units/schlick/datapath.h"
+
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+#include "reference/reference.h"
+
+namespace glint {
+
+SchlickUnit::SchlickUnit(const SchlickConfig& cfg, const MaterialParams& m) : cfg_(cfg) {
+  check_format(cfg.in);
+  check_format(cfg.out);
+  check_format(cfg.n_format);
+  if (cfg.in.frac_bits < 0 || cfg.out.frac_bits < 0 || cfg.n_format.frac_bits < 0 ||
+      cfg.in.raw_one() == 0 || cfg.out.raw_one() == 0) {
+    throw std::invalid_argument("schlick: input and output formats must represent 1.0");
+  }
+  if (!(m.shininess > 0) || m.shininess > cfg.n_format.max_value()) {
+    throw std::invalid_argument(fmt::format("schlick: shininess {} outside the n register {}",
+                                            m.shininess, cfg.n_format.name()));
+  }
+  n_ = m.shininess;
+  n_raw_ = Fixed::from_double(m.shininess, cfg.n_format, Quant::kRndConv, Overflow::kSat).raw();
+  if (n_raw_ == 0) n_raw_ = 1;  // the smallest representable n, never a zero divisor
+  one_in_ = cfg.in.raw_one();
+  out_max_ = cfg.out.raw_one();
+  n_frac_ = cfg.n_format.frac_bits;
+  num_shift_ = cfg.n_format.frac_bits + cfg.out.frac_bits;
+  // The double-estimate division needs num and den below 2^53.
+  if (cfg.in.frac_bits + num_shift_ > 52 || cfg.n_format.width() + cfg.in.frac_bits + 1 > 52) {
+    throw std::invalid_argument(
+        "schlick: formats too wide for the exact divider model (<= 52 bits)");
+  }
+  tau_raw_ = cfg.skip ? tau_threshold_raw(m, cfg.in) : -1;
+}
+
+double SchlickUnit::shininess_q() const {
+  return input_value(n_raw_, cfg_.n_format);
+}
+
+double SchlickUnit::model(std::int64_t t_raw) const {
+  const std::int64_t t = t_raw > one_in_ ? one_in_ : (t_raw < 0 ? 0 : t_raw);
+  return schlick(input_value(t, cfg_.in), shininess_q());
+}
+
+double SchlickUnit::float_model(double t) const {
+  return schlick(t <= 0 ? 0.0 : (t > 1 ? 1.0 : t), n_);
+}
+
+}  // namespace glint

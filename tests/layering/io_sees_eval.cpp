@@ -1,0 +1,2 @@
+// Must not compile: io cannot see eval (a higher layer).
+#include "eval/evaluate.h"
