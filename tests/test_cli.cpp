@@ -381,7 +381,7 @@ TEST_F(CliTest, UnitsDefaultsAreAcceptedAsSpecs) {
     const json& a = defaults.at("units")[i];
     const json& b = explicit_.at("units")[i];
     EXPECT_EQ(a.at("spec"), b.at("spec"));
-    EXPECT_EQ(a.at("error_vs_reference"), b.at("error_vs_reference")) << a.at("unit");
+    EXPECT_EQ(a.at("errors"), b.at("errors")) << a.at("unit");
     EXPECT_EQ(a.at("skipped"), b.at("skipped")) << a.at("unit");
   }
 }
@@ -420,8 +420,8 @@ TEST_F(CliTest, EvalJson) {
     names.push_back(name);
     EXPECT_EQ(u.at("vectors"), ts.size()) << name;
     EXPECT_EQ(u.at("skipped"), skipped) << name;
-    EXPECT_EQ(u.at("error_vs_reference").at("count"), ts.size()) << name;
-    const double ulps = u.at("datapath_error_ulps").at("max");
+    EXPECT_EQ(u.at("errors").at("count"), ts.size()) << name;
+    const double ulps = u.at("errors").at("max_datapath_ulps");
     if (name == "schlick") {
       EXPECT_LE(ulps, 0.5 + 1e-9) << "schlick must be correctly rounded";
     }
@@ -429,9 +429,9 @@ TEST_F(CliTest, EvalJson) {
       EXPECT_LT(ulps, 1.0) << name << " must be faithful";
     }
     if (name == "pow" || name == "lut") {
-      ASSERT_TRUE(u.at("error_bound").is_number()) << name;
-      EXPECT_LE(u.at("error_vs_reference").at("max_abs").get<double>(),
-                u.at("error_bound").get<double>())
+      ASSERT_TRUE(u.at("errors").at("error_bound").is_number()) << name;
+      EXPECT_LE(u.at("errors").at("max_abs").get<double>(),
+                u.at("errors").at("error_bound").get<double>())
           << name << " exceeds its stated bound";
     }
   }
@@ -553,8 +553,7 @@ TEST_F(CliTest, EvalDumpCsvAgreesWithJson) {
     const std::string name = u.at("unit");
     EXPECT_EQ(count[name], ts.size()) << name;
     EXPECT_EQ(u.at("skipped"), skipped[name]) << name;
-    EXPECT_NEAR(u.at("error_vs_reference").at("max_abs").get<double>(), max_err[name], 1e-15)
-        << name;
+    EXPECT_NEAR(u.at("errors").at("max_abs").get<double>(), max_err[name], 1e-15) << name;
   }
 }
 
@@ -575,7 +574,7 @@ TEST_F(CliTest, EvalAllShippedTraces) {
     for (const auto& u : j.at("units")) {
       EXPECT_EQ(u.at("vectors"), j.at("rows")) << e.path();
       const std::string name = u.at("unit");
-      const double ulps = u.at("datapath_error_ulps").at("max");
+      const double ulps = u.at("errors").at("max_datapath_ulps");
       if (name == "schlick") {
         EXPECT_LE(ulps, 0.5 + 1e-9) << e.path();
       }
@@ -768,6 +767,100 @@ TEST_F(CliTest, EvalHelp) {
   EXPECT_EQ(r.status, 0) << r.err;
   for (const char* opt : {"--unit", "--dump", "--json"})
     EXPECT_NE(r.out.find(opt), std::string::npos) << opt << " not in:\n" << r.out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// One interface: eval and sim reports
+
+// Leaf values of a JSON object by dotted path ("errors.max_abs").
+void flatten(const json& j, const std::string& prefix, std::map<std::string, json>& out) {
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    if (it.value().is_object()) {
+      flatten(it.value(), prefix + it.key() + ".", out);
+    } else {
+      out[prefix + it.key()] = it.value();
+    }
+  }
+}
+
+TEST_F(CliTest, ReportsCarrySchemaVersions) {
+  const json e = glint_json("eval " + quote(kPhongBasic) + " --json");
+  const json s = glint_json("sim " + quote(kPhongBasic) + " --json --report r.json");
+  ASSERT_TRUE(e.is_object());
+  ASSERT_TRUE(s.is_object());
+  // eval 2: version 1 was the unversioned layout with its own key names (README).
+  EXPECT_EQ(e.at("glint_eval_report"), 2);
+  EXPECT_EQ(s.at("glint_sim_report"), 1);
+  EXPECT_EQ(json::parse(read_text(dir_ / "r.json")).at("glint_sim_report"), 1);
+  for (const auto& u : e.at("units")) {
+    for (const char* old : {"error_vs_reference", "datapath_error_ulps", "model_error",
+                            "mismatch_8bit_fraction", "error_bound"})
+      EXPECT_FALSE(u.contains(old)) << old << " is an eval v1 key";
+  }
+}
+
+// Every statistic both commands report has the same key path in both, and the same value: the
+// datapaths, the accumulation and the default units are shared. What only eval has is listed.
+TEST_F(CliTest, EvalAndSimUseTheSameKeys) {
+  for (const std::string trace : {"phong_basic.vec", "multi_light.vec"}) {
+    SCOPED_TRACE(trace);
+    const std::string vec = quote(kTraces + "/" + trace);
+    const json e = glint_json("eval " + vec + " --json");
+    const json s = glint_json("sim " + vec + " --json");
+    ASSERT_TRUE(e.is_object());
+    ASSERT_TRUE(s.is_object());
+    for (const char* k : {"rows", "slots", "per_light_slots"}) EXPECT_EQ(e.at(k), s.at(k)) << k;
+    ASSERT_EQ(e.at("units").size(), kAllUnits.size());
+    ASSERT_EQ(s.at("units").size(), kAllUnits.size());
+    for (std::size_t i = 0; i < kAllUnits.size(); ++i) {
+      std::map<std::string, json> fe, fs;
+      flatten(e.at("units")[i], "", fe);
+      flatten(s.at("units")[i], "", fs);
+      // sim's accuracy statistics, all present in eval under the same path with the same value.
+      for (const char* k :
+           {"unit", "spec", "vectors", "skipped", "errors.max_abs", "errors.rms", "errors.t_at_max",
+            "errors.max_datapath_ulps", "errors.t_at_max_datapath_ulps",
+            "errors.mismatch_8bit_fraction", "errors.error_bound"}) {
+        ASSERT_EQ(fs.count(k), 1u) << k;
+        ASSERT_EQ(fe.count(k), 1u) << "eval lacks " << k;
+        EXPECT_EQ(fe[k], fs[k]) << kAllUnits[i] << " " << k;
+      }
+      // Eval's own keys, documented in the eval report schema.
+      for (const auto& [k, v] : fe) {
+        if (fs.count(k)) continue;
+        const bool own = k == "skipped_fraction" || k == "errors.count" ||
+                         k.rfind("errors.model.", 0) == 0 || k.rfind("description.", 0) == 0;
+        EXPECT_TRUE(own) << "eval key " << k << " is neither sim's nor documented as eval's own";
+      }
+    }
+  }
+}
+
+// The text tables head the shared columns alike and agree on them.
+TEST_F(CliTest, EvalAndSimTablesShareColumnNames) {
+  const CliRun e = glint("eval " + quote(kPhongBasic));
+  const CliRun s = glint("sim " + quote(kPhongBasic));
+  ASSERT_EQ(e.status, 0) << e.err;
+  ASSERT_EQ(s.status, 0) << s.err;
+  auto words = [](const std::string& line) {
+    std::istringstream in(line);
+    std::vector<std::string> w;
+    for (std::string x; in >> x;) w.push_back(x);
+    return w;
+  };
+  const auto eh = words(lines_of(e.out).at(1)), sh = words(lines_of(s.out).at(1));
+  for (const char* col : {"unit", "vectors", "skip%", "max_err", "dp_ulps", "8bit%"}) {
+    EXPECT_EQ(std::count(eh.begin(), eh.end(), col), 1) << col << " in eval: " << e.out;
+    EXPECT_EQ(std::count(sh.begin(), sh.end(), col), 1) << col << " in sim: " << s.out;
+  }
+  // unit, vectors and skip% lead both tables: the same words on every unit row.
+  for (std::size_t i = 0; i < kAllUnits.size(); ++i) {
+    const auto er = words(lines_of(e.out).at(2 + i)), sr = words(lines_of(s.out).at(2 + i));
+    ASSERT_GE(er.size(), 3u);
+    ASSERT_GE(sr.size(), 3u);
+    EXPECT_EQ(std::vector<std::string>(er.begin(), er.begin() + 3),
+              std::vector<std::string>(sr.begin(), sr.begin() + 3));
+  }
 }
 
 }  // namespace

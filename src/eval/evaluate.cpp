@@ -67,16 +67,21 @@ nlohmann::json ErrorStats::to_json() const {
 }
 
 nlohmann::json UnitStats::to_json() const {
+  // The statistics `glint sim` reports too carry its key names and nesting (`errors.max_abs`,
+  // `errors.max_datapath_ulps`, ...), so one script reads both reports. `count`, `model`,
+  // `skipped_fraction` and `description` are eval's own (README, eval report schema).
+  nlohmann::json errors = total.to_json();
+  errors["max_datapath_ulps"] = max_ulps;
+  errors["t_at_max_datapath_ulps"] = t_at_max_ulps;
+  errors["mismatch_8bit_fraction"] = vectors ? static_cast<double>(mismatch8) / vectors : 0.0;
+  errors["error_bound"] = std::isfinite(error_bound) ? nlohmann::json(error_bound) : nullptr;
+  errors["model"] = model.to_json();
   return {{"unit", name},
           {"spec", spec},
           {"vectors", vectors},
           {"skipped", skipped},
           {"skipped_fraction", vectors ? static_cast<double>(skipped) / vectors : 0.0},
-          {"error_vs_reference", total.to_json()},
-          {"model_error", model.to_json()},
-          {"datapath_error_ulps", {{"max", max_ulps}, {"t_at_max", t_at_max_ulps}}},
-          {"mismatch_8bit_fraction", vectors ? static_cast<double>(mismatch8) / vectors : 0.0},
-          {"error_bound", std::isfinite(error_bound) ? nlohmann::json(error_bound) : nullptr},
+          {"errors", errors},
           {"description", description}};
 }
 
@@ -173,16 +178,21 @@ std::vector<UnitStats> Evaluator::stats() const {
 nlohmann::json Evaluator::to_json() const {
   nlohmann::json units = nlohmann::json::array();
   for (const auto& lane : lanes_) units.push_back(lane.stats().to_json());
-  return {{"slots", slots_.params.size()}, {"per_light_slots", slots_.per_light}, {"units", units}};
+  return {{"glint_eval_report", kEvalReportVersion},
+          {"slots", slots_.params.size()},
+          {"per_light_slots", slots_.per_light},
+          {"units", units}};
 }
 
 std::string format_eval_table(const std::vector<UnitStats>& stats) {
-  std::string out = fmt::format("{:<8} {:>9} {:>8} {:>10} {:>8} {:>10} {:>10} {:>9} {:>7} {:>10}\n",
-                                "unit", "vectors", "skipped", "max_err", "t@max", "rms_err",
+  // Columns `glint sim`'s table has too (unit, vectors, skip%, max_err, dp_ulps, 8bit%) carry its
+  // headings and unit-column width.
+  std::string out = fmt::format("{:<9} {:>9} {:>7} {:>10} {:>8} {:>10} {:>10} {:>9} {:>7} {:>10}\n",
+                                "unit", "vectors", "skip%", "max_err", "t@max", "rms_err",
                                 "model_max", "dp_ulps", "8bit%", "bound");
   for (const auto& s : stats) {
     out += fmt::format(
-        "{:<8} {:>9} {:>7.1f}% {:>10.3e} {:>8.5f} {:>10.3e} {:>10.3e} {:>9.3f} {:>6.2f}% {:>10}\n",
+        "{:<9} {:>9} {:>6.1f}% {:>10.3e} {:>8.5f} {:>10.3e} {:>10.3e} {:>9.3f} {:>6.2f}% {:>10}\n",
         s.name, s.vectors, s.vectors ? 100.0 * s.skipped / s.vectors : 0.0, s.total.max_abs,
         s.total.t_at_max, s.total.rms(), s.model.max_abs, s.max_ulps,
         s.vectors ? 100.0 * s.mismatch8 / s.vectors : 0.0,

@@ -116,6 +116,11 @@ struct EvalRecord {
   bool skipped;
 };
 
+// Schema version of the `glint eval` JSON report (key "glint_eval_report", schema in README.md).
+// Version 1 is the unversioned layout before eval took `glint sim`'s key names (error_vs_reference,
+// datapath_error_ulps, top-level mismatch_8bit_fraction and error_bound); 2 nests them in "errors".
+inline constexpr int kEvalReportVersion = 2;
+
 class Evaluator {
  public:
   Evaluator(const VectorHeader& header, const std::vector<UnitSpec>& specs);
@@ -125,6 +130,7 @@ class Evaluator {
   const std::string& label(std::size_t unit) const { return lanes_[unit].stats().name; }
   const std::vector<std::unique_ptr<SpecularUnit>>& units() const { return units_; }
   const SlotMap& slots() const { return slots_; }
+  // The report's version, slots and units (the caller adds vectors_file and rows).
   nlohmann::json to_json() const;
 
  private:
