@@ -1,10 +1,15 @@
 // glint sim: the cycle-approximate SystemC model of the specular units over a vector stream.
+//
+// run_sim works in three steps, each its own function: check every option before any input is
+// read or any output created (check_sim_options), build the lanes and run the chosen mode
+// (make_lanes, run_clocked_mode / run_fast_mode), then write the outputs (build_report,
+// write_outputs). Output files are committed only at the end, so a failure leaves none.
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 
@@ -28,16 +33,42 @@ struct SimOptions {
   bool json = false;
 };
 
+// What the options decide before the vector file is opened.
+struct SimPlan {
+  std::vector<UnitSpec> specs;
+  bool clocked = false;
+  ClockedOptions clocked_options;  // VCD path and window; sink and colour stage come later
+};
+
 void write_atomic(const std::string& path, const std::string& text) {
   AtomicOutputFile f(path);
   f.stream() << text;
   f.commit();
 }
 
-int run_sim(const SimOptions& o) {
-  std::vector<UnitSpec> specs;
+// --vcd-window FIRST:LAST into `co`; throws std::invalid_argument naming the option.
+void parse_vcd_window(const std::string& text, ClockedOptions& co) {
+  const auto colon = text.find(':');
+  try {
+    if (colon == std::string::npos) throw std::invalid_argument("no ':'");
+    std::size_t used = 0;
+    co.vcd_first = std::stoull(text.substr(0, colon), &used);
+    if (used != colon) throw std::invalid_argument("first");
+    const std::string last = text.substr(colon + 1);
+    co.vcd_last = std::stoull(last, &used);
+    if (used != last.size() || co.vcd_last < co.vcd_first) throw std::invalid_argument("last");
+  } catch (const std::exception&) {
+    throw std::invalid_argument(fmt::format(
+        "--vcd-window '{}': expected FIRST:LAST vector indices with FIRST <= LAST", text));
+  }
+}
+
+// Every check that needs no input: unit specs, sink, output paths, mode and VCD window. Output
+// paths are checked here, before simulating, not when they are written.
+SimPlan check_sim_options(const SimOptions& o) {
+  SimPlan plan;
   for (const auto& s : o.units.empty() ? unit_names() : o.units)
-    specs.push_back(parse_unit_spec(s));
+    plan.specs.push_back(parse_unit_spec(s));
   if (!(o.sink_ready > 0 && o.sink_ready <= 1))
     throw std::invalid_argument("--sink-ready must be in (0, 1]");
   for (const auto* out : {&o.report, &o.dump, &o.vcd}) {
@@ -45,124 +76,160 @@ int run_sim(const SimOptions& o) {
     std::error_code ec;
     if (std::filesystem::equivalent(o.vectors, *out, ec))
       throw std::invalid_argument(fmt::format("output {} is the input vector file", *out));
-    check_output_path(*out);  // before simulating, not after
+    check_output_path(*out);
   }
-  const bool clocked = o.mode == "clocked" || (o.mode == "auto" && !o.vcd.empty());
-  if (!clocked && !o.vcd.empty())
+  plan.clocked = o.mode == "clocked" || (o.mode == "auto" && !o.vcd.empty());
+  if (!plan.clocked && !o.vcd.empty())
     throw std::invalid_argument("--vcd needs the clocked mode (--mode clocked or auto)");
-  ClockedOptions co;
-  co.vcd_path = o.vcd;
-  if (!o.vcd_window.empty()) {
-    const auto colon = o.vcd_window.find(':');
-    try {
-      if (colon == std::string::npos) throw std::invalid_argument("no ':'");
-      std::size_t used = 0;
-      co.vcd_first = std::stoull(o.vcd_window.substr(0, colon), &used);
-      if (used != colon) throw std::invalid_argument("first");
-      const std::string last = o.vcd_window.substr(colon + 1);
-      co.vcd_last = std::stoull(last, &used);
-      if (used != last.size() || co.vcd_last < co.vcd_first) throw std::invalid_argument("last");
-    } catch (const std::exception&) {
-      throw std::invalid_argument(
-          fmt::format("--vcd-window '{}': expected FIRST:LAST vector indices with FIRST <= LAST",
-                      o.vcd_window));
-    }
-  }
+  plan.clocked_options.vcd_path = o.vcd;
+  if (!o.vcd_window.empty()) parse_vcd_window(o.vcd_window, plan.clocked_options);
+  return plan;
+}
 
-  VectorReader reader(o.vectors);
-  const SlotMap slots = make_slots(reader.header());
-  const bool colour = stream_is_coloured(reader.header());
-  co.colour_stage = colour;
-  co.sink = SinkReady{o.sink_ready, o.seed};
+// The lanes of one run: a unit per spec, built for the stream's slots, and its accumulator.
+struct SimLanes {
+  SlotMap slots;
+  bool colour = false;  // the stream is coloured: every lane builds the i*m stage
   std::vector<std::unique_ptr<SpecularUnit>> owned;
   std::vector<const SpecularUnit*> units;
-  for (const auto& s : specs) {
-    owned.push_back(make_unit(s, slots.params));
-    units.push_back(owned.back().get());
-  }
-  std::vector<LaneAccumulator> acc;
-  for (const auto* u : units) acc.emplace_back(*u);
-  std::vector<std::string> names;
-  for (const auto* u : units) names.push_back(u->name());
-  const auto labels = unit_labels(names);
-  for (std::size_t i = 0; i < units.size(); ++i) acc[i].stats().name = labels[i];
+  std::vector<LaneAccumulator> acc;  // refers to *owned: built once, never moved out of
+};
 
-  std::unique_ptr<AtomicOutputFile> dump;
-  if (!o.dump.empty()) {
-    dump = std::make_unique<AtomicOutputFile>(o.dump);
-    dump->stream() << "line,unit,t,t_raw,skipped,fixed_raw,fixed,issue,done,retire\n";
+void make_lanes(const VectorHeader& header, const std::vector<UnitSpec>& specs, SimLanes& lanes) {
+  lanes.slots = make_slots(header);
+  lanes.colour = stream_is_coloured(header);
+  for (const auto& s : specs) {
+    lanes.owned.push_back(make_unit(s, lanes.slots.params));
+    lanes.units.push_back(lanes.owned.back().get());
   }
-  const bool progress = isatty(STDERR_FILENO);
+  for (const auto* u : lanes.units) lanes.acc.emplace_back(*u);
+  std::vector<std::string> names;
+  for (const auto* u : lanes.units) names.push_back(u->name());
+  const auto labels = unit_labels(names);
+  for (std::size_t i = 0; i < lanes.units.size(); ++i) lanes.acc[i].stats().name = labels[i];
+}
+
+// The per-result CSV (--dump).
+class SimDump {
+ public:
+  SimDump(const std::string& path, const SimLanes& lanes) : file_(path), lanes_(lanes) {
+    file_.stream() << "line,unit,t,t_raw,skipped,fixed_raw,fixed,issue,done,retire\n";
+  }
+  void row(std::size_t lane, const VectorRow& row, std::int64_t t_raw, bool skipped,
+           std::int64_t out_raw, const ResultTiming& t) {
+    file_.stream() << fmt::format(
+        "{},{},{:.17g},{},{},{},{:.17g},{},{},{}\n", row.line, lanes_.acc[lane].stats().name, row.t,
+        t_raw, skipped ? 1 : 0, out_raw,
+        std::ldexp(static_cast<double>(out_raw), -lanes_.units[lane]->out_format().frac_bits),
+        t.issue, t.done, t.retire);
+  }
+  void commit() { file_.commit(); }
+
+ private:
+  AtomicOutputFile file_;
+  const SimLanes& lanes_;
+};
+
+struct SimRun {
+  std::vector<TimingStats> timing;  // per lane
+  std::uint64_t rows = 0;
+};
+
+// Clocked mode: per-cycle processes. Each lane reads its own stream (lanes run independently);
+// the caller's reader only supplied the header.
+SimRun run_clocked_mode(const SimOptions& o, ClockedOptions co, SimLanes& lanes, SimDump* dump) {
+  co.colour_stage = lanes.colour;
+  co.sink = SinkReady{o.sink_ready, o.seed};
+  auto open = [&]() -> std::unique_ptr<RowStream> {
+    return std::make_unique<VectorReaderStream>(o.vectors);
+  };
+  auto on_result = [&](const LaneOutput& r) {
+    const std::size_t slot = lanes.slots.slot(r.row);
+    lanes.acc[r.lane].add(slot, make_reference(lanes.slots, slot, r.row.t), r.t_raw, r.skipped,
+                          r.out_raw);
+    if (dump) dump->row(r.lane, r.row, r.t_raw, r.skipped, r.out_raw, r.timing);
+  };
+  SimRun run;
+  run.timing = run_clocked(lanes.units, lanes.slots, open, co, on_result);
+  run.rows = run.timing.empty() ? 0 : run.timing[0].results;
+  return run;
+}
+
+// Fast mode: transaction level with temporal decoupling, fed by `reader`.
+SimRun run_fast_mode(const SimOptions& o, VectorReader& reader, SimLanes& lanes, SimDump* dump,
+                     bool progress) {
   std::function<bool(VectorRow&)> next = [&](VectorRow& row) {
     const bool ok = reader.next(row);
     if (progress && ok && (reader.rows_read() & 0xFFFFF) == 0)
       std::fprintf(stderr, "\r%llu vectors", static_cast<unsigned long long>(reader.rows_read()));
     return ok;
   };
-  auto dump_row = [&](std::size_t lane, const VectorRow& row, std::int64_t t_raw, bool skipped,
-                      std::int64_t out_raw, const ResultTiming& t) {
-    dump->stream() << fmt::format(
-        "{},{},{:.17g},{},{},{},{:.17g},{},{},{}\n", row.line, acc[lane].stats().name, row.t, t_raw,
-        skipped ? 1 : 0, out_raw,
-        std::ldexp(static_cast<double>(out_raw), -units[lane]->out_format().frac_bits), t.issue,
-        t.done, t.retire);
-  };
-  std::vector<TimingStats> timing;
-  std::uint64_t rows = 0;
-  if (clocked) {
-    // Each lane reads its own stream (lanes run independently); `reader` only supplied the header.
-    auto open = [&]() -> std::unique_ptr<RowStream> {
-      return std::make_unique<VectorReaderStream>(o.vectors);
+  std::function<void(const FastResult&)> on_result;
+  if (dump) {
+    on_result = [&](const FastResult& r) {
+      dump->row(r.lane, *r.row, r.t_raw, r.skipped, r.out_raw, r.timing);
     };
-    auto on_result = [&](const LaneOutput& r) {
-      const std::size_t slot = slots.slot(r.row);
-      acc[r.lane].add(slot, make_reference(slots, slot, r.row.t), r.t_raw, r.skipped, r.out_raw);
-      if (dump) dump_row(r.lane, r.row, r.t_raw, r.skipped, r.out_raw, r.timing);
-    };
-    timing = run_clocked(units, slots, open, co, on_result);
-    rows = timing.empty() ? 0 : timing[0].results;
-  } else {
-    std::function<void(const FastResult&)> on_result;
-    if (dump) {
-      on_result = [&](const FastResult& r) {
-        dump_row(r.lane, *r.row, r.t_raw, r.skipped, r.out_raw, r.timing);
-      };
-    }
-    FastOptions fo;
-    fo.sink = co.sink;
-    fo.batch = o.batch;
-    fo.colour_stage = colour;
-    timing = run_fast(units, slots, next, fo, &acc, on_result);
-    rows = reader.rows_read();
   }
-  if (progress && rows >= 0x100000) std::fprintf(stderr, "\n");
+  FastOptions fo;
+  fo.sink = SinkReady{o.sink_ready, o.seed};
+  fo.batch = o.batch;
+  fo.colour_stage = lanes.colour;
+  SimRun run;
+  run.timing = run_fast(lanes.units, lanes.slots, next, fo, &lanes.acc, on_result);
+  run.rows = reader.rows_read();
+  return run;
+}
 
+// The JSON report (schema in README.md): run settings, then one entry per lane.
+nlohmann::json build_report(const SimOptions& o, bool clocked, const SimLanes& lanes,
+                            const SimRun& run) {
   nlohmann::json report = {{"glint_sim_report", kSimReportVersion},
                            {"vectors_file", std::filesystem::path(o.vectors).filename().string()},
-                           {"rows", rows},
+                           {"rows", run.rows},
                            {"mode", clocked ? "clocked" : "fast"},
                            {"sink_ready", o.sink_ready},
                            {"seed", o.seed},
-                           {"slots", slots.params.size()},
-                           {"per_light_slots", slots.per_light}};
+                           {"slots", lanes.slots.params.size()},
+                           {"per_light_slots", lanes.slots.per_light}};
   nlohmann::json list = nlohmann::json::array();
-  for (std::size_t i = 0; i < units.size(); ++i)
-    list.push_back(unit_sim_report(*units[i], timing[i], acc[i].stats(), acc[i].digest(), colour));
+  for (std::size_t i = 0; i < lanes.units.size(); ++i) {
+    list.push_back(unit_sim_report(*lanes.units[i], run.timing[i], lanes.acc[i].stats(),
+                                   lanes.acc[i].digest(), lanes.colour));
+  }
   report["units"] = list;
+  return report;
+}
 
+// Commits the dump, writes --report, then prints the report (JSON or table) on stdout.
+void write_outputs(const SimOptions& o, bool clocked, std::uint64_t rows,
+                   const nlohmann::json& report, SimDump* dump) {
   if (dump) dump->commit();
   if (!o.report.empty()) write_atomic(o.report, report.dump(2) + "\n");
   if (o.json) {
     print_json(report);
-  } else {
-    std::cout << fmt::format("{}: {} vectors, {} mode, sink ready {}{}\n", o.vectors, rows,
-                             clocked ? "clocked" : "fast", o.sink_ready,
-                             o.vcd.empty() ? "" : ", VCD " + o.vcd)
-              << format_sim_table(report);
-    for (const auto& u : report["units"])
-      std::cout << fmt::format("  {}: {}\n", u["unit"].get<std::string>(),
-                               u["spec"].get<std::string>());
+    return;
   }
+  std::cout << fmt::format("{}: {} vectors, {} mode, sink ready {}{}\n", o.vectors, rows,
+                           clocked ? "clocked" : "fast", o.sink_ready,
+                           o.vcd.empty() ? "" : ", VCD " + o.vcd)
+            << format_sim_table(report);
+  for (const auto& u : report["units"])
+    std::cout << fmt::format("  {}: {}\n", u["unit"].get<std::string>(),
+                             u["spec"].get<std::string>());
+}
+
+int run_sim(const SimOptions& o) {
+  const SimPlan plan = check_sim_options(o);
+  VectorReader reader(o.vectors);
+  SimLanes lanes;
+  make_lanes(reader.header(), plan.specs, lanes);
+  std::unique_ptr<SimDump> dump;
+  if (!o.dump.empty()) dump = std::make_unique<SimDump>(o.dump, lanes);
+  const bool progress = isatty(STDERR_FILENO);
+  const SimRun run = plan.clocked ? run_clocked_mode(o, plan.clocked_options, lanes, dump.get())
+                                  : run_fast_mode(o, reader, lanes, dump.get(), progress);
+  if (progress && run.rows >= 0x100000) std::fprintf(stderr, "\n");
+  write_outputs(o, plan.clocked, run.rows, build_report(o, plan.clocked, lanes, run), dump.get());
   return kExitOk;
 }
 
