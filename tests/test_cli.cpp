@@ -863,4 +863,41 @@ TEST_F(CliTest, EvalAndSimTablesShareColumnNames) {
   }
 }
 
+// sim --dump carries the request's material, light and pixel, as eval's dump does.
+TEST_F(CliTest, SimDumpHasMaterialLightAndPixelColumns) {
+  for (const std::string trace : {"multi_light.vec", "pixels.vec"}) {
+    SCOPED_TRACE(trace);
+    const std::string vec = quote(kTraces + "/" + trace);
+    const CliRun re = glint("eval " + vec + " --dump e.csv");
+    const CliRun rs = glint("sim " + vec + " --dump s.csv");
+    ASSERT_EQ(re.status, 0) << re.err;
+    ASSERT_EQ(rs.status, 0) << rs.err;
+    std::vector<std::string> eh, sh;
+    const auto erows = read_csv(dir_ / "e.csv", &eh);
+    const auto srows = read_csv(dir_ / "s.csv", &sh);
+    for (const char* col : {"material", "light", "x", "y"})
+      EXPECT_EQ(std::count(sh.begin(), sh.end(), col), 1) << col;
+    // The columns sim had before keep their positions.
+    const std::vector<std::string> first = {"line",      "unit",  "t",     "t_raw", "skipped",
+                                            "fixed_raw", "fixed", "issue", "done",  "retire"};
+    ASSERT_GE(sh.size(), first.size());
+    EXPECT_EQ(std::vector<std::string>(sh.begin(), sh.begin() + first.size()), first);
+    std::map<std::pair<std::string, std::string>, std::vector<std::string>> from_eval;
+    for (const auto& r : erows) {
+      from_eval[{r.f.at("line"), r.f.at("unit")}] = {r.f.at("material"), r.f.at("light"),
+                                                     r.f.at("x"), r.f.at("y")};
+    }
+    ASSERT_EQ(srows.size(), erows.size());
+    std::size_t bad = 0;
+    for (const auto& r : srows) {
+      const auto it = from_eval.find({r.f.at("line"), r.f.at("unit")});
+      const bool ok = it != from_eval.end() &&
+                      it->second == std::vector<std::string>{r.f.at("material"), r.f.at("light"),
+                                                             r.f.at("x"), r.f.at("y")};
+      if (!ok && ++bad <= 5) ADD_FAILURE() << "sim row line " << r.f.at("line") << " differs";
+    }
+    EXPECT_EQ(bad, 0u);
+  }
+}
+
 }  // namespace

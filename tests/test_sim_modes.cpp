@@ -257,4 +257,66 @@ TEST_F(SimModes, RegressReportsEveryDifferingField) {
   EXPECT_NE(out.find("2 differences"), std::string::npos) << out;
 }
 
+// The dump's material, light, x and y columns name the request each result belongs to: read from
+// the vector file here, independently of glint's reader (light 0 and x = y = -1 when the file has
+// no such column). Both modes write the same rows (FastAndClockedAgree*), so fast mode suffices.
+TEST_F(SimModes, DumpNamesEachResultsMaterialLightAndPixel) {
+  for (const auto& t : shipped_traces()) {
+    SCOPED_TRACE(t.string());
+    // source line -> {material, light, x, y}
+    std::map<std::string, std::vector<std::string>> rows;
+    std::vector<std::string> columns;
+    bool data = false;
+    std::ifstream in(t);
+    std::string line;
+    for (int n = 1; std::getline(in, line); ++n) {
+      line = line.substr(0, line.find('#'));
+      if (data) std::replace(line.begin(), line.end(), ',', ' ');  // fields: blanks or one comma
+      std::istringstream words(line);
+      std::vector<std::string> w;
+      for (std::string x; words >> x;) w.push_back(x);
+      if (w.empty()) continue;
+      if (!data) {
+        if (w[0] == "columns") columns.assign(w.begin() + 1, w.end());
+        data = w[0] == "data";
+        continue;
+      }
+      std::map<std::string, std::string> f = {{"light", "0"}, {"x", "-1"}, {"y", "-1"}};
+      for (std::size_t i = 0; i < columns.size() && i < w.size(); ++i) f[columns[i]] = w[i];
+      rows[std::to_string(n)] = {f["material"], f["light"], f["x"], f["y"]};
+    }
+    ASSERT_FALSE(rows.empty());
+    const fs::path csv = dir_ / "sim.csv";
+    run("sim " + quote(t.string()) + " --dump " + quote(csv.string()));
+    std::istringstream dump(read_file(csv));
+    std::getline(dump, line);
+    std::vector<std::string> header;
+    {
+      std::stringstream ss(line);
+      for (std::string x; std::getline(ss, x, ',');) header.push_back(x);
+    }
+    auto col = [&](const char* name) {
+      return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) -
+                                      header.begin());
+    };
+    const std::size_t c_line = col("line"), c_mat = col("material"), c_light = col("light"),
+                      c_x = col("x"), c_y = col("y");
+    ASSERT_LT(std::max({c_line, c_mat, c_light, c_x, c_y}), header.size()) << line;
+    std::size_t checked = 0, bad = 0;
+    while (std::getline(dump, line)) {
+      std::vector<std::string> f;
+      std::stringstream ss(line);
+      for (std::string x; std::getline(ss, x, ',');) f.push_back(x);
+      ASSERT_EQ(f.size(), header.size()) << line;
+      const auto it = rows.find(f[c_line]);
+      const bool ok = it != rows.end() &&
+                      it->second == std::vector<std::string>{f[c_mat], f[c_light], f[c_x], f[c_y]};
+      if (!ok && ++bad <= 5) ADD_FAILURE() << "dump row: " << line;
+      ++checked;
+    }
+    EXPECT_EQ(bad, 0u);
+    EXPECT_EQ(checked, rows.size() * 5);  // default: all five units
+  }
+}
+
 }  // namespace

@@ -109,24 +109,29 @@ void make_lanes(const VectorHeader& header, const std::vector<UnitSpec>& specs, 
   for (std::size_t i = 0; i < lanes.units.size(); ++i) lanes.acc[i].stats().name = labels[i];
 }
 
-// The per-result CSV (--dump).
+// The per-result CSV (--dump). The columns after `retire` (material, light, x, y, as `glint eval`
+// dumps them) were added later, at the end, so readers that index the older columns by position
+// keep working.
 class SimDump {
  public:
-  SimDump(const std::string& path, const SimLanes& lanes) : file_(path), lanes_(lanes) {
-    file_.stream() << "line,unit,t,t_raw,skipped,fixed_raw,fixed,issue,done,retire\n";
+  SimDump(const std::string& path, const VectorHeader& header, const SimLanes& lanes)
+      : file_(path), header_(header), lanes_(lanes) {
+    file_.stream() << "line,unit,t,t_raw,skipped,fixed_raw,fixed,issue,done,retire,material,light,"
+                      "x,y\n";
   }
   void row(std::size_t lane, const VectorRow& row, std::int64_t t_raw, bool skipped,
            std::int64_t out_raw, const ResultTiming& t) {
     file_.stream() << fmt::format(
-        "{},{},{:.17g},{},{},{},{:.17g},{},{},{}\n", row.line, lanes_.acc[lane].stats().name, row.t,
-        t_raw, skipped ? 1 : 0, out_raw,
+        "{},{},{:.17g},{},{},{},{:.17g},{},{},{},{},{},{},{}\n", row.line,
+        lanes_.acc[lane].stats().name, row.t, t_raw, skipped ? 1 : 0, out_raw,
         std::ldexp(static_cast<double>(out_raw), -lanes_.units[lane]->out_format().frac_bits),
-        t.issue, t.done, t.retire);
+        t.issue, t.done, t.retire, header_.materials[row.material].name, row.light, row.x, row.y);
   }
   void commit() { file_.commit(); }
 
  private:
   AtomicOutputFile file_;
+  const VectorHeader& header_;
   const SimLanes& lanes_;
 };
 
@@ -224,7 +229,7 @@ int run_sim(const SimOptions& o) {
   SimLanes lanes;
   make_lanes(reader.header(), plan.specs, lanes);
   std::unique_ptr<SimDump> dump;
-  if (!o.dump.empty()) dump = std::make_unique<SimDump>(o.dump, lanes);
+  if (!o.dump.empty()) dump = std::make_unique<SimDump>(o.dump, reader.header(), lanes);
   const bool progress = isatty(STDERR_FILENO);
   const SimRun run = plan.clocked ? run_clocked_mode(o, plan.clocked_options, lanes, dump.get())
                                   : run_fast_mode(o, reader, lanes, dump.get(), progress);
