@@ -770,6 +770,41 @@ TEST_F(CliTest, EvalHelp) {
 }
 
 // ---------------------------------------------------------------------------------------------
+// Version and unknown subcommands
+
+// The version comes from the project() line of CMakeLists.txt, the one place it is written.
+std::string project_version() {
+  std::smatch m;
+  const std::string cmake = read_text(GLINT_SOURCE_DIR "/CMakeLists.txt");
+  if (!std::regex_search(cmake, m,
+                         std::regex(R"(project\(glint[^)]*VERSION ([0-9]+\.[0-9]+\.[0-9]+))")))
+    return "";
+  return m[1];
+}
+
+TEST_F(CliTest, VersionPrintsProjectVersion) {
+  const std::string version = project_version();
+  ASSERT_FALSE(version.empty()) << "no project(glint ... VERSION x.y.z) in CMakeLists.txt";
+  const CliRun r = glint("--version");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out, "glint " + version + "\n");
+  EXPECT_TRUE(r.err.empty()) << r.err;
+}
+
+TEST_F(CliTest, UnknownSubcommandIsNamed) {
+  for (const char* word : {"frobnicate", "evl", "help"}) {
+    const CliRun r = glint(std::string(word) + " --json");
+    EXPECT_EQ(r.status, 2) << word;
+    EXPECT_NE(r.err.find(std::string("unknown subcommand '") + word + "'"), std::string::npos)
+        << r.err;
+    // The valid ones are listed.
+    for (const char* sub : {"tau", "fit", "eval", "units", "sim", "regress"})
+      EXPECT_NE(r.err.find(sub), std::string::npos) << sub << " not in: " << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
 // One interface: eval and sim reports
 
 // Leaf values of a JSON object by dotted path ("errors.max_abs").
