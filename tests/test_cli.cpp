@@ -935,4 +935,92 @@ TEST_F(CliTest, SimDumpHasMaterialLightAndPixelColumns) {
   }
 }
 
+// ---------------------------------------------------------------------------------------------
+// glint regress --update
+
+class CliRegressUpdate : public CliTest {
+ protected:
+  void SetUp() override {
+    CliTest::SetUp();
+    fs::create_directories(dir_ / "t" / "golden");
+    fs::copy_file(kPhongBasic, dir_ / "t" / "phong_basic.vec");
+    fs::copy_file(kTraces + "/golden/phong_basic.json", dir_ / "t" / "golden" / "phong_basic.json");
+    // A second trace without a golden: --update creates it.
+    fs::copy_file(kTraces + "/gaussian.vec", dir_ / "t" / "gaussian.vec");
+  }
+  json golden(const std::string& name) {
+    return json::parse(read_text(dir_ / "t" / "golden" / (name + ".json")));
+  }
+};
+
+TEST_F(CliRegressUpdate, RecordsTheChosenSpecs) {
+  const json before = golden("phong_basic");
+  const CliRun r = glint("regress --traces t --update --unit hast:d=3 --unit lut:bits=5");
+  ASSERT_EQ(r.status, 0) << r.err << r.out;
+  const std::vector<std::string> chosen = {"hast:d=3", "lut:bits=5"};
+  for (const char* name : {"phong_basic", "gaussian"}) {
+    SCOPED_TRACE(name);
+    const json g = golden(name);
+    EXPECT_EQ(g.at("units").get<std::vector<std::string>>(), chosen);
+    const json& units = g.at("report").at("units");
+    ASSERT_EQ(units.size(), 2u);
+    EXPECT_EQ(units[0].at("unit"), "hast");
+    EXPECT_NE(units[0].at("spec").get<std::string>().find("d=3"), std::string::npos);
+    EXPECT_EQ(units[1].at("unit"), "lut");
+    EXPECT_NE(units[1].at("spec").get<std::string>().find("bits=5"), std::string::npos);
+  }
+  // The existing golden keeps its sink settings; the report was made with them.
+  const json g = golden("phong_basic");
+  EXPECT_EQ(g.at("seed"), before.at("seed"));
+  EXPECT_EQ(g.at("sink_ready"), before.at("sink_ready"));
+  EXPECT_EQ(g.at("report").at("seed"), before.at("seed"));
+  // The new goldens pass, and a plain --update keeps each golden's specs.
+  const CliRun check = glint("regress --traces t");
+  EXPECT_EQ(check.status, 0) << check.out << check.err;
+  EXPECT_NE(check.out.find("2 traces checked, 0 failed"), std::string::npos) << check.out;
+  const CliRun again = glint("regress --traces t --update");
+  ASSERT_EQ(again.status, 0) << again.err;
+  for (const char* name : {"phong_basic", "gaussian"})
+    EXPECT_EQ(golden(name).at("units").get<std::vector<std::string>>(), chosen) << name;
+}
+
+TEST_F(CliRegressUpdate, PlainUpdateKeepsEachGoldensSpecs) {
+  const json before = golden("phong_basic");
+  const CliRun r = glint("regress --traces t --update");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(golden("phong_basic").at("units"), before.at("units"));
+  EXPECT_EQ(golden("phong_basic").at("report"), before.at("report"));
+}
+
+TEST_F(CliRegressUpdate, BadSpecOrUnitWithoutUpdateChangesNothing) {
+  const std::string before = read_text(dir_ / "t" / "golden" / "phong_basic.json");
+  struct Case {
+    const char* args;
+    const char* names;
+  };
+  for (const Case& c : {Case{"--update --unit hast:d=99", "'d'"},
+                        Case{"--update --unit foo", "foo"}, Case{"--unit hast", "--update"}}) {
+    const CliRun r = glint(std::string("regress --traces t ") + c.args);
+    EXPECT_EQ(r.status, 2) << c.args;
+    EXPECT_NE(r.err.find(c.names), std::string::npos) << c.args << ": " << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+    EXPECT_EQ(read_text(dir_ / "t" / "golden" / "phong_basic.json"), before) << c.args;
+    EXPECT_FALSE(fs::exists(dir_ / "t" / "golden" / "gaussian.json")) << c.args;
+  }
+}
+
+// A trace that fails part-way leaves every golden as it was, including those already re-run.
+TEST_F(CliRegressUpdate, FailingTraceWritesNoGolden) {
+  const std::string before = read_text(dir_ / "t" / "golden" / "phong_basic.json");
+  write_text(dir_ / "t" / "zz_bad.vec", std::string(kHeader) + "0.5 white\nnot_a_number white\n");
+  const CliRun r = glint("regress --traces t --update --unit hast:d=3");
+  EXPECT_EQ(r.status, 2) << r.out << r.err;
+  EXPECT_NE(r.err.find("zz_bad.vec"), std::string::npos) << r.err;
+  EXPECT_EQ(read_text(dir_ / "t" / "golden" / "phong_basic.json"), before);
+  std::vector<std::string> left;
+  for (const auto& e : fs::directory_iterator(dir_ / "t" / "golden"))
+    left.push_back(e.path().filename());
+  EXPECT_EQ(left, std::vector<std::string>{"phong_basic.json"});
+}
+
 }  // namespace

@@ -3,13 +3,20 @@
 // Each golden (traces/golden/NAME.json) records the trace, the unit specs and the sink settings it
 // was made with, and the report. Every run happens in a child `glint sim` process: SystemC allows
 // one elaboration per process, and the child is exactly what a user runs.
+//
+// --update keeps each golden's recorded specs unless --unit gives new ones; it writes the goldens
+// only after every child has succeeded, so a failing trace leaves all of them as they were.
 #include <fmt/format.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
+#include <utility>
+#include <vector>
 
 #include "cli/cli.h"
 #include "eval/sim_report.h"
@@ -22,6 +29,7 @@ namespace fs = std::filesystem;
 
 struct RegressOptions {
   std::string traces = "traces";
+  std::vector<std::string> units;  // with --update: the specs every updated golden records
   bool update = false;
   double tolerance = 1e-9;
   bool json = false;
@@ -69,12 +77,15 @@ int run_regress(const RegressOptions& o) {
   const fs::path dir(o.traces), golden_dir = fs::path(o.traces) / "golden";
   if (!fs::is_directory(dir))
     throw std::invalid_argument(fmt::format("--traces {}: not a directory", o.traces));
+  // A bad spec is a usage error here, with the spec named, not a failing child per trace.
+  for (const auto& s : o.units) parse_unit_spec(s);
   std::vector<fs::path> traces;
   for (const auto& e : fs::directory_iterator(dir))
     if (e.path().extension() == ".vec") traces.push_back(e.path());
   std::sort(traces.begin(), traces.end());
   int failed = 0, checked = 0;
   nlohmann::json summary = nlohmann::json::array();
+  std::vector<std::pair<fs::path, nlohmann::json>> updates;  // written once every run succeeded
   for (const auto& trace : traces) {
     const fs::path golden_path = golden_dir / (trace.stem().string() + ".json");
     nlohmann::json golden;
@@ -88,7 +99,7 @@ int run_regress(const RegressOptions& o) {
       }
     } else if (o.update) {
       golden = {{"trace", trace.filename().string()},
-                {"units", default_specs()},
+                {"units", o.units.empty() ? default_specs() : o.units},
                 {"sink_ready", trace.stem() == "pixels" ? 0.7 : 1.0},
                 {"seed", 7}};
     } else {
@@ -97,15 +108,12 @@ int run_regress(const RegressOptions& o) {
       ++failed;
       continue;
     }
+    if (o.update && !o.units.empty()) golden["units"] = o.units;
     const nlohmann::json fresh = run_child(trace.string(), golden);
     ++checked;
     if (o.update) {
       golden["report"] = fresh;
-      fs::create_directories(golden_dir);
-      AtomicOutputFile f(golden_path.string());
-      f.stream() << golden.dump(2) << '\n';
-      f.commit();
-      std::cerr << fmt::format("updated {}\n", golden_path.string());
+      updates.emplace_back(golden_path, std::move(golden));
       summary.push_back({{"trace", trace.filename().string()}, {"updated", true}});
       continue;
     }
@@ -121,6 +129,17 @@ int run_regress(const RegressOptions& o) {
         for (const auto& d : diffs) std::cout << "      " << d << '\n';
       }
     }
+  }
+  // Every golden is written to its temporary file before any is renamed into place.
+  if (!updates.empty()) fs::create_directories(golden_dir);
+  std::vector<std::unique_ptr<AtomicOutputFile>> files;
+  for (const auto& [path, golden] : updates) {
+    files.push_back(std::make_unique<AtomicOutputFile>(path.string()));
+    files.back()->stream() << golden.dump(2) << '\n';
+  }
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    files[i]->commit();
+    std::cerr << fmt::format("updated {}\n", updates[i].first.string());
   }
   if (o.json) {
     print_json({{"checked", checked}, {"failed", failed}, {"traces", summary}});
@@ -138,7 +157,12 @@ void add_regress_command(CLI::App& app, int& status) {
       "regress", "Accuracy regression: re-run the shipped traces against traces/golden/");
   sub->add_option("--traces", o->traces, "Folder of *.vec traces with golden/ inside")
       ->capture_default_str();
-  sub->add_flag("--update", o->update, "Rewrite the goldens from this build (deliberately)");
+  CLI::Option* update =
+      sub->add_flag("--update", o->update, "Rewrite the goldens from this build (deliberately)");
+  sub->add_option("--unit", o->units,
+                  "With --update: unit SPEC the goldens record (repeatable; default: each "
+                  "golden's own specs, the default set for a new golden)")
+      ->needs(update);
   sub->add_option("--tolerance", o->tolerance, "Relative tolerance of float statistics")
       ->capture_default_str();
   sub->add_flag("--json", o->json, "Print one JSON document on stdout");
