@@ -4,7 +4,7 @@
 #include <stdexcept>
 
 #include "rtl_model/colour_multiply.h"
-#include "rtl_model/compute_units.h"
+#include "rtl_model/compute_pipeline.h"
 #include "rtl_model/result_merge.h"
 #include "rtl_model/rtl_common.h"
 #include "rtl_model/sc_setup.h"
@@ -52,7 +52,7 @@ class Lane : public sc_core::sc_module {
         std::make_unique<VectorSource>("source", *stream_, unit, slots, ring_, control, tracing);
     comparator_ =
         std::make_unique<TauComparator>("comparator", unit, unit.timing().buffer_depth, tracing);
-    compute_ = make_compute_unit("compute", unit, tracing);
+    compute_ = std::make_unique<ComputePipeline>("compute", unit, tracing);
     if (options.colour_stage)
       colour_ = std::make_unique<ColourMultiply>("colour", out.width(), out.is_signed, tracing);
     merge_ = std::make_unique<ResultMerge>("merge", unit.timing().buffer_depth, out.width(),

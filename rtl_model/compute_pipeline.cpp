@@ -1,30 +1,18 @@
 #include "rtl_model/compute_pipeline.h"
 
-#include <set>
 #include <stdexcept>
 
 namespace glint::rtl {
 
-std::vector<StageSpec> ComputePipeline::generic_stages(int latency) {
-  std::vector<StageSpec> s{{"in", 0, 0}};
-  for (int k = 1; k <= latency; ++k) s.push_back({"s" + std::to_string(k), k, k});
-  return s;
-}
-
-bool ComputePipeline::valid_layout(const std::vector<StageSpec>& stages, int latency) {
-  int next = 0;
-  std::set<std::string> names;
-  for (const StageSpec& s : stages) {
-    if (s.first != next || s.last < s.first || s.name.empty() || !names.insert(s.name).second)
-      return false;
-    if (s.name.find_first_of(". []") != std::string::npos) return false;
-    next = s.last + 1;
-  }
-  return next == latency + 1;
+ComputePipeline::StageTrace::StageTrace(const Stage& s, const QFormat& in, int bit_width)
+    : t(in.width(), in.is_signed), seq(32, false), bit(bit_width, false) {
+  registers.reserve(s.registers.size());
+  for (const StageRegister& r : s.registers)
+    registers.emplace_back(r.format.width(), r.format.is_signed);
 }
 
 ComputePipeline::ComputePipeline(sc_core::sc_module_name name, const SpecularUnit& unit,
-                                 std::vector<StageSpec> stages, bool tracing)
+                                 bool tracing)
     : sc_core::sc_module(name),
       clk("clk"),
       in_valid("in_valid"),
@@ -35,17 +23,17 @@ ComputePipeline::ComputePipeline(sc_core::sc_module_name name, const SpecularUni
       latency_(unit.timing().latency),
       ii_(unit.timing().ii),
       depth_(static_cast<std::size_t>(unit.timing().latency) + 1),
-      stages_(std::move(stages)),
+      layout_(unit.stages()),
       tracing_(tracing),
       ring_(depth_) {
-  if (latency_ < 0 || ii_ < 1)
-    throw std::invalid_argument("ComputePipeline: latency >= 0 and II >= 1 required");
-  if (!valid_layout(stages_, latency_)) stages_ = generic_stages(latency_);
-  const QFormat in = unit.in_format(), outf = unit.out_format();
-  for (const StageSpec& s : stages_) {
-    traces_.push_back(std::make_unique<StageTrace>(in.width(), in.is_signed, outf.width(),
-                                                   outf.is_signed,
-                                                   bits_for(std::uint64_t(s.last - s.first))));
+  if (latency_ < 1 || ii_ < 1 || layout_.latency() != latency_)
+    throw std::invalid_argument(
+        "ComputePipeline: latency >= 1, II >= 1 and a stage layout of the same latency required");
+  if (tracing_) {
+    for (Entry& e : ring_) e.staged.assign(layout_.size(), 0);
+    for (const Stage& s : layout_.stages())
+      traces_.push_back(std::make_unique<StageTrace>(
+          s, unit.in_format(), bits_for(static_cast<std::uint64_t>(s.last - s.first))));
   }
   SC_METHOD(tick);
   sensitive << clk.pos();
@@ -65,13 +53,14 @@ void ComputePipeline::tick() {
     in.valid = true;
     in.issue = c;
     in.request = in_request.read();
+    if (tracing_) unit_.eval_staged(in.request.slot, in.request.t_raw, in.staged.data());
     ++started_;
   } else {
     in.valid = false;
   }
 
   // Output register (position L): the request that started L edges ago.
-  const Entry& o = ring_[latency_ == 0 ? head : head_];
+  const Entry& o = ring_[head_];
   Result r;
   if (o.valid) {
     r.valid = true;
@@ -95,46 +84,52 @@ void ComputePipeline::tick() {
     ready.write(true);
   }
 
-  if (tracing_) update_traces(head, r.valid ? &r : nullptr);
+  if (tracing_) update_traces(head);
 }
 
-void ComputePipeline::update_traces(std::size_t head, const Result* output) {
-  for (std::size_t k = 0; k < stages_.size(); ++k) {
-    const StageSpec& s = stages_[k];
+void ComputePipeline::update_traces(std::size_t head) {
+  const auto& stages = layout_.stages();
+  for (std::size_t k = 0; k < stages.size(); ++k) {
+    const Stage& s = stages[k];
     StageTrace& tr = *traces_[k];
-    if (s.first == s.last) {
-      // One position (most stages): without branches, as `valid` follows the request pattern.
-      const std::size_t up = static_cast<std::size_t>(s.first);
-      const Entry& e = ring_[head >= up ? head - up : head + depth_ - up];
-      tr.valid = e.valid;
-      tr.t.set_if(e.valid, e.request.t_raw);
-      if (s.last == latency_ && output) tr.result.set(output->value);
-      continue;
-    }
-    tr.valid = false;
+    // The request in this stage: at its only position, or (an iterative stage) the one of its
+    // positions that holds a request.
+    const Entry* e = nullptr;
+    int position = s.first;
     for (int p = s.first; p <= s.last; ++p) {
       const std::size_t up = static_cast<std::size_t>(p);  // < depth_
-      const Entry& e = ring_[head >= up ? head - up : head + depth_ - up];
-      if (!e.valid) continue;
-      tr.valid = true;
-      tr.t.set(e.request.t_raw);
-      if (s.last > s.first) tr.bit.set(p - s.first);
-      break;
+      const Entry& candidate = ring_[head >= up ? head - up : head + depth_ - up];
+      if (candidate.valid || s.first == s.last) {
+        e = &candidate;
+        position = p;
+        break;
+      }
     }
-    if (s.last == latency_ && output) tr.result.set(output->value);
+    const bool valid = e != nullptr && e->valid;
+    tr.valid = valid;
+    if (!valid) continue;  // registers keep their last values, as the hardware's would
+    tr.t.set(e->request.t_raw);
+    tr.seq.set(static_cast<std::int64_t>(e->request.seq & 0xffffffffu));
+    if (s.last > s.first) tr.bit.set(position - s.first);
+    if (position == 0) continue;
+    const std::int64_t* values = e->staged.data() + layout_.offset(position);
+    for (std::size_t r = 0; r < tr.registers.size(); ++r) tr.registers[r].set(values[r]);
   }
 }
 
 void ComputePipeline::add_traces(VcdWriter& vcd, const std::string& prefix) const {
-  for (std::size_t k = 0; k < stages_.size(); ++k) {
-    const StageSpec& s = stages_[k];
+  const auto& stages = layout_.stages();
+  for (std::size_t k = 0; k < stages.size(); ++k) {
+    const Stage& s = stages[k];
     const StageTrace& tr = *traces_[k];
     const std::string p = prefix + "." + s.name + ".";
     trace_bool(vcd, tr.valid, p + "valid");
     if (k == 0) trace_bool(vcd, ready, p + "ready");
+    trace_raw(vcd, tr.seq, p + "seq");
     trace_raw(vcd, tr.t, p + "t");
     if (s.last > s.first) trace_raw(vcd, tr.bit, p + "bit");
-    if (s.last == latency_) trace_raw(vcd, tr.result, p + "result");
+    for (std::size_t r = 0; r < s.registers.size(); ++r)
+      trace_raw(vcd, tr.registers[r], p + s.registers[r].name);
   }
 }
 

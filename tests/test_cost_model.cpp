@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "cost/cost_model.h"
 #include "reference/reference.h"
 #include "units/catalogue.h"
+#include "units/lane_cost.h"
 
 namespace glint {
 namespace {

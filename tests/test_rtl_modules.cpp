@@ -12,11 +12,10 @@
 #include <vector>
 
 #include "eval/evaluate.h"
-#include "rtl_model/compute_units.h"
+#include "rtl_model/compute_pipeline.h"
 #include "rtl_model/result_merge.h"
 #include "rtl_model/row_stream.h"
 #include "rtl_model/rtl_common.h"
-#include "rtl_model/schlick_divider.h"
 #include "rtl_model/scoreboard.h"
 #include "rtl_model/sim_control.h"
 #include "rtl_model/tau_comparator.h"
@@ -140,7 +139,7 @@ void check_pipeline(const std::string& spec, const std::vector<std::uint64_t>& s
   sc_core::sc_clock clk("clk", clock_period(), 0.5, clock_first_edge(), true);
   sc_core::sc_signal<bool> in_valid("in_valid", false);
   sc_core::sc_signal<Request> in_request("in_request");
-  auto pipe = make_compute_unit("pipe", *unit, true);
+  auto pipe = std::make_unique<ComputePipeline>("pipe", *unit, true);
   auto request_for = [&](std::uint64_t a) {
     Request r;
     r.seq = a;
@@ -219,16 +218,23 @@ TEST(RtlModules, StageLayoutsNameEveryRegister) {
   int k = 0;
   for (const Case& c : cases) {
     units.push_back(make_unit(parse_unit_spec(c.spec), slots.params));
-    pipes.push_back(make_compute_unit(("p" + std::to_string(k++)).c_str(), *units.back(), false));
+    pipes.push_back(std::make_unique<ComputePipeline>(("p" + std::to_string(k++)).c_str(),
+                                                      *units.back(), false));
     std::vector<std::string> names;
-    for (const StageSpec& s : pipes.back()->stages()) names.push_back(s.name);
+    for (const Stage& s : pipes.back()->layout().stages()) names.push_back(s.name);
     EXPECT_EQ(names, c.names) << c.spec;
-    EXPECT_TRUE(ComputePipeline::valid_layout(pipes.back()->stages(), pipes.back()->latency()));
+    EXPECT_EQ(pipes.back()->layout().latency(), pipes.back()->latency());
   }
-  // The divider kind must agree with the unit's II.
+  // The divider kind must agree with the unit's II: an iterative divider stage (one request for q
+  // cycles) in a unit whose II is 1 is refused.
   const auto pipelined = make_unit(parse_unit_spec("schlick"), slots.params);
-  EXPECT_THROW(SchlickDivider("bad", *pipelined, DividerKind::kIterative, false),
+  std::vector<Stage> iterative = {{"in", 0, 0, {}},
+                                  {"mac", 1, 1, {}},
+                                  {"div", 2, 18, {}},
+                                  {"round", 19, 19, {{"result", pipelined->out_format()}}}};
+  EXPECT_THROW(StageLayout(iterative, pipelined->timing().ii, pipelined->out_format()),
                std::invalid_argument);
+  EXPECT_NO_THROW(StageLayout(iterative, 17, pipelined->out_format()));
 }
 
 // Comparator: skips go to the bypass register (done at a + 1), computed requests to the unit when

@@ -1,6 +1,6 @@
 // Hardware cost proxies of a specular unit: area (gate equivalents), critical path (gate delays of
 // the slowest pipeline stage) and an energy proxy (operations executed per request), from the
-// unit's datapath and widths as describe() reports them. `glint sim` prints them per unit.
+// unit's datapath and widths. `glint sim` prints them per unit.
 //
 // These are PROXIES for comparing architectures, not synthesis results. Every constant below is a
 // textbook / standard-cell-datasheet figure; they are to be calibrated against Yosys synthesis of
@@ -64,36 +64,18 @@
 //
 // ---- What a lane contains (inventory) ----------------------------------------------------------
 // comparator stage (tau table, comparator, register carrying t, the skip flag, the slot id and,
-// for hast/horner, the root tau to the u scaler), the unit's stages as its header describes them,
-// the merge buffer (timing buffer_depth entries of the output width and its read mux), and with
-// colour_multiply an RGB stage after the merge buffer (3 multipliers out x out, a per-slot colour
-// table, 3 x out register; operand-isolated for skipped results). Per unit (Wi/Fi, Wo/Fo: input
-// and output width/fraction bits; every per-slot constant in a per-slot table):
-//   schlick  stage 1: n table, multiplier Wn x (Fi + 1) (1 - t as complement + correction row),
-//            adder Wd = max(Wn, Fn + 1) + Fi (D = n (1 - t) + t); divider Fo + 2 quotient bits x
-//            Wd, pipelined (a row and a register of remainder, divisor and quotient so far per
-//            stage) or iterative (one row, remainder/divisor/quotient/counter registers, load
-//            mux); last stage: rounding incrementer (Fo + 2), clamp.
-//   hast     u scaler: k table (k_int_bits + k_frac_bits, widest slot), subtractor Wi, multiplier
-//            Wi x Wk, clamp; d - 1 multipliers (fh + 1) x (fh + 1), fh = Fo + guard.
-//   horner   u scaler (tau domain; k widths derived as UScaler does: describe() gives only k),
-//            p multipliers Wacc x (fh + 1) and p adders Wacc (Wacc = acc_int_bits + fh),
-//            coefficient tables (p + 1 banks x slots x coefficient width), clamp.
-//   pow      lzd Wi, normalisation shifter, log2 ROM (2^log_bits + 1) x (log_frac + 1), node
-//            difference + interpolation multiplier, n table, multiplier Wn x log2 t, exp2 ROM
-//            (2^exp_bits + 1) x (exp_frac + 2), interpolation, output shifter, rounding, clamp.
-//   lut      span table, subtractor Wi, index shifter (the span is per slot), t^n table per slot
-//            (2^bits + 1) x (table_frac + 1), node difference, interpolation multiplier
-//            (table_frac + 2) x (Fi - span - bits, widest slot), adder, clamp.
-// Tables that hold 1.0 (log2 at the last node, t^n at t = 1) or 2.0 (exp2) carry the bit for it.
+// for hast/horner, the root tau to the u scaler), the unit's stages as its own files describe them
+// (src/units/<unit>/<unit>.cpp, beside its datapath), the merge buffer (timing buffer_depth entries
+// of the output width and its read mux), and with colour_multiply an RGB stage after the merge
+// buffer (3 multipliers out x out, a per-slot colour table, 3 x out register; operand-isolated for
+// skipped results). Tables that hold 1.0 (log2 at the last node, t^n at t = 1) or 2.0 (exp2) carry
+// the bit for it. cost/builder.h places the parts; units/lane_cost.h puts a lane together.
 #pragma once
 
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include "units/catalogue.h"
 
 namespace glint {
 
@@ -159,8 +141,11 @@ double divider_row_delay(int divisor_bits);
 double table_delay(int entries);
 int multiplier_tree_levels(int rows);  // Dadda levels from `rows` partial products to two
 
-// The cost proxies of one unit as built (its describe() and config). colour_multiply adds the RGB
-// multiply stage after the merge buffer.
-UnitCost unit_cost(const SpecularUnit& unit, bool colour_multiply = false);
+// Smallest b with 2^b >= x (0 for x <= 1).
+inline int clog2(long long x) {
+  int b = 0;
+  while ((1LL << b) < x) ++b;
+  return b;
+}
 
 }  // namespace glint

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "cost/cost_model.h"
+#include "units/lane_cost.h"
 
 namespace glint {
 

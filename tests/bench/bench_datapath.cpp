@@ -4,6 +4,7 @@
 // Run: ./build/tests/bench_datapath --benchmark_min_time=0.5
 #include <benchmark/benchmark.h>
 
+#include <nlohmann/json.hpp>
 #include <random>
 #include <vector>
 

@@ -6,8 +6,8 @@
 // 2^-15), so the product needs ~50-bit registers or returns 0. Scaling first keeps every
 // intermediate in [0, 1]: u and all its powers fit the same unsigned 1.Fh register.
 //
-// Datapath: the u scaler (u_scaler.h), then d - 1 multiplies, the last one rounding straight to the
-// output format.
+// Datapath: the u scaler (units/u_scaler.h), then d - 1 multiplies, the last one rounding straight
+// to the output format.
 //
 // Error budget (against the real-valued min(1, (rho_q - tau_q) k_q)^d): final rounding ½ ulp;
 // rounding u costs at most d * 2^-(Fh+1) (|d(u^d)/du| <= d), each of the d - 2 inner products
@@ -18,6 +18,7 @@
 #include <cstdint>
 
 #include "units/common.h"
+#include "units/stages.h"
 #include "units/u_scaler.h"
 
 namespace glint {
@@ -36,12 +37,27 @@ class HastUnit {
  public:
   HastUnit(const HastConfig& cfg, const MaterialParams& m);
 
-  std::int64_t eval(std::int64_t t_raw) const {
+  std::int64_t eval(std::int64_t t_raw) const { return run(t_raw, NoProbe{}); }
+  // The datapath, stage by stage (hast.cpp's layout): position 1 holds u, position k (2..d-1)
+  // u and u^k, position d the result.
+  template <class Probe>
+  std::int64_t run(std::int64_t t_raw, const Probe& probe) const {
     const std::int64_t u = scaler_.apply(t_raw);
-    if (cfg_.d == 1) return round_nearest(u, first_shift_);
+    if (cfg_.d == 1) {
+      const std::int64_t r = round_nearest(u, first_shift_);
+      probe(1, 0, r);
+      return r;
+    }
+    probe(1, 0, u);
     std::int64_t p = u;
-    for (int i = 2; i < cfg_.d; ++i) p = round_nearest(p * u, fh_);
-    return round_nearest(p * u, last_shift_);
+    for (int i = 2; i < cfg_.d; ++i) {
+      p = round_nearest(p * u, fh_);
+      probe(i, 0, u);
+      probe(i, 1, p);
+    }
+    const std::int64_t r = round_nearest(p * u, last_shift_);
+    probe(cfg_.d, 0, r);
+    return r;
   }
   double model(std::int64_t t_raw) const;  // real-valued at quantized t, tau and k
   double float_model(double t) const;      // Hast's f at exact t and tau

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "units/common.h"
+#include "units/stages.h"
 #include "units/u_scaler.h"
 
 namespace glint {
@@ -46,14 +47,27 @@ class HornerUnit {
  public:
   HornerUnit(const HornerConfig& cfg, const MaterialParams& m, const HornerCoefficients& coeffs);
 
-  std::int64_t eval(std::int64_t t_raw) const {
+  std::int64_t eval(std::int64_t t_raw) const { return run(t_raw, NoProbe{}); }
+  // The datapath, stage by stage (horner.cpp's layout): position 1 holds u and c_p, position k
+  // (2..p) u and the accumulator after its multiply-add, position p + 1 the result.
+  template <class Probe>
+  std::int64_t run(std::int64_t t_raw, const Probe& probe) const {
     const std::int64_t u = scaler_.apply(t_raw);
     const std::size_t p = c_raw_.size() - 1;
     std::int64_t acc = c_raw_[p];
-    for (std::size_t k = p; k-- > 1;) acc = round_nearest(acc * u, fh_) + c_raw_[k];
+    probe(1, 0, u);
+    probe(1, 1, acc);
+    int position = 2;
+    for (std::size_t k = p; k-- > 1; ++position) {
+      acc = round_nearest(acc * u, fh_) + c_raw_[k];
+      probe(position, 0, u);
+      probe(position, 1, acc);
+    }
     const std::int64_t y = acc * u + shift_left(c_raw_[0], fh_);
     const std::int64_t q = round_nearest(y, last_shift_);
-    return q < 0 ? 0 : (q > one_out_ ? one_out_ : q);
+    const std::int64_t r = q < 0 ? 0 : (q > one_out_ ? one_out_ : q);
+    probe(position, 0, r);
+    return r;
   }
   double model(std::int64_t t_raw) const;  // real-valued at quantized t, tau, k, coefficients
   double float_model(double t) const;      // the fitted polynomial at the exact t (unquantized)

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "units/common.h"
+#include "units/stages.h"
 
 namespace glint {
 
@@ -31,17 +32,31 @@ class LutUnit {
  public:
   LutUnit(const LutConfig& cfg, const MaterialParams& m);
 
-  std::int64_t eval(std::int64_t t_raw) const {
-    if (t_raw <= t0_raw_) return 0;
+  std::int64_t eval(std::int64_t t_raw) const { return run(t_raw, NoProbe{}); }
+  // The datapath, stage by stage (lut.cpp's layout): position 1 holds the index, the remainder
+  // and the two table values, position 2 the result. t <= t0 leaves position 1 alone.
+  template <class Probe>
+  std::int64_t run(std::int64_t t_raw, const Probe& probe) const {
+    if (t_raw <= t0_raw_) {
+      probe(2, 0, 0);
+      return 0;
+    }
     const std::int64_t t = t_raw > one_in_ ? one_in_ : t_raw;
     const std::int64_t v = (t - t0_raw_) << pad_;
     const std::int64_t i = v >> r_bits_;
     const std::int64_t r = v & r_mask_;
-    const std::int64_t a = table_[i];
-    const std::int64_t y = (a << r_bits_) + (table_[i + 1] - a) * r;  // exact, r_bits + tfrac
+    const std::int64_t a = table_[i], b = table_[i + 1];
+    probe(1, 0, i);
+    probe(1, 1, r);
+    probe(1, 2, a);
+    probe(1, 3, b);
+    const std::int64_t y = (a << r_bits_) + (b - a) * r;  // exact, r_bits + tfrac
     const std::int64_t q = round_nearest(y, out_shift_);
-    return q > one_out_ ? one_out_ : q;
+    const std::int64_t result = q > one_out_ ? one_out_ : q;
+    probe(2, 0, result);
+    return result;
   }
+  int remainder_bits() const { return r_bits_; }
   double model(std::int64_t t_raw) const;  // exact-node interpolation at the quantized t
   double float_model(double t) const;      // same, at the exact t
   double error_bound() const { return bound_; }

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "units/common.h"
+#include "units/stages.h"
 
 namespace glint {
 
@@ -39,27 +40,52 @@ class PowUnit {
  public:
   PowUnit(const PowConfig& cfg, const MaterialParams& m);
 
-  std::int64_t eval(std::int64_t t_raw) const {
-    if (t_raw <= 0) return 0;
+  std::int64_t eval(std::int64_t t_raw) const { return run(t_raw, NoProbe{}); }
+  // The datapath, stage by stage (pow.cpp's layout): 1 normalisation shift, log2 nodes and the
+  // interpolation remainder; 2 log2 t and n; 3 y = n log2 t; 4 floor(y), exp2 nodes and remainder;
+  // 5 the interpolated exp2 value and the result. t = 0 leaves the intermediate registers alone.
+  template <class Probe>
+  std::int64_t run(std::int64_t t_raw, const Probe& probe) const {
+    if (t_raw <= 0) {
+      probe(5, 1, 0);
+      return 0;
+    }
     const std::int64_t t = t_raw > one_in_ ? one_in_ : t_raw;
     const int e = 63 - __builtin_clzll(static_cast<unsigned long long>(t));  // leading one
     const std::int64_t mf = (t << (fi_ - e)) - one_in_;  // mantissa fraction, fi bits
     const std::int64_t li = mf >> log_r_bits_ << log_pad_;
     const std::int64_t lr = mf & log_r_mask_;
-    const std::int64_t l0 = log_table_[li];
-    const std::int64_t lg = l0 + round_nearest((log_table_[li + 1] - l0) * lr, log_r_bits_);
+    const std::int64_t l0 = log_table_[li], l1 = log_table_[li + 1];
+    probe(1, 0, fi_ - e);
+    probe(1, 1, l0);
+    probe(1, 2, l1);
+    probe(1, 3, lr);
+    const std::int64_t lg = l0 + round_nearest((l1 - l0) * lr, log_r_bits_);
     const std::int64_t log2t = lg - (static_cast<std::int64_t>(fi_ - e) << cfg_.log_frac);
+    probe(2, 0, log2t);
+    probe(2, 1, n_raw_);
     const std::int64_t y = round_nearest(n_raw_ * log2t, y_shift_);  // <= 0
-    const std::int64_t yi = y >> cfg_.y_frac;                        // floor
+    probe(3, 0, y);
+    const std::int64_t yi = y >> cfg_.y_frac;  // floor
     const std::int64_t yf = y - shift_left(yi, cfg_.y_frac);
     const std::int64_t ei = yf >> exp_r_bits_ << exp_pad_;
     const std::int64_t er = yf & exp_r_mask_;
-    const std::int64_t e0 = exp_table_[ei];
-    const std::int64_t ex = e0 + round_nearest((exp_table_[ei + 1] - e0) * er, exp_r_bits_);
+    const std::int64_t e0 = exp_table_[ei], e1 = exp_table_[ei + 1];
+    probe(4, 0, yi);
+    probe(4, 1, e0);
+    probe(4, 2, e1);
+    probe(4, 3, er);
+    const std::int64_t ex = e0 + round_nearest((e1 - e0) * er, exp_r_bits_);
+    probe(5, 0, ex);
     const std::int64_t shift = out_shift_ - yi;
-    if (shift >= 62) return 0;
+    if (shift >= 62) {
+      probe(5, 1, 0);
+      return 0;
+    }
     const std::int64_t r = round_nearest(ex, static_cast<int>(shift));
-    return r > one_out_ ? one_out_ : r;
+    const std::int64_t result = r > one_out_ ? one_out_ : r;
+    probe(5, 1, result);
+    return result;
   }
   // pow's own model is t^n itself (at the quantized t and n): every deviation is datapath error.
   double model(std::int64_t t_raw) const;
@@ -73,6 +99,8 @@ class PowUnit {
   double shininess_q() const;
   const PowConfig& config() const { return cfg_; }
   std::size_t table_bits() const;
+  int log_remainder_bits() const { return log_r_bits_; }
+  int exp_remainder_bits() const { return exp_r_bits_; }
 
  private:
   PowConfig cfg_;

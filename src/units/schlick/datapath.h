@@ -12,6 +12,7 @@
 #include <cstdint>
 
 #include "units/common.h"
+#include "units/stages.h"
 
 namespace glint {
 
@@ -27,9 +28,14 @@ class SchlickUnit {
   SchlickUnit(const SchlickConfig& cfg, const MaterialParams& m);
 
   // Bit-accurate result for an input already in cfg.in (any raw; > 1.0 is clamped to 1.0).
-  std::int64_t eval(std::int64_t t_raw) const {
+  std::int64_t eval(std::int64_t t_raw) const { return run(t_raw, NoProbe{}); }
+  // The datapath, stage by stage (schlick.cpp's layout): position 1 holds D, positions
+  // 2..q+1 the restoring divider after each quotient bit (partial remainder, quotient so far),
+  // position q + 2 the rounded result.
+  template <class Probe>
+  std::int64_t run(std::int64_t t_raw, const Probe& probe) const {
     const std::int64_t t = t_raw > one_in_ ? one_in_ : (t_raw < 0 ? 0 : t_raw);
-    if (t == 0) return 0;
+    if (!Probe::kActive && t == 0) return 0;  // what the divider gives for t = 0, undivided
     // D and the numerator are exact integers well below 2^53 (checked in the constructor), so a
     // double quotient is within one of the true floor; the remainder fixes it exactly.
     const std::int64_t den = n_raw_ * (one_in_ - t) + (t << n_frac_);
@@ -43,9 +49,15 @@ class SchlickUnit {
       ++q;
       r -= den;
     }
-    q += (2 * r >= den) ? 1 : 0;  // round to nearest, ties up
-    return q > out_max_ ? out_max_ : q;
+    const std::int64_t round_bit = (2 * r >= den) ? 1 : 0;  // round to nearest, ties up
+    if constexpr (Probe::kActive) record_divider(probe, den, num, 2 * q + round_bit);
+    q += round_bit;
+    const std::int64_t result = q > out_max_ ? out_max_ : q;
+    probe(quotient_bits() + 2, 0, result);
+    return result;
   }
+  // Fo + 2 quotient bits: the integer bit, Fo fraction bits and the rounding bit.
+  int quotient_bits() const { return cfg_.out.frac_bits + 2; }
   // Real-valued model at the quantized input and shininess.
   double model(std::int64_t t_raw) const;
   // Float approximation at the exact t and shininess (for the model error).
@@ -59,6 +71,21 @@ class SchlickUnit {
  private:
   SchlickConfig cfg_;
   double n_ = 1.0;
+  // The restoring divider's state after quotient bit k of Q = floor(2 num / D) (q bits): the
+  // quotient so far Q >> (q - k) (shown with the bits still to come as zeros) and the partial
+  // remainder floor(2 num / 2^(q - k)) - D (Q >> (q - k)), which is what a restoring array holds.
+  template <class Probe>
+  void record_divider(const Probe& probe, std::int64_t den, std::int64_t num,
+                      std::int64_t quotient) const {
+    probe(1, 0, den);
+    const int q = quotient_bits();
+    for (int k = 1; k <= q; ++k) {
+      const std::int64_t so_far = quotient >> (q - k);
+      probe(1 + k, 0, ((2 * num) >> (q - k)) - den * so_far);
+      probe(1 + k, 1, so_far << (q - k));
+    }
+  }
+
   std::int64_t n_raw_ = 0, one_in_ = 0, out_max_ = 0, tau_raw_ = -1;
   int n_frac_ = 0, num_shift_ = 0;
 };

@@ -1,0 +1,176 @@
+// horner: keys, build (one fit per slot), timing, stage layout, cost inventory and description.
+//
+// Hardware (L = degree + 1, II 1): stage 1 the u scaler (tau domain; on the full domain u = t is
+// wiring) beside the read of c_p; then p multiply-add stages, each a multiplier Wacc x (fh + 1)
+// and an adder Wacc (Wacc = acc_int_bits + fh, signed) with its coefficient bank read beside the
+// multiply; the coefficient tables are p + 1 banks x slots x coefficient width; the last stage
+// clamps to [0, 1].
+#include "units/horner/horner.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <limits>
+
+#include "fit/fit.h"
+#include "units/horner/datapath.h"
+#include "units/u_scaler_cost.h"
+#include "units/unit_set.h"
+
+namespace glint {
+namespace {
+
+// The datapath's config plus what the whole unit shares: the fit domain decides whether the u
+// scaler (and the root in the comparator register) is built.
+struct HornerSetup {
+  HornerConfig datapath;
+  bool tau_domain = true;
+};
+
+struct Horner {
+  using Config = HornerSetup;
+  using Datapath = HornerUnit;
+  static constexpr const char* kName = "horner";
+  static constexpr const char* kSummary =
+      "fitted polynomial, Horner pipeline (Öztürk eq.12), one multiply-add per stage";
+
+  static std::vector<UnitKey> keys() {
+    return {{"degree", "polynomial degree p (1..10)", "4"},
+            {"method", "fit: ls | robust (Öztürk, bisquare) | minimax (Remez)", "minimax"},
+            {"domain", "fit domain: tau ([tau, 1], u = (t-tau)/(1-tau)) | full ((0, 1])", "tau"},
+            {"constrain", "on: P(1) = 1 and, on the tau domain, P(tau) = 0", "on"},
+            {"guard", "guard bits (auto: faithful bound from the coefficients)", "auto"}};
+  }
+
+  static std::unique_ptr<SpecularUnit> build(const KeyReader& keys, const CommonKeys& common,
+                                             const std::vector<MaterialParams>& slots) {
+    const int degree = keys.integer("degree", 4, 1, 10);
+    const std::string method = keys.choice("method", "minimax", {"ls", "robust", "minimax"});
+    const std::string domain = keys.choice("domain", "tau", {"tau", "full"});
+    const bool constrain = keys.flag("constrain", true);
+    HornerConfig c{common.in, common.out, keys.integer("guard", -1, 0, 20, true), common.skip};
+    // Fit every slot first: the datapath width is shared, so the guard is the largest any slot
+    // needs.
+    std::vector<HornerCoefficients> fits;
+    int guard = 0, required = 0, max_guard = 64;
+    for (const auto& m : slots) {
+      FitOptions o;
+      o.shininess = m.shininess;
+      o.degree = degree;
+      o.method = parse_fit_method(method);
+      o.domain = domain == "tau" ? FitDomain::kTau : FitDomain::kFull;
+      o.tau = std::clamp(m.always_skip ? 0.0 : m.tau, 0.0, 0.999);
+      o.constrain_one = constrain;
+      o.constrain_zero = constrain && domain == "tau";
+      const FitResult r = fit_power(o);
+      HornerCoefficients hc{r.coeffs, domain == "tau", o.constrain_one, o.constrain_zero};
+      guard = std::max(guard, horner_preferred_guard(hc));
+      required = std::max(required, horner_required_guard(hc));
+      max_guard = std::min(max_guard, horner_max_guard(hc, common.out));
+      fits.push_back(std::move(hc));
+    }
+    if (c.guard < 0) c.guard = std::max(required, std::min(guard, max_guard));
+    nlohmann::json config = common_config(common);
+    config["degree"] = degree;
+    config["method"] = method;
+    config["domain"] = domain;
+    config["constrain"] = on_off(constrain);
+    config["guard"] = c.guard;
+    std::vector<HornerUnit> units;
+    units.reserve(slots.size());
+    for (std::size_t i = 0; i < slots.size(); ++i) units.emplace_back(c, slots[i], fits[i]);
+    // u scaler stage, then one multiply-add stage per degree.
+    const UnitTiming timing{degree + 1, 1, 0};
+    return make_unit_set<Horner>(common, std::move(config), HornerSetup{c, domain == "tau"},
+                                 std::move(units), timing);
+  }
+
+  // Widest coefficient and accumulator over the slots (the registers are shared).
+  static std::pair<QFormat, QFormat> coefficient_and_acc(const Config& c,
+                                                         const std::vector<Datapath>& units) {
+    const int fh = c.datapath.out.frac_bits + c.datapath.guard;
+    int cw = 1, acc = 1;
+    for (const HornerUnit& u : units) {
+      cw = std::max(cw, u.coeff_format().int_bits);
+      acc = std::max(acc, u.acc_int_bits());
+    }
+    return {sq(cw, fh), sq(acc, fh)};
+  }
+
+  static std::vector<Stage> stages(const Config& c, const std::vector<Datapath>& units,
+                                   UnitTiming timing) {
+    const HornerConfig& d = c.datapath;
+    const QFormat uf = uq(1, d.out.frac_bits + d.guard);
+    const auto [cf, accf] = coefficient_and_acc(c, units);
+    const int p = timing.latency - 1;
+    std::vector<Stage> s{input_stage(d.in), {"scale", 1, 1, {{"u", uf}, {"acc", cf}}}};
+    for (int k = 1; k <= p; ++k) {
+      Stage m{"mac" + std::to_string(k), k + 1, k + 1, {{"u", uf}, {"acc", accf}}};
+      if (k == p) m.registers = {{"result", d.out}};
+      s.push_back(std::move(m));
+    }
+    return s;
+  }
+
+  static void cost(CostBuilder& b, const LaneShape& L, const Config& c,
+                   const std::vector<Datapath>& units) {
+    const int p = L.latency - 1;
+    const int fh = L.out.frac_bits + c.datapath.guard;
+    const bool tau_domain = c.tau_domain;
+    const int wo = L.out.width();
+    int cw = 0, wk = 0, acc_int = 0;
+    for (const HornerUnit& u : units) {
+      cw = std::max(cw, u.coeff_format().width());
+      wk = std::max(wk, u.scaler().k_int_bits() + fh + 2);
+      acc_int = std::max(acc_int, u.acc_int_bits());
+    }
+    const int wacc = acc_int + fh;  // signed accumulator
+
+    // One coefficient bank per stage, every bank holding all slots.
+    const Seg coef = b.slot_table(L.slots, cw, p + 1, false,
+                                  "coefficient tables (per slot, one bank per stage)");
+    b.op("table_read", p + 1);
+    // Stage 1: the u scaler (tau domain; on the full domain u = t is wiring), c_p read beside it.
+    const Seg first = tau_domain ? parallel(coef, series(u_scaler_cost(b, L, wk, fh))) : coef;
+    b.reg((fh + 1) + cw + L.slot_bits, "stage 1: u, c_p, slot id");
+    b.stage("stage 1", {first});
+    for (int s = 2; s <= p + 1; ++s) {
+      const bool last = s == p + 1;
+      const Seg mul = b.multiplier(wacc, fh + 1, fmt::format("stage {}: acc u", s));
+      const Seg add = b.adder(wacc, fmt::format("stage {}: + c_{}", s, p + 1 - s));
+      b.op("mul");
+      b.op("add");
+      std::vector<Seg> sp{parallel(mul, coef), add};
+      if (last) {
+        sp.push_back(b.mux(wo, 3, fmt::format("stage {}: clamp to [0, 1]", s)));
+        b.reg(wo, fmt::format("stage {}: result", s));
+      } else {
+        b.reg((fh + 1) + wacc + L.slot_bits, fmt::format("stage {}: u, acc, slot id", s));
+      }
+      b.stage(fmt::format("stage {}", s), sp);
+    }
+  }
+
+  static nlohmann::json describe_slot(const Datapath& u) {
+    return {{"tau_raw", u.tau_raw()},
+            {"root_raw", u.scaler().root_raw()},
+            {"k", u.scaler().k_value()},
+            {"k_int_bits", u.scaler().k_int_bits()},
+            {"k_frac_bits", u.scaler().k_frac()},
+            {"coefficients", u.coefficients().c},
+            {"coefficients_raw", u.coeff_raw()},
+            {"coefficient_format", u.coeff_format().name()},
+            {"acc_int_bits", u.acc_int_bits()}};
+  }
+  static double error_bound(const Datapath&) { return std::numeric_limits<double>::quiet_NaN(); }
+  static bool carries_root(const Config& c) { return c.tau_domain; }
+};
+
+}  // namespace
+
+const UnitDescription& horner_unit() {
+  static const DescriptionOf<Horner> description;
+  return description;
+}
+
+}  // namespace glint

@@ -1,0 +1,83 @@
+#include "units/keys.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <charconv>
+#include <stdexcept>
+
+namespace glint {
+
+KeyReader::KeyReader(const UnitSpec& spec, const std::vector<UnitKey>& known) : spec_(spec) {
+  for (const auto& [k, v] : spec.keys) {
+    const bool ok =
+        std::any_of(known.begin(), known.end(), [&](const UnitKey& uk) { return uk.key == k; });
+    if (!ok) fail(k, v, "unknown key (see `glint units`)");
+  }
+}
+
+const std::string* KeyReader::find(const std::string& key) const {
+  for (const auto& [k, v] : spec_.keys)
+    if (k == key) return &v;
+  return nullptr;
+}
+
+QFormat KeyReader::format(const std::string& key, QFormat def) const {
+  const std::string* v = find(key);
+  if (!v) return def;
+  try {
+    return parse_q_format(*v);
+  } catch (const std::invalid_argument& e) {
+    fail(key, *v, e.what());
+  }
+}
+
+int KeyReader::integer(const std::string& key, int def, int lo, int hi, bool allow_auto) const {
+  const std::string* v = find(key);
+  if (!v || (allow_auto && *v == "auto")) return def;
+  int out = 0;
+  auto [p, ec] = std::from_chars(v->data(), v->data() + v->size(), out);
+  if (ec != std::errc() || p != v->data() + v->size() || out < lo || out > hi)
+    fail(key, *v, fmt::format("expected an integer in {}..{}", lo, hi));
+  return out;
+}
+
+bool KeyReader::flag(const std::string& key, bool def) const {
+  const std::string* v = find(key);
+  if (!v) return def;
+  if (*v == "on" || *v == "1" || *v == "true" || *v == "yes") return true;
+  if (*v == "off" || *v == "0" || *v == "false" || *v == "no") return false;
+  fail(key, *v, "expected on or off");
+}
+
+std::string KeyReader::choice(const std::string& key, const std::string& def,
+                              const std::vector<std::string>& allowed) const {
+  const std::string* v = find(key);
+  if (!v) return def;
+  if (std::find(allowed.begin(), allowed.end(), *v) == allowed.end())
+    fail(key, *v, "expected one of " + fmt::format("{}", fmt::join(allowed, "|")));
+  return *v;
+}
+
+void KeyReader::fail(const std::string& key, const std::string& value,
+                     const std::string& why) const {
+  throw std::invalid_argument(fmt::format("key '{}' = '{}': {}", key, value, why));
+}
+
+std::vector<UnitKey> common_keys() {
+  return {{"in", "input format of t (clamped to [0, 1], rounded to nearest)", kDefaultIn.name()},
+          {"out", "output format of the highlight", kDefaultOut.name()},
+          {"skip", "tau comparator on|off (skip t <= tau, Källberg eq.5)", "on"},
+          {"buffer", "merge-buffer entries (timing; auto: latency + 3, full throughput)", "auto"}};
+}
+
+CommonKeys read_common_keys(const KeyReader& keys) {
+  CommonKeys c;
+  c.in = keys.format("in", kDefaultIn);
+  c.out = keys.format("out", kDefaultOut);
+  c.skip = keys.flag("skip", true);
+  c.buffer = keys.integer("buffer", -1, 1, 1 << 16, true);
+  return c;
+}
+
+}  // namespace glint

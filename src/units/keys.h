@@ -1,0 +1,49 @@
+// The keys of a unit SPEC ("NAME:key=value,..."): the reader every unit's build uses, and the keys
+// every unit shares (formats, skip, merge buffer).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "fixed/fixed_point.h"
+#include "units/unit.h"
+
+namespace glint {
+
+// Reads the keys of one spec, each once; a key the unit does not have is an error.
+class KeyReader {
+ public:
+  // `known`: every key the unit takes (common keys included).
+  KeyReader(const UnitSpec& spec, const std::vector<UnitKey>& known);
+
+  const std::string* find(const std::string& key) const;
+  QFormat format(const std::string& key, QFormat def) const;
+  // An integer in lo..hi; allow_auto: "auto" gives def.
+  int integer(const std::string& key, int def, int lo, int hi, bool allow_auto = false) const;
+  bool flag(const std::string& key, bool def) const;
+  std::string choice(const std::string& key, const std::string& def,
+                     const std::vector<std::string>& allowed) const;
+  [[noreturn]] void fail(const std::string& key, const std::string& value,
+                         const std::string& why) const;
+
+ private:
+  const UnitSpec& spec_;
+};
+
+// The keys every unit has, listed first by `glint units`.
+std::vector<UnitKey> common_keys();
+
+// Their values for one spec.
+struct CommonKeys {
+  QFormat in = kDefaultIn;
+  QFormat out = kDefaultOut;
+  bool skip = true;
+  int buffer = -1;  // merge-buffer entries; -1: auto (latency + 3)
+};
+CommonKeys read_common_keys(const KeyReader& keys);
+
+inline const char* on_off(bool b) {
+  return b ? "on" : "off";
+}
+
+}  // namespace glint

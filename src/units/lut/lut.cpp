@@ -1,0 +1,121 @@
+// lut: keys, build, timing, stage layout, cost inventory and description of the table +
+// interpolation baseline.
+//
+// Hardware (L = 2, II 1): stage 1 the span table (per slot), the subtractor t - t0, the index
+// shifter (the span is per slot) and the t^n table per slot (2^bits + 1) x (table_frac + 1) read at
+// both segment ends; stage 2 the node difference, the interpolation multiplier (table_frac + 2) x
+// (Fi - span - bits, widest slot), the adder and the clamp.
+#include "units/lut/lut.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "units/lut/datapath.h"
+#include "units/unit_set.h"
+
+namespace glint {
+namespace {
+
+struct Lut {
+  using Config = LutConfig;
+  using Datapath = LutUnit;
+  static constexpr const char* kName = "lut";
+  static constexpr const char* kSummary =
+      "table of t^n over [t0, 1] + linear interpolation, one table per material";
+
+  static std::vector<UnitKey> keys() {
+    return {{"bits", "table address bits (2^b + 1 entries)", "6"},
+            {"table_frac", "table entry fraction bits (auto: out + 2)", "auto"}};
+  }
+
+  static std::unique_ptr<SpecularUnit> build(const KeyReader& keys, const CommonKeys& common,
+                                             const std::vector<MaterialParams>& slots) {
+    LutConfig c{common.in, common.out, keys.integer("bits", 6, 1, 16),
+                keys.integer("table_frac", -1, 0, 40, true), common.skip};
+    if (c.table_frac < 0) c.table_frac = common.out.frac_bits + 2;
+    nlohmann::json config = common_config(common);
+    config["bits"] = c.bits;
+    config["table_frac"] = c.table_frac;
+    // index + table read, interpolation + rounding.
+    const UnitTiming timing{2, 1, 0};
+    auto units = build_per_slot<LutUnit>(c, slots);
+    return make_unit_set<Lut>(common, std::move(config), c, std::move(units), timing);
+  }
+
+  // Interpolation bits: Fi - span - bits, the widest over slots.
+  static int max_remainder_bits(const std::vector<Datapath>& units) {
+    int r = 0;
+    for (const LutUnit& u : units) r = std::max(r, u.remainder_bits());
+    return r;
+  }
+
+  static std::vector<Stage> stages(const Config& c, const std::vector<Datapath>& units,
+                                   UnitTiming) {
+    const QFormat node = uq(1, c.table_frac);
+    return {input_stage(c.in),
+            {"lookup",
+             1,
+             1,
+             {{"index", uq(c.bits + 1, 0)},
+              {"frac", uq(std::max(1, max_remainder_bits(units)), 0)},
+              {"node_lo", node},
+              {"node_hi", node}}},
+            {"interp", 2, 2, {{"result", c.out}}}};
+  }
+
+  static void cost(CostBuilder& b, const LaneShape& L, const Config& c,
+                   const std::vector<Datapath>& units) {
+    const int bits = c.bits, tf = c.table_frac;
+    const int wi = L.in.width(), fi = L.in.frac_bits, wo = L.out.width();
+    const int entries = (1 << bits) + 1;
+    const int tw = tf + 1;  // t^n in [0, 1]: 1.0 at the last node
+    const int sbits = clog2(fi + 1);
+    int r_max = 0;  // interpolation bits: fi - span - bits, widest over slots
+    for (const LutUnit& u : units) r_max = std::max(r_max, fi - u.span_log2() - bits);
+
+    // Stage 1: t - t0 (t0 = 1 - 2^-span), the index field at the slot's span, the two nodes.
+    const Seg sp = b.slot_table(L.slots, sbits, 1, true, "stage 1: span table (per slot)");
+    const Seg sub = b.adder(wi, "stage 1: t - t0");
+    const Seg sh = b.shifter(wi, sbits, "stage 1: index shifter");
+    const Seg tab = b.slot_table(entries, tw, L.slots, true, "stage 1: t^n table (per slot)");
+    b.op("table_read", 3);
+    b.op("add");
+    b.op("shift");
+    b.reg(2 * tw + r_max, "stage 1: nodes, remainder");
+    b.stage("stage 1", {sp, sub, sh, tab});
+
+    // Stage 2: interpolation (rounding folded into the adder), clamp.
+    std::vector<Seg> p2;
+    if (r_max > 0) {
+      p2.push_back(b.adder(tw + 1, "stage 2: node difference"));
+      p2.push_back(b.multiplier(tw + 1, r_max, "stage 2: interpolation"));
+      p2.push_back(b.adder(tw + r_max, "stage 2: + node"));
+      b.op("add", 2);
+      b.op("mul");
+    } else {
+      p2.push_back(b.adder(wo + 1, "stage 2: rounding incrementer"));
+      b.op("add");
+    }
+    p2.push_back(b.mux(wo, 2, "stage 2: clamp to 1"));
+    b.reg(wo, "stage 2: result");
+    b.stage("stage 2", p2);
+  }
+
+  static nlohmann::json describe_slot(const Datapath& u) {
+    return {{"tau_raw", u.tau_raw()},         {"t0_raw", u.t0_raw()},
+            {"span_log2", u.span_log2()},     {"entries", u.table().size() - 1},
+            {"chord_error", u.chord_error()}, {"error_bound", u.error_bound()}};
+  }
+  static double error_bound(const Datapath& u) { return u.error_bound(); }
+  static bool carries_root(const Config&) { return false; }
+};
+
+}  // namespace
+
+const UnitDescription& lut_unit() {
+  static const DescriptionOf<Lut> description;
+  return description;
+}
+
+}  // namespace glint

@@ -1,0 +1,184 @@
+// pow: keys, build, timing, stage layout, cost inventory and description of the exact-power
+// baseline exp2(n log2 t).
+//
+// Hardware (L = 5, II 1): stage 1 a leading-one detector Wi, the normalisation shifter and the log2
+// ROM (2^log_bits + 1) x (log_frac + 1) read at both segment ends; stage 2 the node difference and
+// interpolation multiplier, with the n table read beside; stage 3 the multiplier Wn x log2 t; stage
+// 4 the exp2 ROM (2^exp_bits + 1) x (exp_frac + 2); stage 5 the exp2 interpolation, the output
+// shifter, rounding and clamp.
+#include "units/pow/pow.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "units/pow/datapath.h"
+#include "units/unit_set.h"
+
+namespace glint {
+namespace {
+
+struct Pow {
+  using Config = PowConfig;
+  using Datapath = PowUnit;
+  static constexpr const char* kName = "pow";
+  static constexpr const char* kSummary =
+      "exact-power baseline: log2 table + interp, multiply by n, exp2 table + interp";
+
+  static std::vector<UnitKey> keys() {
+    const PowConfig pw;
+    return {{"n", "shininess register format", pw.n_format.name()},
+            {"log_bits", "log2 table address bits (2^b + 1 entries)", std::to_string(pw.log_bits)},
+            {"log_frac", "log2 table entry fraction bits", std::to_string(pw.log_frac)},
+            {"y_frac", "fraction bits of y = n log2 t", std::to_string(pw.y_frac)},
+            {"exp_bits", "exp2 table address bits", std::to_string(pw.exp_bits)},
+            {"exp_frac", "exp2 table entry fraction bits", std::to_string(pw.exp_frac)}};
+  }
+
+  static std::unique_ptr<SpecularUnit> build(const KeyReader& keys, const CommonKeys& common,
+                                             const std::vector<MaterialParams>& slots) {
+    PowConfig c;
+    c.in = common.in;
+    c.out = common.out;
+    c.skip = common.skip;
+    c.n_format = keys.format("n", c.n_format);
+    c.log_bits = keys.integer("log_bits", c.log_bits, 1, 16);
+    c.log_frac = keys.integer("log_frac", c.log_frac, 4, 30);
+    c.y_frac = keys.integer("y_frac", c.y_frac, 4, 30);
+    c.exp_bits = keys.integer("exp_bits", c.exp_bits, 1, 16);
+    c.exp_frac = keys.integer("exp_frac", c.exp_frac, 4, 30);
+    nlohmann::json config = common_config(common);
+    config.update({{"n", c.n_format.name()},
+                   {"log_bits", c.log_bits},
+                   {"log_frac", c.log_frac},
+                   {"y_frac", c.y_frac},
+                   {"exp_bits", c.exp_bits},
+                   {"exp_frac", c.exp_frac}});
+    // leading-one detect + log2 table read, log2 interpolation, multiply by n, exp2 table read,
+    // exp2 interpolation + shift + rounding.
+    const UnitTiming timing{5, 1, 0};
+    auto units = build_per_slot<PowUnit>(c, slots);
+    return make_unit_set<Pow>(common, std::move(config), c, std::move(units), timing);
+  }
+
+  // The widths of the registers (the cost model counts the same).
+  struct Widths {
+    int ebits, log2t_int, yint, log_r, exp_r;
+  };
+  static Widths widths(const Config& c) {
+    const int fi = c.in.frac_bits;
+    const int ebits = clog2(fi + 1);  // exponent of t / normalisation shift
+    return {ebits, ebits + 1, (c.n_format.width() - c.n_format.frac_bits) + ebits + 1,
+            std::max(0, fi - c.log_bits), std::max(0, c.y_frac - c.exp_bits)};
+  }
+
+  static std::vector<Stage> stages(const Config& c, const std::vector<Datapath>&, UnitTiming) {
+    const Widths w = widths(c);
+    const QFormat log_node = uq(1, c.log_frac), exp_node = uq(2, c.exp_frac);
+    return {input_stage(c.in),
+            {"log_table",
+             1,
+             1,
+             {{"shift", uq(w.ebits, 0)},
+              {"log2_lo", log_node},
+              {"log2_hi", log_node},
+              {"frac", uq(0, std::max(1, w.log_r))}}},
+            {"log_interp", 2, 2, {{"log2_t", sq(w.log2t_int, c.log_frac)}, {"n", c.n_format}}},
+            {"mul_n", 3, 3, {{"y", sq(w.yint, c.y_frac)}}},
+            {"exp_table",
+             4,
+             4,
+             {{"y_int", sq(w.yint, 0)},
+              {"exp2_lo", exp_node},
+              {"exp2_hi", exp_node},
+              {"frac", uq(0, std::max(1, w.exp_r))}}},
+            {"exp_interp", 5, 5, {{"exp2", exp_node}, {"result", c.out}}}};
+  }
+
+  static void cost(CostBuilder& b, const LaneShape& L, const Config& c,
+                   const std::vector<Datapath>&) {
+    const QFormat nf = c.n_format;
+    const int lb = c.log_bits, lf = c.log_frac, yf = c.y_frac, eb = c.exp_bits, xf = c.exp_frac;
+    const int wi = L.in.width(), fi = L.in.frac_bits, wo = L.out.width(), wn = nf.width();
+    const Widths w = widths(c);
+    const int ebits = w.ebits;
+    const int lw = lf + 1;                   // log2(1 + x) in [0, 1]: 1.0 at the last node
+    const int log_r = std::max(0, fi - lb);  // interpolation bits of the mantissa
+    const int log2t_w = lf + ebits + 1;      // signed log2 t
+    const int yint = w.yint;                 // |y| <= n_max fi, signed
+    const int xw = xf + 2;                   // 2^x in [1, 2]: 2.0 at the last node
+    const int exp_r = std::max(0, yf - eb);
+
+    // Stage 1: normalise t, read log2 at the segment's two ends.
+    const Seg z = b.lzd(wi, "stage 1: leading-one detector");
+    const Seg sh = b.shifter(wi, ebits, "stage 1: normalisation shifter");
+    const Seg lt = b.rom((1 << lb) + 1, lw, "stage 1: log2 table (ROM)");
+    b.op("lzd");
+    b.op("shift");
+    b.op("table_read", 2);
+    b.reg(2 * lw + log_r + ebits + L.slot_bits, "stage 1: log2 nodes, remainder, exponent, slot");
+    b.stage("stage 1", {z, sh, lt});
+
+    // Stage 2: log2 interpolation; the n register read beside it.
+    std::vector<Seg> p2;
+    if (log_r > 0) {
+      p2.push_back(b.adder(lw + 1, "stage 2: log2 node difference"));
+      p2.push_back(b.multiplier(lw + 1, log_r, "stage 2: log2 interpolation"));
+      b.op("add");
+      b.op("mul");
+    }
+    p2.push_back(b.adder(lw, "stage 2: + log2 node"));
+    b.op("add");
+    const Seg n = b.slot_table(L.slots, wn, 1, true, "stage 2: n table (per slot)");
+    b.op("table_read");
+    p2.front() = parallel(p2.front(), n);
+    b.reg(log2t_w + wn, "stage 2: log2 t, n");
+    b.stage("stage 2", p2);
+
+    // Stage 3: y = n log2 t, rounded to y_frac in the tree.
+    const Seg my = b.multiplier(wn, log2t_w, "stage 3: n log2 t");
+    b.op("mul");
+    b.reg(yint + yf, "stage 3: y");
+    b.stage("stage 3", {my});
+
+    // Stage 4: exp2 nodes of the fraction of y.
+    const Seg et = b.rom((1 << eb) + 1, xw, "stage 4: exp2 table (ROM)");
+    b.op("table_read", 2);
+    b.reg(2 * xw + exp_r + yint, "stage 4: exp2 nodes, remainder, integer part of y");
+    b.stage("stage 4", {et});
+
+    // Stage 5: exp2 interpolation, shift by the integer part, round, clamp.
+    std::vector<Seg> p5;
+    if (exp_r > 0) {
+      p5.push_back(b.adder(xw + 1, "stage 5: exp2 node difference"));
+      p5.push_back(b.multiplier(xw + 1, exp_r, "stage 5: exp2 interpolation"));
+      b.op("add");
+      b.op("mul");
+    }
+    p5.push_back(b.adder(xw, "stage 5: + exp2 node"));
+    p5.push_back(b.shifter(xw, clog2(xw + 1), "stage 5: output shifter"));
+    p5.push_back(b.adder(wo + 1, "stage 5: rounding incrementer"));
+    p5.push_back(b.mux(wo, 2, "stage 5: clamp to 1"));
+    b.op("add", 2);
+    b.op("shift");
+    b.reg(wo, "stage 5: result");
+    b.stage("stage 5", p5);
+  }
+
+  static nlohmann::json describe_slot(const Datapath& u) {
+    return {{"tau_raw", u.tau_raw()},       {"n", u.shininess_q()},
+            {"table_bits", u.table_bits()}, {"log_error", u.log_error()},
+            {"exp_error", u.exp_error()},   {"error_bound", u.error_bound()}};
+  }
+  static double error_bound(const Datapath& u) { return u.error_bound(); }
+  static bool carries_root(const Config&) { return false; }
+};
+
+}  // namespace
+
+const UnitDescription& pow_unit() {
+  static const DescriptionOf<Pow> description;
+  return description;
+}
+
+}  // namespace glint

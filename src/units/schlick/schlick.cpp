@@ -1,0 +1,147 @@
+// schlick: keys, build, timing, stage layout, cost inventory and description of Schlick's
+// t / (n - n t + t) with an exact, correctly rounded divider.
+//
+// Hardware (L = q + 2, q = Fo + 2 quotient bits: the integer bit, Fo fraction bits, the rounding
+// bit): stage 1 forms D = n (1 - t) + t (n table, multiplier Wn x (Fi + 1): 1 - t as the complement
+// plus a correction row, adder Wd = max(Wn, Fn + 1) + Fi); the divider is pipelined (one row and a
+// register of remainder, divisor and quotient so far per stage, II 1) or iterative (one radix-2
+// row reused q times with remainder/divisor/quotient/counter registers and a load mux, II = q);
+// the last stage rounds (Q + 1) >> 1 with an incrementer of q bits and clamps to 1.
+#include "units/schlick/schlick.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <limits>
+
+#include "units/schlick/datapath.h"
+#include "units/unit_set.h"
+
+namespace glint {
+namespace {
+
+// The datapath's config plus the divider kind, which changes timing and cost, not the result.
+struct SchlickSetup {
+  SchlickConfig datapath;
+  bool iterative = false;
+};
+
+struct Schlick {
+  using Config = SchlickSetup;
+  using Datapath = SchlickUnit;
+  static constexpr const char* kName = "schlick";
+  static constexpr const char* kSummary =
+      "Schlick t/(n - n t + t) with an exact, correctly rounded divider";
+
+  static std::vector<UnitKey> keys() {
+    return {{"n", "shininess register format", SchlickConfig{}.n_format.name()},
+            {"divider",
+             "divider kind (timing): pipelined (one quotient bit per stage, II 1) | "
+             "iterative (radix-2, one quotient bit per cycle, II = quotient bits)",
+             "pipelined"}};
+  }
+
+  static std::unique_ptr<SpecularUnit> build(const KeyReader& keys, const CommonKeys& common,
+                                             const std::vector<MaterialParams>& slots) {
+    SchlickConfig c{common.in, common.out, keys.format("n", SchlickConfig{}.n_format), common.skip};
+    nlohmann::json config = common_config(common);
+    config["n"] = c.n_format.name();
+    const std::string divider = keys.choice("divider", "pipelined", {"pipelined", "iterative"});
+    config["divider"] = divider;
+    // Denominator multiply-add stage, q quotient bits, rounding stage.
+    const int q = common.out.frac_bits + 2;
+    const bool iterative = divider == "iterative";
+    const UnitTiming timing{q + 2, iterative ? q : 1, 0};
+    auto units = build_per_slot<SchlickUnit>(c, slots);
+    return make_unit_set<Schlick>(common, std::move(config), SchlickSetup{c, iterative},
+                                  std::move(units), timing);
+  }
+
+  // D in units of 2^-(Fn + Fi): D = n (1 - t) + t < max(n, 1) needs max(Wn, Fn + 1) + Fi bits.
+  static QFormat denominator_format(const SchlickConfig& c) {
+    const QFormat& nf = c.n_format;
+    return uq(std::max(nf.width(), nf.frac_bits + 1) - nf.frac_bits, nf.frac_bits + c.in.frac_bits);
+  }
+
+  static std::vector<Stage> stages(const Config& c, const std::vector<Datapath>&, UnitTiming) {
+    const SchlickConfig& d = c.datapath;
+    const QFormat df = denominator_format(d);
+    const QFormat rf = uq(df.int_bits + 1, df.frac_bits);  // partial remainder < 2 D
+    const QFormat qf = uq(1, d.out.frac_bits + 1);         // Q = 2 S 2^Fo, q bits
+    const int q = d.out.frac_bits + 2;
+    const std::vector<StageRegister> row{{"remainder", rf}, {"quotient", qf}};
+    std::vector<Stage> s{input_stage(d.in), {"mac", 1, 1, {{"D", df}}}};
+    if (c.iterative) {
+      s.push_back({"div", 2, q + 1, row});
+    } else {
+      for (int k = 0; k < q; ++k) s.push_back({"q" + std::to_string(k), 2 + k, 2 + k, row});
+    }
+    s.push_back({"round", q + 2, q + 2, {{"result", d.out}}});
+    return s;
+  }
+
+  static void cost(CostBuilder& b, const LaneShape& L, const Config& c,
+                   const std::vector<Datapath>&) {
+    const bool iterative = c.iterative;
+    const QFormat nf = c.datapath.n_format;
+    const int wi = L.in.width(), fi = L.in.frac_bits, wo = L.out.width();
+    const int wn = nf.width();
+    const int wd = denominator_format(c.datapath).width();
+    const int q = L.out.frac_bits + 2;
+
+    // Stage 1: D = n (1 - t) + t. 1 - t is the complement of t plus one: the +n correction is one
+    // more row of the multiplier's tree.
+    const Seg n = b.slot_table(L.slots, wn, 1, true, "stage 1: n table (per slot)");
+    const Seg mul = b.multiplier(wn, fi + 1, "stage 1: n (1 - t)");
+    const Seg add = b.adder(wd, "stage 1: + t");
+    b.reg(wd + wi, "stage 1: D and t");
+    b.op("table_read");
+    b.op("mul");
+    b.op("add");
+    b.stage("stage 1", {n, mul, add});
+
+    // Restoring division, q quotient bits; the last decides the rounding.
+    b.op("div_step", q);
+    const std::string span = fmt::format("stages 2-{}", q + 1);
+    if (!iterative) {
+      const Seg row = b.divider(q, wd, span + ": divider (pipelined, one row per stage)");
+      for (int r = 1; r <= q; ++r) {
+        // Partial remainder, divisor and the quotient bits so far; the last row passes only Q.
+        const int carried = r < q ? (wd + 1) + wd + r : q;
+        b.reg(carried, fmt::format("stage {}: divider row {}", r + 1, r));
+        b.stage(fmt::format("stage {}", r + 1), {row});
+      }
+    } else {
+      const Seg row = b.divider(1, wd, span + ": divider (iterative, one row reused)");
+      const int counter = clog2(q + 1);
+      const Seg load = b.mux(wd + 1, 2, span + ": divider load/iterate mux");
+      b.state_reg(wd + 1, span + ": divider partial remainder", q);
+      b.state_reg(wd, span + ": divider divisor", 1);
+      b.state_reg(q, span + ": divider quotient shift register", q);
+      b.state_reg(counter, span + ": divider step counter", q);
+      b.stage(span + " (divider loop)", {row, load});
+    }
+
+    // Last stage: round (Q + 1) >> 1 and clamp to 1.0.
+    const Seg rnd = b.adder(q, fmt::format("stage {}: rounding incrementer", q + 2));
+    const Seg clamp = b.mux(wo, 2, fmt::format("stage {}: clamp to 1", q + 2));
+    b.reg(wo, fmt::format("stage {}: result", q + 2));
+    b.op("add");
+    b.stage(fmt::format("stage {}", q + 2), {rnd, clamp});
+  }
+
+  static nlohmann::json describe_slot(const Datapath& u) {
+    return {{"tau_raw", u.tau_raw()}, {"n_raw", u.n_raw()}, {"n", u.shininess_q()}};
+  }
+  static double error_bound(const Datapath&) { return std::numeric_limits<double>::quiet_NaN(); }
+  static bool carries_root(const Config&) { return false; }
+};
+
+}  // namespace
+
+const UnitDescription& schlick_unit() {
+  static const DescriptionOf<Schlick> description;
+  return description;
+}
+
+}  // namespace glint

@@ -1,0 +1,14 @@
+// The u scaler's hardware (units/u_scaler.h) in the cost model: shared by hast and horner.
+#pragma once
+
+#include <vector>
+
+#include "cost/builder.h"
+
+namespace glint {
+
+// u = (t - root) k clamped to [0, 1] at fh fraction bits: the k table (per slot, k_width bits), a
+// subtractor, a multiplier and the clamp. Returns the stage path.
+std::vector<Seg> u_scaler_cost(CostBuilder& b, const LaneShape& L, int k_width, int fh);
+
+}  // namespace glint

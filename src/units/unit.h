@@ -1,0 +1,105 @@
+// What a built unit offers the rest of glint, whatever its kind: the runtime interface over the
+// per-slot datapaths (units/unit_set.h implements it once for every kind), and the description
+// each unit registers in the catalogue (units/catalogue.h): its name, keys and how to build it.
+//
+// A unit's knowledge lives in its own folder, src/units/<unit>/: datapath.h (the bit-accurate
+// datapath, one behaviour for eval and the staged evaluation), datapath.cpp (construction, real
+// models, error budget), and <unit>.cpp (keys, build, timing, stage layout, cost inventory,
+// description). Nothing outside that folder compares unit names.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <nlohmann/json_fwd.hpp>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "timing/timing.h"
+#include "units/common.h"
+#include "units/stages.h"
+
+namespace glint {
+
+class CostBuilder;
+struct LaneShape;
+
+struct UnitSpec {
+  std::string name;
+  std::vector<std::pair<std::string, std::string>> keys;  // in the order given
+};
+
+struct UnitKey {
+  std::string key;
+  std::string meaning;
+  std::string default_value;
+};
+struct UnitInfo {
+  std::string name;
+  std::string summary;
+  std::vector<UnitKey> keys;  // common keys first, then the unit's own
+};
+
+// One unit built for a set of slots (materials or light x material pairs).
+class SpecularUnit {
+ public:
+  virtual ~SpecularUnit() = default;
+
+  virtual const std::string& name() const = 0;
+  // The spec with every key resolved to its value, e.g. "hast:in=uq1.15,out=uq1.15,d=4,...".
+  virtual std::string canonical_spec() const = 0;
+  virtual QFormat in_format() const = 0;
+  virtual QFormat out_format() const = 0;
+  virtual std::size_t slots() const = 0;
+
+  // Comparator threshold of a slot in the input format (-1: never skips).
+  virtual std::int64_t tau_raw(std::size_t slot) const = 0;
+  // The datapath alone (no skip), the unit's real-valued model at the same quantized input, and
+  // the float approximation at the exact t (no quantization anywhere).
+  virtual std::int64_t eval(std::size_t slot, std::int64_t t_raw) const = 0;
+  virtual double model(std::size_t slot, std::int64_t t_raw) const = 0;
+  virtual double float_model(std::size_t slot, double t) const = 0;
+  // Comparator then datapath over a batch: out[i] = 0 where skipped[i].
+  virtual void eval_batch(std::size_t slot, const std::int64_t* t_raw, std::int64_t* out,
+                          std::uint8_t* skipped, std::size_t n) const = 0;
+  // The same datapath as eval(), recording every stage's registers: values[stages().size()]
+  // laid out by stages() (values[stages().result_index()] == eval(slot, t_raw)).
+  virtual void eval_staged(std::size_t slot, std::int64_t t_raw, std::int64_t* values) const = 0;
+  virtual const StageLayout& stages() const = 0;
+  // Stated bound on |result - t^n| for units that approximate t^n itself (pow, lut); NaN for units
+  // whose contract is against their own model.
+  virtual double error_bound(std::size_t slot) const = 0;
+  // Structured description: config and per-slot constants (tables sizes, coefficients, widths).
+  virtual nlohmann::json describe() const = 0;
+  // Latency, initiation interval and merge-buffer depth of the unit's hardware (timing keys).
+  virtual UnitTiming timing() const = 0;
+  // The tau comparator is built (key skip=on).
+  virtual bool comparator_enabled() const = 0;
+  // The comparator register also carries the slot's root to a u scaler (hast, horner on [tau, 1]).
+  virtual bool comparator_carries_root() const = 0;
+  // Places the unit's own stages (after the comparator stage) in the cost builder.
+  virtual void add_cost(CostBuilder& b, const LaneShape& lane) const = 0;
+
+  bool skip(std::size_t slot, std::int64_t t_raw) const { return tau_skip(t_raw, tau_raw(slot)); }
+  std::int64_t eval_with_skip(std::size_t slot, std::int64_t t_raw) const {
+    return skip(slot, t_raw) ? 0 : eval(slot, t_raw);
+  }
+};
+
+class KeyReader;
+
+// A unit kind as the catalogue lists it.
+class UnitDescription {
+ public:
+  virtual ~UnitDescription() = default;
+  // Name, summary and the unit's own keys (without the common ones).
+  virtual UnitInfo info() const = 0;
+  // Builds the unit for `slots` from its keys (the common ones already read into `common`).
+  // Throws std::invalid_argument for bad values.
+  virtual std::unique_ptr<SpecularUnit> build(const KeyReader& keys,
+                                              const std::vector<MaterialParams>& slots) const = 0;
+};
+
+}  // namespace glint

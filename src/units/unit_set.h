@@ -1,0 +1,159 @@
+// The one implementation of SpecularUnit, for every unit kind: per-slot datapath instances, the
+// comparator in front, the batch loop the compiler inlines the datapath into, the staged
+// evaluation through the same datapath function, and the description.
+//
+// A kind (src/units/<unit>/<unit>.cpp) is a struct with:
+//   using Config = ...;  using Datapath = ...;      // Datapath(config, MaterialParams)
+//   static constexpr const char* kName, kSummary;
+//   static std::vector<UnitKey> keys();            // its own keys, in catalogue order
+//   static std::unique_ptr<SpecularUnit> build(const KeyReader&, const CommonKeys&,
+//                                              const std::vector<MaterialParams>&);
+//   static std::vector<Stage> stages(const Config&, const std::vector<Datapath>&, UnitTiming);
+//   static void cost(CostBuilder&, const LaneShape&, const Config&, const std::vector<Datapath>&);
+//   static nlohmann::json describe_slot(const Datapath&);
+//   static double error_bound(const Datapath&);    // NaN: contract against its own model
+//   static bool carries_root(const Config&);
+// and its Datapath has eval(t), run(t, probe) (eval is run with NoProbe), model, float_model and
+// tau_raw. build() ends with make_unit_set<Kind>(...).
+#pragma once
+
+#include <algorithm>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "cost/builder.h"
+#include "units/keys.h"
+#include "units/unit.h"
+
+namespace glint {
+
+template <class Kind>
+class UnitSet final : public SpecularUnit {
+ public:
+  using Config = typename Kind::Config;
+  using Datapath = typename Kind::Datapath;
+
+  UnitSet(std::string canonical, const CommonKeys& common, Config cfg, std::vector<Datapath> units,
+          nlohmann::json config, UnitTiming timing)
+      : name_(Kind::kName),
+        canonical_(std::move(canonical)),
+        in_(common.in),
+        out_(common.out),
+        skip_(common.skip),
+        cfg_(std::move(cfg)),
+        units_(std::move(units)),
+        config_(std::move(config)),
+        timing_(timing),
+        layout_(Kind::stages(cfg_, units_, timing_), timing_.ii, out_) {}
+
+  const std::string& name() const override { return name_; }
+  std::string canonical_spec() const override { return canonical_; }
+  QFormat in_format() const override { return in_; }
+  QFormat out_format() const override { return out_; }
+  std::size_t slots() const override { return units_.size(); }
+  std::int64_t tau_raw(std::size_t s) const override { return units_[s].tau_raw(); }
+  std::int64_t eval(std::size_t s, std::int64_t t) const override { return units_[s].eval(t); }
+  double model(std::size_t s, std::int64_t t) const override { return units_[s].model(t); }
+  double float_model(std::size_t s, double t) const override { return units_[s].float_model(t); }
+  void eval_batch(std::size_t s, const std::int64_t* t, std::int64_t* out, std::uint8_t* skipped,
+                  std::size_t n) const override {
+    const Datapath& u = units_[s];
+    const std::int64_t tau = u.tau_raw();
+    for (std::size_t i = 0; i < n; ++i) {
+      const bool sk = tau_skip(t[i], tau);
+      skipped[i] = sk;
+      out[i] = sk ? 0 : u.eval(t[i]);
+    }
+  }
+  void eval_staged(std::size_t s, std::int64_t t, std::int64_t* values) const override {
+    // Registers a short-cut input leaves untouched (t = 0 in pow, t <= t0 in lut) read 0.
+    std::fill(values, values + layout_.size(), 0);
+    units_[s].run(t, StageProbe(layout_, values));
+  }
+  const StageLayout& stages() const override { return layout_; }
+  double error_bound(std::size_t s) const override { return Kind::error_bound(units_[s]); }
+  UnitTiming timing() const override { return timing_; }
+  bool comparator_enabled() const override { return skip_; }
+  bool comparator_carries_root() const override { return Kind::carries_root(cfg_); }
+  void add_cost(CostBuilder& b, const LaneShape& lane) const override {
+    Kind::cost(b, lane, cfg_, units_);
+  }
+  nlohmann::json describe() const override {
+    nlohmann::json j;
+    j["name"] = name_;
+    j["spec"] = canonical_;
+    j["config"] = config_;
+    j["timing"] = {
+        {"latency", timing_.latency}, {"ii", timing_.ii}, {"buffer_depth", timing_.buffer_depth}};
+    nlohmann::json slots = nlohmann::json::array();
+    for (const Datapath& u : units_) slots.push_back(Kind::describe_slot(u));
+    j["slots"] = std::move(slots);
+    return j;
+  }
+
+ private:
+  std::string name_, canonical_;
+  QFormat in_, out_;
+  bool skip_;
+  Config cfg_;
+  std::vector<Datapath> units_;
+  nlohmann::json config_;
+  UnitTiming timing_;
+  StageLayout layout_;
+};
+
+// The description JSON's config of the common keys; a kind's build adds its own keys.
+inline nlohmann::json common_config(const CommonKeys& c) {
+  return {{"in", c.in.name()}, {"out", c.out.name()}, {"skip", on_off(c.skip)}};
+}
+
+// One datapath instance per slot.
+template <class Datapath, class Config, class... Extra>
+std::vector<Datapath> build_per_slot(const Config& cfg, const std::vector<MaterialParams>& slots,
+                                     const Extra&... extra) {
+  std::vector<Datapath> units;
+  units.reserve(slots.size());
+  for (const auto& m : slots) units.emplace_back(cfg, m, extra...);
+  return units;
+}
+
+// Finishes a kind's build: the merge-buffer depth (auto: enough credits that a result never waits
+// for one when the sink keeps up), the canonical spec (keys in catalogue order, so it reads like
+// the `glint units` listing) and the unit.
+template <class Kind>
+std::unique_ptr<SpecularUnit> make_unit_set(const CommonKeys& common, nlohmann::json config,
+                                            typename Kind::Config cfg,
+                                            std::vector<typename Kind::Datapath> units,
+                                            UnitTiming timing) {
+  timing.buffer_depth = common.buffer > 0 ? common.buffer : timing.latency + 3;
+  config["buffer"] = timing.buffer_depth;
+  std::string canonical = Kind::kName;
+  char sep = ':';
+  std::vector<UnitKey> keys = common_keys();
+  for (UnitKey& k : Kind::keys()) keys.push_back(std::move(k));
+  for (const UnitKey& key : keys) {
+    const auto it = config.find(key.key);
+    if (it == config.end()) continue;
+    canonical +=
+        sep + key.key + "=" + (it->is_string() ? it->template get<std::string>() : it->dump());
+    sep = ',';
+  }
+  return std::make_unique<UnitSet<Kind>>(std::move(canonical), common, std::move(cfg),
+                                         std::move(units), std::move(config), timing);
+}
+
+// The catalogue entry of a kind.
+template <class Kind>
+class DescriptionOf final : public UnitDescription {
+ public:
+  UnitInfo info() const override { return {Kind::kName, Kind::kSummary, Kind::keys()}; }
+  std::unique_ptr<SpecularUnit> build(const KeyReader& keys,
+                                      const std::vector<MaterialParams>& slots) const override {
+    return Kind::build(keys, read_common_keys(keys), slots);
+  }
+};
+
+}  // namespace glint

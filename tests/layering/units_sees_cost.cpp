@@ -1,2 +1,0 @@
-// Must not compile: units cannot see cost (cost builds on units).
-#include "cost/cost_model.h"
