@@ -11,13 +11,15 @@
 //   static std::vector<Stage> stages(const Config&, const std::vector<Datapath>&, UnitTiming);
 //   static void cost(CostBuilder&, const LaneShape&, const Config&, const std::vector<Datapath>&);
 //   static nlohmann::json describe_slot(const Datapath&);
-//   static double error_bound(const Datapath&);    // NaN: contract against its own model
-//   static bool carries_root(const Config&);
-// and its Datapath has eval(t), run(t, probe) (eval is run with NoProbe), model, float_model and
-// tau_raw. build() ends with make_unit_set<Kind>(...).
+//   static double error_bound(const Datapath&);    // optional (UnitKindDefaults: NaN)
+//   static bool carries_root(const Config&);       // optional (UnitKindDefaults: false)
+// (deriving from UnitKindDefaults for the optional ones), and its Datapath has eval(t), run(t,
+// probe) (eval is run with NoProbe), model, float_model and tau_raw. build() ends with
+// make_unit_set<Kind>(...).
 #pragma once
 
 #include <algorithm>
+#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -29,6 +31,19 @@
 #include "units/unit.h"
 
 namespace glint {
+
+// What a kind leaves out unless it says otherwise: its contract is against its own real-valued
+// model (no stated bound against t^n), and its comparator carries no root to a u scaler.
+struct UnitKindDefaults {
+  template <class Datapath>
+  static double error_bound(const Datapath&) {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  template <class Config>
+  static bool carries_root(const Config&) {
+    return false;
+  }
+};
 
 template <class Kind>
 class UnitSet final : public SpecularUnit {

@@ -8,7 +8,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <limits>
 
 #include "units/hast/datapath.h"
 #include "units/u_scaler_cost.h"
@@ -17,7 +16,7 @@
 namespace glint {
 namespace {
 
-struct Hast {
+struct Hast : UnitKindDefaults {
   using Config = HastConfig;
   using Datapath = HastUnit;
   static constexpr const char* kName = "hast";
@@ -98,7 +97,6 @@ struct Hast {
             {"k_int_bits", u.scaler().k_int_bits()},
             {"k_frac_bits", u.scaler().k_frac()}};
   }
-  static double error_bound(const Datapath&) { return std::numeric_limits<double>::quiet_NaN(); }
   static bool carries_root(const Config&) { return true; }
 };
 

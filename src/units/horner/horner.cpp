@@ -10,7 +10,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <limits>
 
 #include "fit/fit.h"
 #include "units/horner/datapath.h"
@@ -27,7 +26,7 @@ struct HornerSetup {
   bool tau_domain = true;
 };
 
-struct Horner {
+struct Horner : UnitKindDefaults {
   using Config = HornerSetup;
   using Datapath = HornerUnit;
   static constexpr const char* kName = "horner";
@@ -162,7 +161,6 @@ struct Horner {
             {"coefficient_format", u.coeff_format().name()},
             {"acc_int_bits", u.acc_int_bits()}};
   }
-  static double error_bound(const Datapath&) { return std::numeric_limits<double>::quiet_NaN(); }
   static bool carries_root(const Config& c) { return c.tau_domain; }
 };
 

@@ -17,7 +17,7 @@
 namespace glint {
 namespace {
 
-struct Lut {
+struct Lut : UnitKindDefaults {
   using Config = LutConfig;
   using Datapath = LutUnit;
   static constexpr const char* kName = "lut";
@@ -108,7 +108,6 @@ struct Lut {
             {"chord_error", u.chord_error()}, {"error_bound", u.error_bound()}};
   }
   static double error_bound(const Datapath& u) { return u.error_bound(); }
-  static bool carries_root(const Config&) { return false; }
 };
 
 }  // namespace

@@ -18,7 +18,7 @@
 namespace glint {
 namespace {
 
-struct Pow {
+struct Pow : UnitKindDefaults {
   using Config = PowConfig;
   using Datapath = PowUnit;
   static constexpr const char* kName = "pow";
@@ -171,7 +171,6 @@ struct Pow {
             {"exp_error", u.exp_error()},   {"error_bound", u.error_bound()}};
   }
   static double error_bound(const Datapath& u) { return u.error_bound(); }
-  static bool carries_root(const Config&) { return false; }
 };
 
 }  // namespace

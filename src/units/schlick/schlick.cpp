@@ -12,7 +12,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <limits>
 
 #include "units/schlick/datapath.h"
 #include "units/unit_set.h"
@@ -26,7 +25,7 @@ struct SchlickSetup {
   bool iterative = false;
 };
 
-struct Schlick {
+struct Schlick : UnitKindDefaults {
   using Config = SchlickSetup;
   using Datapath = SchlickUnit;
   static constexpr const char* kName = "schlick";
@@ -133,8 +132,6 @@ struct Schlick {
   static nlohmann::json describe_slot(const Datapath& u) {
     return {{"tau_raw", u.tau_raw()}, {"n_raw", u.n_raw()}, {"n", u.shininess_q()}};
   }
-  static double error_bound(const Datapath&) { return std::numeric_limits<double>::quiet_NaN(); }
-  static bool carries_root(const Config&) { return false; }
 };
 
 }  // namespace
