@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -659,6 +660,208 @@ TEST(VectorErrors, MessagesQuoteTheOffendingText) {
   } catch (const InputError& e) {
     EXPECT_NE(e.message().find("finite"), std::string::npos) << e.what();
   }
+}
+
+// The message of the InputError that parsing `text` raises ("" if it parses).
+std::string error_message(const std::string& text) {
+  try {
+    parse(text);
+  } catch (const InputError& e) {
+    return e.message();
+  }
+  return "";
+}
+
+std::string shortest(double v) {
+  char text[32];
+  return std::string(text, std::to_chars(text, text + sizeof text, v).ptr);
+}
+
+// Messages spell the limits from the constants the checks use, so they cannot go stale.
+TEST(VectorErrors, MessagesQuoteTheLimitsTheyCheck) {
+  const std::string h2 = kPre + kMat + "columns t material\ndata\n";
+  const std::string t_range = "[" + shortest(kVectorTMin) + ", " + shortest(kVectorTMax) + "]";
+  EXPECT_EQ(error_message(h2 + std::string(kVectorMaxLineBytes + 1, '#') + "\n"),
+            "line longer than " + std::to_string(kVectorMaxLineBytes) + " bytes");
+  const std::string too_many_lights = std::to_string(kVectorMaxLights + 1);
+  EXPECT_EQ(
+      error_message("glint-vectors 1\nlights " + too_many_lights + "\n"),
+      "must be in 1.." + std::to_string(kVectorMaxLights) + ", got '" + too_many_lights + "'");
+  EXPECT_EQ(error_message(h2 + "2 white\n"), "t = 2 outside " + t_range);
+  EXPECT_EQ(error_message(kPre + "material m specular=1,1,1 lobe=gaussian roughness=1.5\n"),
+            "roughness must be in (0, " + shortest(kVectorMaxRoughness) + "], got '1.5'");
+  EXPECT_EQ(error_message("glint-vectors 2\n"),
+            "unsupported format version 2 (this reader supports version " +
+                std::to_string(kVectorFormatVersion) + ")");
+  EXPECT_EQ(error_message(""),
+            "empty file: expected 'glint-vectors " + std::to_string(kVectorFormatVersion) + "'");
+  EXPECT_EQ(error_message(kPre + "material 1st specular=1,1,1 lobe=phong shininess=1\n"),
+            "invalid material name '1st': names are 1-" + std::to_string(kVectorMaxNameLength) +
+                " characters [A-Za-z0-9_.-] starting with a letter or '_'");
+
+  VectorHeader h;
+  h.eps = 1e-3;
+  h.materials.push_back({"m", {1, 1, 1}, 10, VectorLobe::kPhong, 0});
+  VectorHeader bad = h;
+  bad.lights = kVectorMaxLights + 1;
+  try {
+    validate(bad);
+    ADD_FAILURE() << "validate accepted lights = " << bad.lights;
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "invalid vector header: lights must be in 1.." + std::to_string(kVectorMaxLights));
+  }
+  std::ostringstream out;
+  VectorWriter w(out, h);
+  try {
+    w.write({2, 0, 0, -1, -1, 0});
+    ADD_FAILURE() << "the writer accepted t = 2";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "VectorWriter: row 1: t = 2 is not finite or outside " + t_range);
+  }
+}
+
+TEST(VectorErrors, MaterialCountLimit) {
+  std::string text = kPre;
+  for (std::size_t i = 0; i < kVectorMaxMaterials; ++i) {
+    text += "material m" + std::to_string(i) + " specular=1,1,1 lobe=gaussian roughness=1\n";
+  }
+  VectorHeader h;
+  EXPECT_TRUE(parse(text + "columns t material\ndata\n", &h).empty());
+  EXPECT_EQ(h.materials.size(), kVectorMaxMaterials);
+  text += "material one_more specular=1,1,1 lobe=gaussian roughness=1\n";
+  expect_error(text, 3 + kVectorMaxMaterials + 1, "material");
+  EXPECT_EQ(error_message(text),
+            "too many materials (limit " + std::to_string(kVectorMaxMaterials) + ")");
+}
+
+// Material lookup switches from a linear scan to a hash map past a handful of names: both find
+// every name, and the last hit first.
+TEST(VectorRows, MaterialLookupAtEverySize) {
+  for (int count : {1, 2, 8, 9, 17}) {
+    SCOPED_TRACE(count);
+    std::string text = kPre;
+    for (int i = 0; i < count; ++i) {
+      text += "material m" + std::to_string(i) + " specular=1,1,1 shininess=2 lobe=phong\n";
+    }
+    text += "columns t material\ndata\n";
+    std::vector<std::uint32_t> expected;
+    for (int i = 0; i < 3 * count; ++i) {
+      const int m = (i * 5 + i / 2) % count;
+      text += "0.5 m" + std::to_string(m) + "\n";
+      expected.push_back(static_cast<std::uint32_t>(m));
+    }
+    const auto rows = parse(text);
+    ASSERT_EQ(rows.size(), expected.size());
+    for (std::size_t i = 0; i < rows.size(); ++i) EXPECT_EQ(rows[i].material, expected[i]);
+    expect_error(text + "0.5 m" + std::to_string(count) + "\n",
+                 static_cast<std::uint64_t>(3 + count + 2 + 3 * count + 1), "material");
+  }
+}
+
+// A header written as text, every value as given (shortest form, nan/inf as such), so the reader
+// sees exactly what validate() sees. Like the writer, a Gaussian's shininess 0 (not given) and
+// a zero roughness elsewhere are left out.
+std::string header_text(const VectorHeader& h) {
+  std::string text = "glint-vectors " + std::to_string(h.version) + "\neps " + shortest(h.eps) +
+                     "\nlights " + std::to_string(h.lights) + "\n";
+  const auto rgb = [](const std::array<double, 3>& c) {
+    return shortest(c[0]) + "," + shortest(c[1]) + "," + shortest(c[2]);
+  };
+  for (std::size_t i = 0; i < h.light_intensity.size(); ++i) {
+    text += "light " + std::to_string(i) + " " + rgb(h.light_intensity[i]) + "\n";
+  }
+  for (const auto& m : h.materials) {
+    text += "material " + m.name + " specular=" + rgb(m.specular) + " lobe=" + to_string(m.lobe);
+    if (m.shininess != 0 || m.lobe != VectorLobe::kGaussian) {
+      text += " shininess=" + shortest(m.shininess);
+    }
+    if (m.roughness != 0 || m.lobe == VectorLobe::kGaussian) {
+      text += " roughness=" + shortest(m.roughness);
+    }
+    text += "\n";
+  }
+  return text + "columns t material\ndata\n";
+}
+
+// The reader and validate() share one definition of every rule: each header value either passes
+// both or neither.
+TEST(VectorErrors, ReaderAndValidateAgree) {
+  VectorHeader base;
+  base.eps = 1e-3;
+  base.lights = 2;
+  base.light_intensity = {{1, 1, 1}, {0.5, 0.25, 1}};
+  base.materials.push_back({"m", {1, 1, 1}, 10, VectorLobe::kPhong, 0});
+  base.materials.push_back({"g", {1, 0.5, 0}, 0, VectorLobe::kGaussian, 0.5});
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  const double numbers[] = {0,
+                            -0.0,
+                            1e-3,
+                            1,
+                            0.5,
+                            1.5,
+                            -1e-3,
+                            1e300,
+                            5e-324,
+                            kVectorMaxRoughness,
+                            std::nextafter(kVectorMaxRoughness, 2),
+                            nan,
+                            inf,
+                            -inf};
+  std::vector<std::pair<std::string, VectorHeader>> cases;
+  const auto add = [&](const std::string& what, auto change) {
+    VectorHeader h = base;
+    change(h);
+    cases.emplace_back(what, h);
+  };
+  for (const double v : numbers) {
+    const std::string s = shortest(v);
+    add("eps " + s, [&](VectorHeader& h) { h.eps = v; });
+    add("light 1 red " + s, [&](VectorHeader& h) { h.light_intensity[1][0] = v; });
+    add("specular " + s, [&](VectorHeader& h) { h.materials[0].specular[2] = v; });
+    add("phong shininess " + s, [&](VectorHeader& h) { h.materials[0].shininess = v; });
+    add("phong roughness " + s, [&](VectorHeader& h) { h.materials[0].roughness = v; });
+    add("gaussian shininess " + s, [&](VectorHeader& h) { h.materials[1].shininess = v; });
+    add("gaussian roughness " + s, [&](VectorHeader& h) { h.materials[1].roughness = v; });
+  }
+  for (const int lights : {-1, 0, 1, 2, kVectorMaxLights, kVectorMaxLights + 1}) {
+    add("lights " + std::to_string(lights), [&](VectorHeader& h) {
+      h.lights = lights;
+      h.light_intensity.assign(static_cast<std::size_t>(std::max(lights, 0)), {1, 1, 1});
+    });
+  }
+  const std::string longest(kVectorMaxNameLength, 'n');
+  for (const std::string& name : {std::string("a"), std::string("_a.b-1"), std::string("1a"),
+                                  std::string(".a"), longest, longest + "n", std::string("m")}) {
+    add("name '" + name + "'", [&](VectorHeader& h) { h.materials[1].name = name; });
+  }
+  add("version 2", [](VectorHeader& h) { h.version = 2; });
+  int accepted = 0;
+  for (const auto& [what, h] : cases) {
+    SCOPED_TRACE(what);
+    bool valid = true;
+    try {
+      validate(h);
+    } catch (const std::invalid_argument&) {
+      valid = false;
+    }
+    bool readable = true;
+    VectorHeader back;
+    try {
+      parse(header_text(h), &back);
+    } catch (const InputError&) {
+      readable = false;
+    }
+    EXPECT_EQ(valid, readable) << header_text(h);
+    if (valid && readable) {
+      ++accepted;
+      expect_same_header(h, back);
+    }
+  }
+  EXPECT_GT(accepted, 20);
+  EXPECT_LT(accepted, static_cast<int>(cases.size()) - 20);
 }
 
 // Random byte-level damage to a valid file: the reader either parses it or throws InputError

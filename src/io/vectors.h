@@ -32,21 +32,22 @@
 
 namespace glint {
 
-// The material's highlight lobe. (reference.h has the equivalent glint::Lobe; kept separate here.)
 // The lobe of a material is the reference model's (reference.h).
 using VectorLobe = Lobe;
 
-// Format limits of version 1 (documented in traces/README.md).
+// Format limits of version 1 (documented in traces/README.md). The reader, validate() and the
+// writer check against these through io/vector_rules.h, and their messages quote them from here.
 inline constexpr int kVectorFormatVersion = 1;
 inline constexpr std::size_t kVectorMaxLineBytes = 4096;  // excluding "\n" / "\r\n"
 inline constexpr int kVectorMaxLights = 1024;
 inline constexpr std::size_t kVectorMaxMaterials = 65536;
 inline constexpr std::size_t kVectorMaxNameLength = 64;
 inline constexpr double kVectorTMin = -1.0;
-inline constexpr double kVectorTMax = 1.001;  // 1 + 1e-3: slack for t computed in float
+inline constexpr double kVectorTMax = 1.001;        // 1 + 1e-3: slack for t computed in float
+inline constexpr double kVectorMaxRoughness = 1.0;  // a Gaussian lobe's width is in (0, 1]
 
 struct VectorMaterial {
-  std::string name;                         // [A-Za-z_][A-Za-z0-9_.-]*, at most 64 bytes
+  std::string name;  // [A-Za-z_][A-Za-z0-9_.-]*, at most kVectorMaxNameLength bytes
   std::array<double, 3> specular{1, 1, 1};  // linear RGB specular colour, finite, >= 0
   double shininess = 0;                     // phong/blinn: > 0; gaussian: > 0 or 0 = not given
   VectorLobe lobe = VectorLobe::kPhong;

@@ -46,10 +46,15 @@ const char* to_string(Lobe lobe) {
   return "?";
 }
 
+std::optional<Lobe> try_parse_lobe(std::string_view text) {
+  for (const Lobe lobe : {Lobe::kPhong, Lobe::kBlinn, Lobe::kGaussian}) {
+    if (text == to_string(lobe)) return lobe;
+  }
+  return std::nullopt;
+}
+
 Lobe parse_lobe(std::string_view text) {
-  if (text == "phong") return Lobe::kPhong;
-  if (text == "blinn") return Lobe::kBlinn;
-  if (text == "gaussian") return Lobe::kGaussian;
+  if (const auto lobe = try_parse_lobe(text)) return *lobe;
   throw std::invalid_argument("unknown lobe '" + std::string(text) +
                               "': expected phong, blinn or gaussian");
 }

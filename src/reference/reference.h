@@ -14,6 +14,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string_view>
 #include <vector>
 
@@ -24,6 +25,8 @@ enum class Lobe : std::uint8_t { kPhong, kBlinn, kGaussian };
 const char* to_string(Lobe lobe);  // "phong", "blinn", "gaussian"
 // Parses "phong", "blinn" or "gaussian". Throws std::invalid_argument otherwise.
 Lobe parse_lobe(std::string_view text);
+// The same without throwing, for parsers that report a bad lobe in their own error format.
+std::optional<Lobe> try_parse_lobe(std::string_view text);
 
 struct Rgb {
   double r = 0.0;
