@@ -43,7 +43,6 @@ class Lane : public sc_core::sc_module {
        const std::function<void(const LaneOutput&)>& on_result, bool tracing)
       : sc_core::sc_module(name),
         index_(index),
-        unit_(unit),
         stream_(std::move(stream)),
         ring_(static_cast<std::size_t>(unit.timing().buffer_depth) + 2),
         on_result_(on_result) {
@@ -54,9 +53,10 @@ class Lane : public sc_core::sc_module {
         std::make_unique<TauComparator>("comparator", unit, unit.timing().buffer_depth, tracing);
     compute_ = std::make_unique<ComputePipeline>("compute", unit, tracing);
     if (options.colour_stage)
-      colour_ = std::make_unique<ColourMultiply>("colour", out.width(), out.is_signed, tracing);
+      colour_ = std::make_unique<ColourMultiply>("colour", out.width(), out.is_signed, tracing,
+                                                 out.frac_bits);
     merge_ = std::make_unique<ResultMerge>("merge", unit.timing().buffer_depth, out.width(),
-                                           out.is_signed, tracing);
+                                           out.is_signed, tracing, out.frac_bits);
     Scoreboard::Callback cb;
     if (on_result_) {
       cb = [this](const VectorRow& row, const Result& r, const ResultTiming& t) {
@@ -111,7 +111,6 @@ class Lane : public sc_core::sc_module {
 
  private:
   std::size_t index_;
-  const SpecularUnit& unit_;
   std::unique_ptr<RowStream> stream_;
   RowRing ring_;
   const std::function<void(const LaneOutput&)>& on_result_;
@@ -248,7 +247,10 @@ std::vector<TimingStats> run_clocked(const std::vector<const SpecularUnit*>& uni
   std::unique_ptr<Top> top;
   std::unique_ptr<TraceControl> vcd;
   if (tracing) {
-    vcd = std::make_unique<TraceControl>(options.vcd_path,
+    const bool fst =
+        options.trace_format == TraceFormat::kFst ||
+        (options.trace_format == TraceFormat::kByExtension && is_fst_path(options.vcd_path));
+    vcd = std::make_unique<TraceControl>(options.vcd_path, fst,
                                          [&](VcdWriter& w) { top->add_traces(w, labels); });
     control.set_window(
         options.vcd_first, options.vcd_last, units.size(), [&] { vcd->open(); },
@@ -283,6 +285,7 @@ std::vector<TimingStats> run_clocked(const std::vector<const SpecularUnit*>& uni
     if (info) {
       info->vcd_path = vcd->vcd_path();
       info->gtkw_path = vcd->gtkw_path();
+      info->fst = vcd->fst();
       info->vcd_start_ns = vcd->start_ns();
       info->traced.clear();
       for (const TracedSignal& s : vcd->signals()) info->traced.push_back(s.name);

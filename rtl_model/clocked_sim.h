@@ -27,9 +27,19 @@
 
 namespace glint {
 
+// The trace file's format: VCD as written, or FST (GTKWave's compressed format, 5-10x smaller and
+// faster to open; the VCD is streamed through vcd2fst, Debian package gtkwave).
+enum class TraceFormat {
+  kByExtension,  // FST when the path ends in ".fst", VCD otherwise (so `--vcd out.fst` gives FST)
+  kVcd,
+  kFst,
+};
+
 struct ClockedOptions {
-  // VCD output (empty: none). A GTKWave save file is written beside it (same name, .gtkw).
+  // Trace output (empty: none), VCD or FST (trace_format). A GTKWave save file is written beside
+  // it (same name, .gtkw).
   std::string vcd_path;
+  TraceFormat trace_format = TraceFormat::kByExtension;
   // VCD window of vector indices: tracing starts in the cycle the first lane's source presents
   // vector vcd_first and stops one cycle after every lane retired vector vcd_last (or its last).
   std::uint64_t vcd_first = 0, vcd_last = std::numeric_limits<std::uint64_t>::max();
@@ -55,6 +65,7 @@ struct ClockedRunInfo {
   std::vector<std::size_t> max_occupancy;  // per lane: merge-buffer entries used at most
   std::uint64_t sim_cycles = 0;            // rising edges simulated
   std::string vcd_path, gtkw_path;         // written files (empty without VCD)
+  bool fst = false;                        // vcd_path is an FST file
   std::uint64_t vcd_start_ns = 0;          // simulation time of the first VCD dump
   std::vector<std::string> traced;         // hierarchical names of the traced signals
 };

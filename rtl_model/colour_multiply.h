@@ -22,12 +22,15 @@ class ColourMultiply : public sc_core::sc_module, public Traceable {
   sc_core::sc_signal<Result> out;
 
   SC_HAS_PROCESS(ColourMultiply);
-  ColourMultiply(sc_core::sc_module_name name, int out_width, bool out_signed, bool tracing)
+  // `out_frac_bits`: the result format's fraction bits, for the trace's real-valued display only.
+  ColourMultiply(sc_core::sc_module_name name, int out_width, bool out_signed, bool tracing,
+                 int out_frac_bits = 0)
       : sc_core::sc_module(name),
         clk("clk"),
         in("in"),
         out("out"),
         tracing_(tracing),
+        out_frac_bits_(out_frac_bits),
         result_trace_(out_width, out_signed) {
     SC_METHOD(tick);
     sensitive << clk.pos();
@@ -37,7 +40,7 @@ class ColourMultiply : public sc_core::sc_module, public Traceable {
   void add_traces(VcdWriter& vcd, const std::string& prefix) const override {
     const std::string p = prefix + ".colour.";
     trace_bool(vcd, valid_trace_, p + "valid");
-    trace_raw(vcd, result_trace_, p + "result");
+    trace_raw(vcd, result_trace_, p + "result", out_frac_bits_);
   }
 
  private:
@@ -54,6 +57,7 @@ class ColourMultiply : public sc_core::sc_module, public Traceable {
   }
 
   const bool tracing_;
+  const int out_frac_bits_;
   bool active_ = false;
   bool valid_trace_ = false;
   RawBits result_trace_;

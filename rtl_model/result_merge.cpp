@@ -6,7 +6,7 @@
 namespace glint::rtl {
 
 ResultMerge::ResultMerge(sc_core::sc_module_name name, int depth, int out_width, bool out_signed,
-                         bool tracing)
+                         bool tracing, int out_frac_bits)
     : sc_core::sc_module(name),
       clk("clk"),
       bypass_in("bypass_in"),
@@ -17,6 +17,7 @@ ResultMerge::ResultMerge(sc_core::sc_module_name name, int depth, int out_width,
       credit_return("credit_return", false),
       entries_(static_cast<std::size_t>(std::max(depth, 1))),
       tracing_(tracing),
+      out_frac_bits_(out_frac_bits),
       result_trace_(out_width, out_signed),
       count_trace_(bits_for(static_cast<std::uint64_t>(std::max(depth, 1))), false) {
   if (depth < 1) throw std::invalid_argument("ResultMerge: depth >= 1 required");
@@ -86,7 +87,7 @@ void ResultMerge::add_traces(VcdWriter& vcd, const std::string& prefix) const {
   const std::string p = prefix + ".merge.";
   trace_bool(vcd, head_valid, p + "valid");
   trace_port(vcd, sink_ready, p + "ready");
-  trace_raw(vcd, result_trace_, p + "result");
+  trace_raw(vcd, result_trace_, p + "result", out_frac_bits_);
   trace_raw(vcd, count_trace_, p + "count");
   trace_bool(vcd, credit_return, p + "credit");
 }

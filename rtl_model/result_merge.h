@@ -32,8 +32,9 @@ class ResultMerge : public sc_core::sc_module, public Traceable {
   sc_core::sc_signal<bool> credit_return;  // registered: retired at the previous edge
 
   SC_HAS_PROCESS(ResultMerge);
-  ResultMerge(sc_core::sc_module_name name, int depth, int out_width, bool out_signed,
-              bool tracing);
+  // `out_frac_bits`: the result format's fraction bits, for the trace's real-valued display only.
+  ResultMerge(sc_core::sc_module_name name, int depth, int out_width, bool out_signed, bool tracing,
+              int out_frac_bits = 0);
 
   int depth() const { return static_cast<int>(entries_.size()); }
   std::size_t occupancy() const { return count_; }
@@ -55,6 +56,7 @@ class ResultMerge : public sc_core::sc_module, public Traceable {
   bool credit_active_ = false;
   sc_core::sc_event changed_;
   const bool tracing_;
+  const int out_frac_bits_;
   RawBits result_trace_, count_trace_;
 };
 

@@ -135,8 +135,12 @@ inline void trace_bool(VcdWriter& vcd, const sc_core::sc_signal<bool>& v, const 
 inline void trace_port(VcdWriter& vcd, const sc_core::sc_in<bool>& port, const std::string& name) {
   vcd.add_bool(port->read(), name);
 }
-inline void trace_raw(VcdWriter& vcd, const RawBits& v, const std::string& name) {
-  vcd.add_bits(v.bits(), v.width(), v.is_signed(), name);
+// `frac_bits`: the fraction bits of the value's fixed-point format (QFormat::frac_bits; 0 for
+// integers such as counters and indices). The VCD keeps the raw bits; the GTKWave save file shows
+// raw * 2^-frac_bits.
+inline void trace_raw(VcdWriter& vcd, const RawBits& v, const std::string& name,
+                      int frac_bits = 0) {
+  vcd.add_bits(v.bits(), v.width(), v.is_signed(), name, frac_bits);
 }
 
 }  // namespace glint::rtl

@@ -85,7 +85,7 @@ void Scoreboard::add_traces(VcdWriter& vcd, const std::string& prefix) const {
   const std::string p = prefix + ".sink.";
   trace_bool(vcd, retire_trace_, p + "valid");
   trace_bool(vcd, ready, p + "ready");
-  trace_raw(vcd, result_trace_, p + "result");
+  trace_raw(vcd, result_trace_, p + "result", unit_.out_format().frac_bits);
 }
 
 }  // namespace glint::rtl

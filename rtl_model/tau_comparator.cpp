@@ -106,7 +106,8 @@ void TauComparator::tick() {
 
 void TauComparator::add_traces(VcdWriter& vcd, const std::string& prefix) const {
   const std::string p = prefix + ".comparator.";
-  trace_raw(vcd, tau_trace_, p + "tau");
+  const int in_frac = unit_.in_format().frac_bits;
+  trace_raw(vcd, tau_trace_, p + "tau", in_frac);
   trace_bool(vcd, skip_trace_, p + "skip");
   trace_bool(vcd, issue_trace_, p + "issue");
   trace_bool(vcd, stall_trace_, p + "stall");
@@ -115,8 +116,8 @@ void TauComparator::add_traces(VcdWriter& vcd, const std::string& prefix) const 
   trace_port(vcd, unit_ready, p + "compute_ready");
   const std::string b = prefix + ".bypass.";
   trace_bool(vcd, bypass_valid_trace_, b + "valid");
-  trace_raw(vcd, bypass_t_trace_, b + "t");
-  trace_raw(vcd, bypass_result_trace_, b + "result");
+  trace_raw(vcd, bypass_t_trace_, b + "t", in_frac);
+  trace_raw(vcd, bypass_result_trace_, b + "result", unit_.out_format().frac_bits);
 }
 
 }  // namespace glint::rtl

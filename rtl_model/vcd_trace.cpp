@@ -1,18 +1,27 @@
 #include "rtl_model/vcd_trace.h"
 
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
+#include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <systemc>
 
 #include "io/atomic_file.h"
 #include "rtl_model/rtl_common.h"
+
+extern char** environ;
 
 namespace glint::rtl {
 
@@ -29,10 +38,170 @@ std::uint64_t now_ns() {
 
 }  // namespace
 
-TraceControl::TraceControl(std::string vcd_path, AddTraces add_traces)
-    : vcd_path_(std::move(vcd_path)), add_traces_(std::move(add_traces)), writer_(kRootScope) {
+// vcd2fst reading the VCD from a pipe ("-v -": stdin) and writing <dir>/trace.fst, where <dir> is
+// a temporary directory beside the target that only this run uses: vcd2fst's FST writer keeps a
+// side file (<fst>.hier) next to its output while it runs, and removing the whole directory is
+// what guarantees that a failed run leaves nothing behind.
+class TraceControl::Vcd2Fst {
+ public:
+  explicit Vcd2Fst(const std::string& target)
+      : target_(target), dir_(target + ".tmp." + std::to_string(::getpid()) + ".fst.d") {
+    std::error_code ec;
+    fs::remove_all(dir_, ec);  // a stale one of an earlier process with the same id
+    if (!fs::create_directory(dir_, ec) || ec)
+      fail("cannot create the temporary directory '" + dir_ +
+           "': " + (ec ? ec.message() : std::string("exists")));
+    try {
+      start();
+    } catch (...) {
+      // No destructor runs for a half-built object: undo here what it would.
+      kill();
+      fs::remove_all(dir_, ec);
+      throw;
+    }
+  }
+
+  ~Vcd2Fst() {
+    kill();
+    if (pipe_) std::fclose(pipe_);  // only if never handed over (a constructor failure)
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+  }
+
+  Vcd2Fst(const Vcd2Fst&) = delete;
+  Vcd2Fst& operator=(const Vcd2Fst&) = delete;
+
+  // The pipe's write end, for the VcdWriter (which closes it).
+  std::FILE* take_pipe() {
+    std::FILE* p = pipe_;
+    pipe_ = nullptr;
+    return p;
+  }
+
+  // Stops vcd2fst at once (a failed run: its partial output is removed with the directory).
+  void kill() {
+    if (pid_ <= 0) return;
+    ::kill(pid_, SIGKILL);
+    wait();
+  }
+
+  // After the VCD's pipe was closed (`vcd_ok`: every write succeeded): waits for vcd2fst to write
+  // the FST and renames it onto the target. Throws OutputError with vcd2fst's messages otherwise.
+  void commit(bool vcd_ok) {
+    if (pid_ <= 0) fail("vcd2fst is not running");
+    const int status = wait();
+    const bool exited_ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+    std::error_code ec;
+    if (!vcd_ok || !exited_ok || !fs::is_regular_file(fst_, ec) || fs::file_size(fst_, ec) == 0) {
+      std::string why = WIFEXITED(status)     ? "exit status " + std::to_string(WEXITSTATUS(status))
+                        : WIFSIGNALED(status) ? "signal " + std::to_string(WTERMSIG(status))
+                                              : "status " + std::to_string(status);
+      fail("vcd2fst failed (" + why + ")" + messages());
+    }
+    fs::rename(fst_, target_, ec);
+    if (ec) fail("cannot rename the FST into place: " + ec.message());
+    fs::remove_all(dir_, ec);
+  }
+
+ private:
+  // vcd2fst reading a new pipe, whose write end becomes pipe_.
+  void start() {
+    fst_ = (fs::path(dir_) / "trace.fst").string();
+    log_ = (fs::path(dir_) / "vcd2fst.log").string();
+    int fds[2];
+    if (::pipe2(fds, O_CLOEXEC) != 0) fail(std::string("pipe: ") + std::strerror(errno));
+    const int err = spawn(fds[0]);
+    ::close(fds[0]);  // the child's copy is its stdin
+    if (err != 0) {
+      ::close(fds[1]);
+      fail(std::string("cannot run vcd2fst (") + std::strerror(err) +
+           "); it comes with the Debian package gtkwave");
+    }
+    pipe_ = ::fdopen(fds[1], "wb");
+    if (!pipe_) {
+      const int e = errno;
+      ::close(fds[1]);
+      fail(std::string("fdopen: ") + std::strerror(e));
+    }
+  }
+
+  // posix_spawnp (not fork + exec of a shell): no quoting of the path, and an exec failure (no
+  // vcd2fst on PATH) is returned here rather than discovered as a broken pipe. stdin = the pipe,
+  // stdout discarded, stderr kept for the error message; default SIGPIPE and an empty signal mask
+  // whatever this process uses.
+  int spawn(int read_fd) {
+    posix_spawn_file_actions_t actions;
+    posix_spawnattr_t attr;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawnattr_init(&attr);
+    posix_spawn_file_actions_adddup2(&actions, read_fd, 0);
+    posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, 2, log_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    sigset_t none, pipe_only;
+    sigemptyset(&none);
+    sigemptyset(&pipe_only);
+    sigaddset(&pipe_only, SIGPIPE);
+    posix_spawnattr_setsigmask(&attr, &none);
+    posix_spawnattr_setsigdefault(&attr, &pipe_only);
+    posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
+    std::string a0 = "vcd2fst", a1 = "-v", a2 = "-", a3 = "-f", a4 = fst_;
+    char* argv[] = {a0.data(), a1.data(), a2.data(), a3.data(), a4.data(), nullptr};
+    const int err = ::posix_spawnp(&pid_, "vcd2fst", &actions, &attr, argv, environ);
+    if (err != 0) pid_ = -1;
+    posix_spawnattr_destroy(&attr);
+    posix_spawn_file_actions_destroy(&actions);
+    return err;
+  }
+
+  int wait() {  // pid_ > 0
+    int status = 0;
+    while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+    }
+    pid_ = -1;
+    return status;
+  }
+
+  // The start of vcd2fst's stderr, for the error message.
+  std::string messages() const {
+    constexpr std::size_t kMax = 500;
+    std::ifstream in(log_, std::ios::binary);
+    std::string text(kMax + 1, '\0');
+    in.read(&text[0], static_cast<std::streamsize>(text.size()));
+    text.resize(static_cast<std::size_t>(in.gcount()));
+    if (text.size() > kMax) text = text.substr(0, kMax) + " ...";
+    while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
+    std::replace(text.begin(), text.end(), '\n', ' ');
+    return text.empty() ? "" : ": " + text;
+  }
+
+  [[noreturn]] void fail(const std::string& why) const {
+    throw OutputError("cannot write FST '" + target_ + "': " + why);
+  }
+
+  std::string target_, dir_, fst_, log_;
+  pid_t pid_ = -1;
+  std::FILE* pipe_ = nullptr;
+};
+
+bool is_fst_path(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext == ".fst";
+}
+
+TraceControl::TraceControl(std::string path, bool fst, AddTraces add_traces)
+    : vcd_path_(std::move(path)),
+      fst_(fst),
+      add_traces_(std::move(add_traces)),
+      writer_(kRootScope) {
   check_output_path(vcd_path_);
   check_output_path(gtkw_path());
+  if (fst_) {
+    vcd2fst_ = std::make_unique<Vcd2Fst>(vcd_path_);
+    writer_.open(vcd2fst_->take_pipe(), /*pipe=*/true);
+    return;
+  }
   temp_path_ = vcd_path_ + ".tmp." + std::to_string(::getpid()) + ".vcd";
   std::FILE* f = std::fopen(temp_path_.c_str(), "wb");
   if (!f) {
@@ -43,9 +212,13 @@ TraceControl::TraceControl(std::string vcd_path, AddTraces add_traces)
 
 TraceControl::~TraceControl() {
   if (!committed_) {
-    writer_.close(0);  // the values it refers to may be gone: nothing is sampled
-    std::error_code ec;
-    fs::remove(temp_path_, ec);
+    if (vcd2fst_) vcd2fst_->kill();  // first: the writer's last words then go nowhere, at once
+    writer_.close(0);                // the values it refers to may be gone: nothing is sampled
+    vcd2fst_.reset();                // removes its directory
+    if (!temp_path_.empty()) {
+      std::error_code ec;
+      fs::remove(temp_path_, ec);
+    }
   }
 }
 
@@ -90,20 +263,26 @@ void TraceControl::close() {
 
 std::string TraceControl::gtkw_path() const {
   fs::path p(vcd_path_);
-  if (p.extension() == ".vcd") return p.replace_extension(".gtkw").string();
+  if (p.extension() == ".vcd" || is_fst_path(vcd_path_))
+    return p.replace_extension(".gtkw").string();
   return vcd_path_ + ".gtkw";
 }
 
 void TraceControl::commit() {
-  open();  // a window no sample reached: the VCD of the final state
+  open();  // a window no sample reached: the trace of the final state
   close();
-  if (!writer_.close(writer_.last_time()))
-    throw OutputError("cannot write VCD '" + vcd_path_ + "': " + std::strerror(errno));
-  std::error_code ec;
-  fs::rename(temp_path_, vcd_path_, ec);
-  if (ec) {
-    fs::remove(temp_path_, ec);
-    throw OutputError("cannot rename VCD into '" + vcd_path_ + "': " + ec.message());
+  const bool written = writer_.close(writer_.last_time());
+  if (fst_) {
+    vcd2fst_->commit(written);  // waits for vcd2fst; throws with its messages
+  } else {
+    if (!written)
+      throw OutputError("cannot write VCD '" + vcd_path_ + "': " + std::strerror(errno));
+    std::error_code ec;
+    fs::rename(temp_path_, vcd_path_, ec);
+    if (ec) {
+      fs::remove(temp_path_, ec);
+      throw OutputError("cannot rename VCD into '" + vcd_path_ + "': " + ec.message());
+    }
   }
   committed_ = true;
   AtomicOutputFile gtkw(gtkw_path());
@@ -113,17 +292,69 @@ void TraceControl::commit() {
 
 namespace {
 
-// GTKWave trace flags (analyzer.h): 0x20 right-justify, 0x04 decimal, 0x08 binary,
-// 0x400 signed, 0x200 blank (comment/group rows), 0x800000 group begin, 0x1000000 group end.
-const char* flags_of(const TracedSignal& s) {
-  if (s.width == 1) return "@28";
-  return s.is_signed ? "@424" : "@24";
+// GTKWave trace flags (analyzer.h: 1 << TR_*_B), written as "@<hex>" before the traces they apply
+// to; GTKWave keeps the last one for every following trace.
+constexpr std::uint64_t kDec = 0x4, kBin = 0x8, kRjustify = 0x20, kBlank = 0x200, kSigned = 0x400;
+constexpr std::uint64_t kCollapsed = 0x1000, kAnalogStep = 0x8000;
+constexpr std::uint64_t kAnalogExtend = 0x20000;  // TR_ANALOG_BLANK_STRETCH: one more row
+constexpr std::uint64_t kClosed = 0x400000, kGroupBegin = 0x800000, kGroupEnd = 0x1000000;
+constexpr std::uint64_t kFixedPoint = 0x40000000;  // TR_FPDECSHIFT: raw / 2^[fpshift_count]
+
+// The window GTKWave opens ([size]) and its left panes: the tree of scopes ([sst_width]; collapsed,
+// since expanded it takes ~280 pixels whatever [sst_width] asks) and the names with their values
+// at the marker ([signals_width]: "hast/comparator/tau=0.870941162109375" fits). The wave pane gets
+// the rest less ~24 pixels of pane handles, borders and the vertical scroll bar (measured under
+// Xvfb with Debian's gtkwave 3.3.118, GTK 3).
+constexpr int kWindowWidth = 1600, kWindowHeight = 1000, kSstWidth = 150, kSignalsWidth = 440;
+constexpr int kWavePaneWidth = kWindowWidth - kSstWidth - kSignalsWidth - 24;
+// Rows an analog wave spans (the trace's own plus kAnalogExtend rows).
+constexpr int kAnalogRows = 4;
+// GTKWave's rainbow colours ([color] N): 2 orange, 5 blue.
+constexpr int kColourInput = 2, kColourResult = 5;
+
+// GTKWave's zoom (the "*" line): a frame of 200 pixels spans zoombase^-zoom time units (calczoom;
+// zoombase 2 by default); the VCD's unit is 1 ns.
+double gtkw_zoom(double span_ns, int pixels) {
+  return -std::log2(span_ns * 200.0 / pixels);
 }
 
+bool is_fixed_point(const TracedSignal& s) {
+  // GTKWave's shift is 0..255 and its arithmetic 64-bit; a format outside (none of glint's: widths
+  // are at most 62) shows raw.
+  return s.width > 1 && s.frac_bits > 0 && s.frac_bits < 64;
+}
+
+std::uint64_t flags_of(const TracedSignal& s) {
+  if (s.width == 1) return kRjustify | kBin;
+  std::uint64_t f = kRjustify | kDec;
+  if (s.is_signed) f |= kSigned;
+  if (is_fixed_point(s)) f |= kFixedPoint;
+  return f;
+}
+
+// The VCD name as GTKWave finds it: root scope, dotted path, vectors with their bit range.
 std::string gtkw_name(const TracedSignal& s) {
   std::string n = std::string(kRootScope) + "." + s.name;
   if (s.width > 1) n += "[" + std::to_string(s.width - 1) + ":0]";
   return n;
+}
+
+// What the signal pane shows: the name below "top." with '/' between the levels, e.g.
+// "hast/mul2/power". Not '.': GTKWave cuts aliases like names down to their last hier_max_level
+// '.'-separated components (analyzer.c, hier_extract), and Debian's gtkwave defaults to 1, which
+// would leave "power". '/' is also the hierarchy separator of synthesis and timing tools.
+std::string alias_of(const TracedSignal& s) {
+  const std::string top = "top.";
+  std::string a = s.name.compare(0, top.size(), top) == 0 ? s.name.substr(top.size()) : s.name;
+  std::replace(a.begin(), a.end(), '.', '/');
+  return a;
+}
+
+// "uq1.15" / "sq2.14" (QFormat::name: integer bits include the sign bit). Its '.' survives
+// hier_extract, which skips a trailing ".<digits>" component.
+std::string format_name(const TracedSignal& s) {
+  return std::string(s.is_signed ? "sq" : "uq") + std::to_string(s.width - s.frac_bits) + "." +
+         std::to_string(s.frac_bits);
 }
 
 // "top.<unit>.<stage>.<signal>" -> "<unit>"; "" for top-level signals.
@@ -135,32 +366,112 @@ std::string group_of(const std::string& name) {
   return name.substr(a + 1, b - a - 1);
 }
 
+// The save file's trace list, with the flags line written only when the flags change (as GTKWave
+// writes its own save files).
+class TraceList {
+ public:
+  explicit TraceList(std::ostream& o) : o_(o) {}
+
+  void flags(std::uint64_t f) {
+    if (f == last_) return;
+    o_ << "@" << std::hex << f << std::dec << "\n";
+    last_ = f;
+  }
+  // One trace shown under `alias`.
+  void trace(const TracedSignal& s, std::uint64_t f, const std::string& alias, int colour = 0) {
+    flags(f);
+    if (colour > 0) o_ << "[color] " << colour << "\n";
+    // The shift is GTKWave's current default for every trace added after it: written before each
+    // fixed-point trace so a trace's line never depends on the ones above it.
+    if (f & kFixedPoint) o_ << "[fpshift_count] " << s.frac_bits << "\n";
+    o_ << "+{" << alias << "} " << gtkw_name(s) << "\n";
+  }
+  void analog(const TracedSignal& s, int colour) {
+    trace(s, flags_of(s) | kAnalogStep, alias_of(s), colour);
+    flags(kAnalogExtend);
+    for (int r = 1; r < kAnalogRows; ++r) o_ << "-\n";
+  }
+  void group_begin(const std::string& name, bool closed = false) {
+    flags(kGroupBegin | kBlank | (closed ? kClosed : 0));
+    o_ << "-" << name << "\n";
+  }
+  void group_end(const std::string& name, bool closed = false) {
+    flags(kGroupEnd | kBlank | (closed ? kClosed | kCollapsed : 0));
+    o_ << "-" << name << "\n";
+  }
+
+ private:
+  std::ostream& o_;
+  std::uint64_t last_ = ~std::uint64_t{0};
+};
+
+// One unit's group: analog t and result, every signal, the raw bits of the fixed-point ones.
+void write_group(TraceList& list, const std::string& unit,
+                 const std::vector<const TracedSignal*>& sigs) {
+  list.group_begin(unit);
+  const std::string p = "top." + unit + ".";
+  for (const TracedSignal* s : sigs) {
+    if (s->name == p + "source.t") list.analog(*s, kColourInput);
+  }
+  for (const TracedSignal* s : sigs) {
+    if (s->name == p + "sink.result") list.analog(*s, kColourResult);
+  }
+  for (const TracedSignal* s : sigs) list.trace(*s, flags_of(*s), alias_of(*s));
+  bool any_raw = false;
+  for (const TracedSignal* s : sigs) any_raw = any_raw || is_fixed_point(*s);
+  if (any_raw) {
+    const std::string raw = unit + " raw";
+    list.group_begin(raw, /*closed=*/true);
+    for (const TracedSignal* s : sigs) {
+      if (!is_fixed_point(*s)) continue;
+      list.trace(*s, flags_of(*s) & ~kFixedPoint,
+                 alias_of(*s) + "[" + std::to_string(s->width - 1) + ":0] " + format_name(*s));
+    }
+    list.group_end(raw, /*closed=*/true);
+  }
+  list.group_end(unit);
+}
+
 }  // namespace
 
-std::string gtkw_text(const std::string& vcd_path, std::uint64_t start_ns,
+std::string gtkw_text(const std::string& dump_path, std::uint64_t start_ns,
                       const std::vector<TracedSignal>& signals) {
+  // The view: kGtkwViewCycles periods from the window's start; the marker on its first rising
+  // edge (the first cycle_time_ns at or after start_ns).
+  const std::uint64_t period = cycle_time_ns(1) - cycle_time_ns(0);
+  const std::uint64_t first_edge =
+      start_ns <= cycle_time_ns(0)
+          ? cycle_time_ns(0)
+          : cycle_time_ns((start_ns - cycle_time_ns(0) + period - 1) / period);
+  const double zoom = gtkw_zoom(static_cast<double>(kGtkwViewCycles * period), kWavePaneWidth);
+
   std::ostringstream o;
-  o << "[*]\n[*] GTKWave save file written by glint (clocked SystemC model)\n[*]\n";
-  o << "[dumpfile] \"" << vcd_path << "\"\n";
+  o << "[*]\n[*] GTKWave save file written by glint (clocked SystemC model): " << kGtkwViewCycles
+    << " clock periods from " << start_ns << " ns, marker on the first rising edge\n[*]\n";
+  o << "[dumpfile] \"" << dump_path << "\"\n";
   o << "[timestart] " << start_ns << "\n";
-  o << "[size] 1600 1000\n[pos] -1 -1\n";
-  o << "[sst_width] 260\n[signals_width] 360\n[sst_expanded] 1\n[sst_vpaned_height] 300\n";
-  std::string group;
-  std::string last_flags;
-  for (const TracedSignal& s : signals) {
-    const std::string g = group_of(s.name);
-    if (g != group) {
-      if (!group.empty()) o << "@1000200\n-" << group << "\n";
-      if (!g.empty()) o << "@800200\n-" << g << "\n";
-      group = g;
-      last_flags.clear();
+  o << "[size] " << kWindowWidth << " " << kWindowHeight << "\n[pos] -1 -1\n";
+  char zoom_line[64];
+  std::snprintf(zoom_line, sizeof zoom_line, "*%.6f %llu", zoom,
+                static_cast<unsigned long long>(first_edge));
+  o << zoom_line << "\n";
+  o << "[treeopen] " << kRootScope << ".\n[treeopen] " << kRootScope << ".top.\n";
+  o << "[sst_width] " << kSstWidth << "\n[signals_width] " << kSignalsWidth << "\n";
+  o << "[sst_expanded] 0\n[sst_vpaned_height] 300\n";
+
+  TraceList list(o);
+  // Signals in registration order; each unit's (contiguous) run becomes its group.
+  for (std::size_t i = 0; i < signals.size();) {
+    const std::string g = group_of(signals[i].name);
+    if (g.empty()) {
+      list.trace(signals[i], flags_of(signals[i]), alias_of(signals[i]));
+      ++i;
+      continue;
     }
-    const std::string f = flags_of(s);
-    if (f != last_flags) o << f << "\n";
-    last_flags = f;
-    o << gtkw_name(s) << "\n";
+    std::vector<const TracedSignal*> sigs;
+    for (; i < signals.size() && group_of(signals[i].name) == g; ++i) sigs.push_back(&signals[i]);
+    write_group(list, g, sigs);
   }
-  if (!group.empty()) o << "@1000200\n-" << group << "\n";
   return o.str();
 }
 

@@ -14,10 +14,16 @@
 // glint output: a failed run leaves no VCD behind. It may be opened during the simulation (the VCD
 // window): its initial $dumpvars, at the opening time, holds every value settled in that time
 // step; each later cycle's changes follow until close(), which ends the file with its own time.
+//
+// FST: the same VCD text is streamed through a pipe into Debian's vcd2fst (package gtkwave), which
+// runs beside the simulation (on another core) and writes the FST into a private temporary
+// directory beside the target; commit() waits for it and renames the FST into place. A failed run
+// kills vcd2fst and removes the directory: no file, partial or otherwise, is left behind.
 #pragma once
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -30,9 +36,10 @@ class TraceControl {
   // Registers every traced value with the writer (called once, by open()).
   using AddTraces = std::function<void(VcdWriter&)>;
 
-  // Creates the temporary file now (throws std::runtime_error if it cannot).
-  TraceControl(std::string vcd_path, AddTraces add_traces);
-  ~TraceControl();  // closes and removes the temporary unless committed
+  // Creates the temporary file now (throws OutputError if it cannot); `fst`: write an FST file at
+  // `path` (starts vcd2fst now; OutputError if it cannot be started).
+  TraceControl(std::string path, bool fst, AddTraces add_traces);
+  ~TraceControl();  // removes the temporary (and stops vcd2fst) unless committed
 
   TraceControl(const TraceControl&) = delete;
   TraceControl& operator=(const TraceControl&) = delete;
@@ -54,19 +61,23 @@ class TraceControl {
   const std::vector<TracedSignal>& signals() const { return writer_.signals(); }
 
   // Closes (opening first if the window never opened, so the file is a valid VCD of the final
-  // state), renames the VCD into place and writes the .gtkw beside it (same name, .gtkw
-  // extension): one group per unit (the second name component), raw values in decimal, signed
-  // formats as signed. Throws std::runtime_error if the VCD could not be written.
+  // state), renames the VCD (or, once vcd2fst has finished, the FST) into place and writes the
+  // .gtkw beside it (gtkw_text). Throws OutputError if the trace could not be written.
   void commit();
 
-  const std::string& vcd_path() const { return vcd_path_; }
+  const std::string& vcd_path() const { return vcd_path_; }  // the trace file, VCD or FST
+  bool fst() const { return fst_; }
   std::string gtkw_path() const;
 
  private:
+  class Vcd2Fst;  // the vcd2fst process and its temporary directory
+
   void initial_dump(std::uint64_t t_ns);
 
   std::string vcd_path_;
-  std::string temp_path_;
+  bool fst_;
+  std::string temp_path_;  // VCD: the temporary file; FST: unused (Vcd2Fst owns its directory)
+  std::unique_ptr<Vcd2Fst> vcd2fst_;
   AddTraces add_traces_;
   VcdWriter writer_;
   bool opened_ = false, closed_ = false, committed_ = false;
@@ -74,9 +85,29 @@ class TraceControl {
   std::uint64_t start_ns_ = 0;
 };
 
-// The GTKWave save file text for `signals` in `vcd_path` (absolute path recommended), starting the
-// view at `start_ns`.
-std::string gtkw_text(const std::string& vcd_path, std::uint64_t start_ns,
+// True when `path` names an FST file (extension ".fst", any case): TraceFormat::kByExtension.
+bool is_fst_path(const std::string& path);
+
+// The GTKWave save file (GTKWave 3.3) for `signals` in `dump_path` (VCD or FST; an absolute path
+// is recommended), for a trace whose window starts at `start_ns`:
+//  - the view: kGtkwViewCycles clock periods from start_ns ([timestart], the zoom of the "*" line
+//    computed for the wave pane the [size]/[sst_width]/[signals_width] lines lay out), the primary
+//    marker on the window's first rising edge (so the signal pane shows values from the start);
+//  - names: every trace aliased ("+{alias} name") to its name below "SystemC.top." with '/'
+//    between the levels, stage qualified ("hast/mul2/power"): such an alias shows whatever
+//    hier_max_level the user's gtkwaverc sets (Debian's default, 1, cuts the dotted names down to
+//    their leaves, ten "t[15:0]" per unit, and would cut a dotted alias the same way);
+//  - values: fixed-point signals (frac_bits > 0) as real numbers through GTKWave's fixed-point
+//    shift (flag 0x40000000 with "[fpshift_count] frac_bits": raw / 2^frac_bits, signed formats
+//    as signed), integers in decimal, 1-bit signals in binary;
+//  - one group per unit (the second name component) that starts with the source's t and the
+//    sink's result as analog step waves (four rows high), then every signal of the unit in
+//    registration order, then a closed subgroup "<unit> raw" with the raw bits of its fixed-point
+//    signals in decimal, aliased "<alias>[msb:0] <format>" (e.g. "hast/in/t[15:0] uq1.15").
+std::string gtkw_text(const std::string& dump_path, std::uint64_t start_ns,
                       const std::vector<TracedSignal>& signals);
+
+// The save file's view: this many clock periods from the window's start fill the wave pane.
+constexpr int kGtkwViewCycles = 40;
 
 }  // namespace glint::rtl

@@ -75,7 +75,7 @@ void VectorSource::add_traces(VcdWriter& vcd, const std::string& prefix) const {
   const std::string p = prefix + ".source.";
   trace_bool(vcd, valid, p + "valid");
   trace_port(vcd, ready, p + "ready");
-  trace_raw(vcd, t_trace_, p + "t");
+  trace_raw(vcd, t_trace_, p + "t", unit_.in_format().frac_bits);
   trace_raw(vcd, slot_trace_, p + "slot");
   trace_raw(vcd, seq_trace_, p + "seq");
 }

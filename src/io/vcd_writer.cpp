@@ -1,7 +1,10 @@
 #include "io/vcd_writer.h"
 
+#include <pthread.h>
+
 #include <algorithm>
 #include <array>
+#include <csignal>
 #include <cstring>
 #include <ctime>
 #include <map>
@@ -91,12 +94,44 @@ struct Scope {
   std::map<std::string, std::size_t> by_name;
 };
 
+// Blocks SIGPIPE in this thread while writing to a pipe and discards the one the writes raised:
+// when the reading process is gone, write() fails with EPIPE and the writer reports the error,
+// instead of the default action killing the whole process. Nothing happens when the caller had
+// SIGPIPE blocked already (then the signal is the caller's to handle).
+class SigpipeGuard {
+ public:
+  explicit SigpipeGuard(bool active) {
+    if (!active) return;
+    sigemptyset(&pipe_set_);
+    sigaddset(&pipe_set_, SIGPIPE);
+    active_ = pthread_sigmask(SIG_BLOCK, &pipe_set_, &old_) == 0 && !sigismember(&old_, SIGPIPE);
+  }
+  ~SigpipeGuard() {
+    if (!active_) return;
+    sigset_t pending;
+    if (sigpending(&pending) == 0 && sigismember(&pending, SIGPIPE)) {
+      const timespec zero{0, 0};
+      sigtimedwait(&pipe_set_, nullptr, &zero);
+    }
+    pthread_sigmask(SIG_SETMASK, &old_, nullptr);
+  }
+  SigpipeGuard(const SigpipeGuard&) = delete;
+  SigpipeGuard& operator=(const SigpipeGuard&) = delete;
+
+ private:
+  bool active_ = false;
+  sigset_t pipe_set_{}, old_{};
+};
+
 }  // namespace
 
 VcdWriter::VcdWriter(std::string root_scope) : root_(std::move(root_scope)) {}
 
 VcdWriter::~VcdWriter() {
-  if (file_) std::fclose(file_);
+  if (file_) {
+    SigpipeGuard guard(pipe_);
+    std::fclose(file_);
+  }
 }
 
 void VcdWriter::check_name(const std::string& name) {
@@ -149,7 +184,7 @@ void VcdWriter::add_bool(const bool& value, const std::string& name) {
 }
 
 void VcdWriter::add_bits(const std::uint64_t& value, int width, bool is_signed,
-                         const std::string& name) {
+                         const std::string& name, int frac_bits) {
   if (width < 1 || width > 64)
     throw std::invalid_argument("VcdWriter: width of '" + name + "' must be 1..64");
   check_name(name);
@@ -157,13 +192,20 @@ void VcdWriter::add_bits(const std::uint64_t& value, int width, bool is_signed,
   order_.push_back(bits_.size());
   is_bool_.push_back(false);
   bits_.push_back({&value, mask, value & mask, next_var(width)});
-  signals_.push_back({name, width, is_signed});
+  signals_.push_back({name, width, is_signed, frac_bits});
 }
 
-void VcdWriter::open(std::FILE* file) {
+void VcdWriter::open(std::FILE* file, bool pipe) {
   if (!file) throw std::invalid_argument("VcdWriter: no file");
-  if (file_) std::fclose(file_);
+  if (file_) {
+    SigpipeGuard guard(pipe_);
+    std::fclose(file_);
+  }
   file_ = file;
+  pipe_ = pipe;
+  // Every write already goes out in large blocks from buffer_; unbuffered, a pipe's write errors
+  // surface in the fwrite that the guard covers rather than in a later hidden flush.
+  if (pipe_) std::setvbuf(file_, nullptr, _IONBF, 0);
   failed_ = false;
   capacity_ = std::max(kBufferBytes, 2 * (max_changes_bytes_ + kIdSlack) + 64);
   buffer_ = std::make_unique<char[]>(capacity_);
@@ -175,7 +217,10 @@ void VcdWriter::open(std::FILE* file) {
 
 void VcdWriter::flush() {
   if (pos_ == 0) return;
-  if (file_ && std::fwrite(buffer_.get(), 1, pos_, file_) != pos_) failed_ = true;
+  if (file_) {
+    SigpipeGuard guard(pipe_);
+    if (std::fwrite(buffer_.get(), 1, pos_, file_) != pos_) failed_ = true;
+  }
   flushed_ += pos_;
   pos_ = 0;
 }
@@ -347,7 +392,10 @@ bool VcdWriter::close(std::uint64_t end_time) {
   if (!file_) return !failed_;
   if (!wrote_time_ || end_time > last_time_) time(end_time);
   flush();
-  if (std::fclose(file_) != 0) failed_ = true;
+  {
+    SigpipeGuard guard(pipe_);
+    if (std::fclose(file_) != 0) failed_ = true;
+  }
   file_ = nullptr;
   buffer_.reset();
   capacity_ = 0;

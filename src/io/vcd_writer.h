@@ -27,6 +27,10 @@ struct TracedSignal {
   std::string name;  // hierarchical, e.g. "top.hast.in.t"
   int width = 1;
   bool is_signed = false;
+  // Fraction bits of the fixed-point format the raw bits hold (value = raw * 2^-frac_bits); 0 for
+  // integers and handshakes. Not in the VCD (which holds raw bits): the save file uses it to show
+  // real values.
+  int frac_bits = 0;
 };
 
 class VcdWriter {
@@ -44,12 +48,17 @@ class VcdWriter {
   void add_clock(const std::string& name);  // 1 bit, written by clock(); at most one
   void add_bool(const bool& value, const std::string& name);
   // `value` holds the raw bits in its low `width` bits (1..64); higher bits are ignored, so a
-  // signed value may be stored as its two's complement. `is_signed` is for viewers only.
-  void add_bits(const std::uint64_t& value, int width, bool is_signed, const std::string& name);
+  // signed value may be stored as its two's complement. `is_signed` and `frac_bits` (the
+  // fixed-point format's fraction bits, 0 = integer) are for viewers only (TracedSignal).
+  void add_bits(const std::uint64_t& value, int width, bool is_signed, const std::string& name,
+                int frac_bits = 0);
   const std::vector<TracedSignal>& signals() const { return signals_; }
 
-  // Takes ownership of `file` (opened for writing; closed by close() or the destructor).
-  void open(std::FILE* file);
+  // Takes ownership of `file` (opened for writing; closed by close() or the destructor). A `pipe`
+  // (another process reads it, e.g. vcd2fst) is written unbuffered by stdio and with SIGPIPE
+  // blocked, so a reader that died makes the writes fail (close() returns false) instead of
+  // killing this process.
+  void open(std::FILE* file, bool pipe = false);
   bool is_open() const { return file_ != nullptr; }
   // $date, $version, $timescale (1 `timescale_unit`, e.g. "ns"), the scopes and variables.
   void header(const std::string& timescale_unit, const std::string& version);
@@ -112,6 +121,7 @@ class VcdWriter {
 
   bool header_done_ = false;
   std::FILE* file_ = nullptr;
+  bool pipe_ = false;
   bool failed_ = false;
   std::unique_ptr<char[]> buffer_;
   std::size_t capacity_ = 0, pos_ = 0;
