@@ -350,8 +350,11 @@ TEST(FixedEdge, RoundShiftAcrossInt64) {
     const std::int64_t p =
         b == 63 ? std::numeric_limits<std::int64_t>::max() : (std::int64_t{1} << b) - 1;  // 2^b - 1
     for (std::int64_t d : {-1, 0, 1, 2}) {
-      raws.push_back(p + (d == 2 && b == 63 ? -5 : d));
-      raws.push_back(-p - d);
+      // At b = 63 (p = INT64_MAX) p + 1, p + 2 and -p - 2 would overflow int64 (undefined
+      // behaviour): p - 4, p - 5 and their negations stand in; both limits are in the list anyway.
+      const std::int64_t e = b == 63 && d > 0 ? -3 - d : d;
+      raws.push_back(p + e);
+      raws.push_back(-p - e);
     }
     raws.push_back(p / 3);
     raws.push_back(-p / 3);
