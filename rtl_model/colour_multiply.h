@@ -40,6 +40,7 @@ class ColourMultiply : public sc_core::sc_module, public Traceable {
   void add_traces(VcdWriter& vcd, const std::string& prefix) const override {
     const std::string p = prefix + ".colour.";
     trace_bool(vcd, valid_trace_, p + "valid");
+    trace_raw(vcd, seq_trace_, p + "seq");
     trace_raw(vcd, result_trace_, p + "result", out_frac_bits_);
   }
 
@@ -52,7 +53,10 @@ class ColourMultiply : public sc_core::sc_module, public Traceable {
     }
     if (tracing_) {
       valid_trace_ = r.valid;
-      if (r.valid) result_trace_.set(r.value);
+      if (r.valid) {
+        result_trace_.set(r.value);
+        seq_trace_.set(static_cast<std::int64_t>(r.seq & 0xffffffffu));
+      }
     }
   }
 
@@ -61,6 +65,7 @@ class ColourMultiply : public sc_core::sc_module, public Traceable {
   bool active_ = false;
   bool valid_trace_ = false;
   RawBits result_trace_;
+  RawBits seq_trace_{32, false};
 };
 
 }  // namespace glint::rtl

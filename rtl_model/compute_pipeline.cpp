@@ -126,10 +126,10 @@ void ComputePipeline::add_traces(VcdWriter& vcd, const std::string& prefix) cons
     trace_bool(vcd, tr.valid, p + "valid");
     if (k == 0) trace_bool(vcd, ready, p + "ready");
     trace_raw(vcd, tr.seq, p + "seq");
-    trace_raw(vcd, tr.t, p + "t");
+    trace_raw(vcd, tr.t, p + "t", unit_.in_format().frac_bits);
     if (s.last > s.first) trace_raw(vcd, tr.bit, p + "bit");
     for (std::size_t r = 0; r < s.registers.size(); ++r)
-      trace_raw(vcd, tr.registers[r], p + s.registers[r].name);
+      trace_raw(vcd, tr.registers[r], p + s.registers[r].name, s.registers[r].format.frac_bits);
   }
 }
 

@@ -51,7 +51,10 @@ void ResultMerge::comb() {
     }
   }
   head_valid.write(valid);
-  if (tracing_ && valid) result_trace_.set(value);
+  if (tracing_ && valid) {
+    result_trace_.set(value);
+    seq_trace_.set(static_cast<std::int64_t>(h & 0xffffffffu));
+  }
 }
 
 void ResultMerge::tick() {
@@ -87,6 +90,7 @@ void ResultMerge::add_traces(VcdWriter& vcd, const std::string& prefix) const {
   const std::string p = prefix + ".merge.";
   trace_bool(vcd, head_valid, p + "valid");
   trace_port(vcd, sink_ready, p + "ready");
+  trace_raw(vcd, seq_trace_, p + "seq");
   trace_raw(vcd, result_trace_, p + "result", out_frac_bits_);
   trace_raw(vcd, count_trace_, p + "count");
   trace_bool(vcd, credit_return, p + "credit");

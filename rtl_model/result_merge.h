@@ -58,6 +58,7 @@ class ResultMerge : public sc_core::sc_module, public Traceable {
   const bool tracing_;
   const int out_frac_bits_;
   RawBits result_trace_, count_trace_;
+  RawBits seq_trace_{32, false};  // the head's request id
 };
 
 }  // namespace glint::rtl

@@ -62,7 +62,10 @@ void Scoreboard::retire(const Result& r, std::uint64_t cycle) {
   ++stats_.results;
   if (!r.skipped) ++stats_.computed;
   stats_.cycles = cycle + 1;
-  if (tracing_) result_trace_.set(r.value);
+  if (tracing_) {
+    result_trace_.set(r.value);
+    seq_trace_.set(static_cast<std::int64_t>(r.seq & 0xffffffffu));
+  }
 
   if (on_result_) {
     try {
@@ -85,6 +88,7 @@ void Scoreboard::add_traces(VcdWriter& vcd, const std::string& prefix) const {
   const std::string p = prefix + ".sink.";
   trace_bool(vcd, retire_trace_, p + "valid");
   trace_bool(vcd, ready, p + "ready");
+  trace_raw(vcd, seq_trace_, p + "seq");
   trace_raw(vcd, result_trace_, p + "result", unit_.out_format().frac_bits);
 }
 

@@ -66,6 +66,7 @@ class Scoreboard : public sc_core::sc_module, public Traceable {
 
   bool retire_trace_ = false;
   RawBits result_trace_;
+  RawBits seq_trace_{32, false};  // the retired request's id
 };
 
 }  // namespace glint::rtl

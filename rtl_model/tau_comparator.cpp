@@ -99,6 +99,7 @@ void TauComparator::tick() {
     bypass_valid_trace_ = b.valid;
     if (b.valid) {
       bypass_t_trace_.set(b.t_raw);
+      bypass_seq_trace_.set(static_cast<std::int64_t>(b.seq & 0xffffffffu));
       bypass_result_trace_.set(b.value);
     }
   }
@@ -116,6 +117,7 @@ void TauComparator::add_traces(VcdWriter& vcd, const std::string& prefix) const 
   trace_port(vcd, unit_ready, p + "compute_ready");
   const std::string b = prefix + ".bypass.";
   trace_bool(vcd, bypass_valid_trace_, b + "valid");
+  trace_raw(vcd, bypass_seq_trace_, b + "seq");
   trace_raw(vcd, bypass_t_trace_, b + "t", in_frac);
   trace_raw(vcd, bypass_result_trace_, b + "result", unit_.out_format().frac_bits);
 }

@@ -74,6 +74,7 @@ class TauComparator : public sc_core::sc_module, public Traceable {
 
   // Trace mirrors.
   RawBits tau_trace_, credits_trace_, bypass_t_trace_, bypass_result_trace_;
+  RawBits bypass_seq_trace_{32, false};  // the request id, as the source and every stage show it
   bool skip_trace_ = false, issue_trace_ = false, stall_trace_ = false, bypass_valid_trace_ = false;
 };
 

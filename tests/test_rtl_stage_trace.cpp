@@ -1,7 +1,8 @@
 // What the VCD shows of each compute stage is the hardware's registers: read the trace back and
 // check, cycle by cycle, every stage of every lane: `valid` exactly when a request is in the stage,
-// its `seq` and `t`, the iteration `bit` of a multi-cycle stage, and every register against the
-// unit's staged evaluation of that request. One elaboration per TEST.
+// its `seq` and `t` (and the sink's seq of each retired result), the iteration `bit` of a
+// multi-cycle stage, and every register against the unit's staged evaluation of that request. One
+// elaboration per TEST.
 #include <gtest/gtest.h>
 
 #include <map>
@@ -65,12 +66,14 @@ TEST(RtlStageTrace, EveryStageShowsItsRegistersCycleByCycle) {
     std::size_t slot;
   };
   std::vector<std::vector<Issued>> computed(units.size());
+  std::vector<std::vector<std::uint64_t>> retire(units.size());  // per request, in stream order
   std::vector<std::uint64_t> seq(units.size(), 0);
   ClockedRunInfo info;
   run_clocked(
       units, slots, [&] { return std::make_unique<MemoryRowStream>(rows); }, options,
       [&](const LaneOutput& o) {
         const std::uint64_t s = seq[o.lane]++;
+        retire[o.lane].push_back(o.timing.retire);
         if (!o.skipped) computed[o.lane].push_back({s, o.timing.issue, o.t_raw, slots.slot(o.row)});
       },
       &info);
@@ -93,7 +96,7 @@ TEST(RtlStageTrace, EveryStageShowsItsRegistersCycleByCycle) {
     for (const Stage& s : layout.stages()) {
       const std::string p = "SystemC.top." + info.labels[u] + "." + s.name + ".";
       for (const StageRegister& r : s.registers)
-        ASSERT_EQ(vcd.width(p + r.name), r.format.width()) << p << r.name;
+        ASSERT_EQ(vcd.vars.at(p + r.name), r.format.width()) << p << r.name;
       for (std::uint64_t c = 0; c <= last_cycle; ++c) {
         const Issued* in = nullptr;
         int position = s.first;
@@ -127,6 +130,13 @@ TEST(RtlStageTrace, EveryStageShowsItsRegistersCycleByCycle) {
       }
     }
     EXPECT_GT(checked, computed[u].size());
+    // The id goes on with the result: the sink shows each request's seq in its retire cycle.
+    for (std::size_t i = 0; i < retire[u].size(); ++i) {
+      const std::uint64_t time = rtl::cycle_time_ns(retire[u][i]);
+      const std::string sink = "SystemC.top." + info.labels[u] + ".sink.";
+      ASSERT_EQ(vcd.value_at(sink + "valid", time), 1u);
+      ASSERT_EQ(vcd.value_at(sink + "seq", time), i) << info.labels[u];
+    }
   }
 }
 

@@ -33,6 +33,7 @@
 #include "timing/timing.h"
 #include "units/catalogue.h"
 #include "units/common.h"
+#include "vcd_reader.h"
 
 namespace fs = std::filesystem;
 
@@ -72,79 +73,9 @@ Stream make_stream(std::size_t n, bool coloured) {
   return s;
 }
 
-// $scope / $var of a VCD: full dotted name -> width, the time stamps, and every value change.
-struct VcdInfo {
-  std::map<std::string, int> vars;
-  std::map<std::string, std::string> ids;  // full name -> identifier code
-  std::vector<std::uint64_t> times;
-  std::uint64_t value_changes = 0;
-  bool dumpvars_before_first_time = false;
-  // identifier code -> (time, value) in file order (the $dumpvars values at their time stamp).
-  std::map<std::string, std::vector<std::pair<std::uint64_t, std::uint64_t>>> changes;
-
-  // The value of `name` at time t (after every change at t).
-  std::uint64_t value_at(const std::string& name, std::uint64_t t) const {
-    const auto id = ids.find(name);
-    if (id == ids.end()) throw std::out_of_range("no VCD variable " + name);
-    const auto c = changes.find(id->second);
-    if (c == changes.end()) throw std::out_of_range("no value for " + name);
-    std::uint64_t v = 0;
-    bool found = false;
-    for (const auto& [time, value] : c->second) {
-      if (time > t) break;
-      v = value;
-      found = true;
-    }
-    if (!found) throw std::out_of_range("no value of " + name + " at " + std::to_string(t));
-    return v;
-  }
-};
-
+using VcdInfo = test::VcdReader;
 VcdInfo parse_vcd(const std::string& path) {
-  VcdInfo info;
-  std::ifstream in(path);
-  std::string line;
-  std::vector<std::string> scope;
-  bool header = true;
-  while (std::getline(in, line)) {
-    std::istringstream ls(line);
-    std::string tok;
-    ls >> tok;
-    if (header) {
-      if (tok == "$scope") {
-        std::string kind, name;
-        ls >> kind >> name;
-        scope.push_back(name);
-      } else if (tok == "$upscope") {
-        scope.pop_back();
-      } else if (tok == "$var") {
-        std::string type, id, name;
-        int width = 0;
-        ls >> type >> width >> id >> name;
-        std::string full;
-        for (const std::string& s : scope) full += s + ".";
-        info.vars[full + name] = width;
-        info.ids[full + name] = id;
-      } else if (tok == "$enddefinitions") {
-        header = false;
-      }
-    } else if (!tok.empty() && tok[0] == '#') {
-      info.times.push_back(std::stoull(tok.substr(1)));
-    } else if (tok == "$dumpvars" && info.times.empty()) {
-      info.dumpvars_before_first_time = true;
-    } else if (!tok.empty() && tok[0] != '$') {
-      ++info.value_changes;
-      const std::uint64_t t = info.times.empty() ? 0 : info.times.back();
-      if (tok[0] == 'b') {
-        std::string id;
-        ls >> id;
-        info.changes[id].push_back({t, std::stoull(tok.substr(1), nullptr, 2)});
-      } else {
-        info.changes[tok.substr(1)].push_back({t, tok[0] == '1' ? 1u : 0u});
-      }
-    }
-  }
-  return info;
+  return VcdInfo(path);
 }
 
 const char* kVcd2Fst = "/usr/bin/vcd2fst";
