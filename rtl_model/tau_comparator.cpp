@@ -18,7 +18,6 @@ TauComparator::TauComparator(sc_core::sc_module_name name, const SpecularUnit& u
       compute_valid("compute_valid", false),
       bypass("bypass"),
       unit_(unit),
-      depth_(credits),
       tracing_(tracing),
       credits_(credits),
       tau_trace_(unit.in_format().width() + 1, true),  // -1 (never skip) .. raw_max

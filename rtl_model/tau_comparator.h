@@ -56,7 +56,6 @@ class TauComparator : public sc_core::sc_module, public Traceable {
 
   const SpecularUnit& unit_;
   std::vector<std::int64_t> tau_;
-  const int depth_;
   const bool tracing_;
   int credits_;
   sc_core::sc_event credits_changed_;

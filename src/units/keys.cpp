@@ -10,8 +10,8 @@ namespace glint {
 
 KeyReader::KeyReader(const UnitSpec& spec, const std::vector<UnitKey>& known) : spec_(spec) {
   for (const auto& [k, v] : spec.keys) {
-    const bool ok =
-        std::any_of(known.begin(), known.end(), [&](const UnitKey& uk) { return uk.key == k; });
+    const bool ok = std::any_of(known.begin(), known.end(),
+                                [&key = k](const UnitKey& uk) { return uk.key == key; });
     if (!ok) fail(k, v, "unknown key (see `glint units`)");
   }
 }
