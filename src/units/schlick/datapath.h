@@ -72,8 +72,8 @@ class SchlickUnit {
   SchlickConfig cfg_;
   double n_ = 1.0;
   // The restoring divider's state after quotient bit k of Q = floor(2 num / D) (q bits): the
-  // quotient so far Q >> (q - k) (shown with the bits still to come as zeros) and the partial
-  // remainder floor(2 num / 2^(q - k)) - D (Q >> (q - k)), which is what a restoring array holds.
+  // quotient bits so far, Q >> (q - k) (k bits, as the hardware's quotient register holds them),
+  // and the partial remainder floor(2 num / 2^(q - k)) - D (Q >> (q - k)).
   template <class Probe>
   void record_divider(const Probe& probe, std::int64_t den, std::int64_t num,
                       std::int64_t quotient) const {
@@ -82,7 +82,7 @@ class SchlickUnit {
     for (int k = 1; k <= q; ++k) {
       const std::int64_t so_far = quotient >> (q - k);
       probe(1 + k, 0, ((2 * num) >> (q - k)) - den * so_far);
-      probe(1 + k, 1, so_far << (q - k));
+      probe(1 + k, 1, so_far);
     }
   }
 

@@ -66,14 +66,19 @@ struct Schlick : UnitKindDefaults {
     const SchlickConfig& d = c.datapath;
     const QFormat df = denominator_format(d);
     const QFormat rf = uq(df.int_bits + 1, df.frac_bits);  // partial remainder < 2 D
-    const QFormat qf = uq(1, d.out.frac_bits + 1);         // Q = 2 S 2^Fo, q bits
     const int q = d.out.frac_bits + 2;
-    const std::vector<StageRegister> row{{"remainder", rf}, {"quotient", qf}};
     std::vector<Stage> s{input_stage(d.in), {"mac", 1, 1, {{"D", df}}}};
     if (c.iterative) {
-      s.push_back({"div", 2, q + 1, row});
+      // One shift register for every iteration: its k bits are an integer until the last.
+      s.push_back({"div", 2, q + 1, {{"remainder", rf}, {"quotient", uq(q, 0)}}});
     } else {
-      for (int k = 0; k < q; ++k) s.push_back({"q" + std::to_string(k), 2 + k, 2 + k, row});
+      // After quotient bit k the register holds k bits of Q = S 2^(Fo + 1) (S at Fo + 1 fraction
+      // bits): S to k - 1 fraction bits, so each stage shows the quotient converging to S.
+      for (int k = 1; k <= q; ++k)
+        s.push_back({"q" + std::to_string(k - 1),
+                     1 + k,
+                     1 + k,
+                     {{"remainder", rf}, {"quotient", uq(1, k - 1)}}});
     }
     s.push_back({"round", q + 2, q + 2, {{"result", d.out}}});
     return s;
