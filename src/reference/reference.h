@@ -1,7 +1,7 @@
 // Double-precision reference models of the glossy highlight: the oracle every fixed-point unit is
 // measured against. Pure functions over plain data; nothing here knows about bit widths.
 //
-// Papers (see /work/shared/papers/):
+// Papers:
 //   Källberg & Larsson 2014, "Optimized Phong and Blinn-Phong Glossy Highlights" (threshold tau),
 //   Schlick 1994, "A Fast Alternative to Phong's Specular Model" (rational t^n substitute),
 //   Hast et al. 2003, "Fast Specular Highlights by modifying the Phong-Blinn Model"
