@@ -692,33 +692,29 @@ class FailingStream : public RowStream {
   std::size_t i_ = 0;
 };
 
-TEST(RtlVcd, FailedRunLeavesNoFiles) {
+// A run whose stream fails half-way throws its error and leaves no trace file named `file`.
+void expect_failed_run_leaves_nothing(const std::string& file) {
   TempDir dir;
   const Stream s = make_stream(100, false);
   const SlotMap slots = make_slots(s.header);
   const auto unit = make_unit(parse_unit_spec("hast"), slots.params);
   ClockedOptions options;
-  options.vcd_path = dir.file("f.vcd");
+  options.vcd_path = dir.file(file);
   EXPECT_THROW(run_clocked({unit.get()}, slots,
                            [&] { return std::make_unique<FailingStream>(s.rows); }, options, {}),
                InputError);
   EXPECT_TRUE(dir.entries().empty());
 }
 
+TEST(RtlVcd, FailedRunLeavesNoFiles) {
+  expect_failed_run_leaves_nothing("f.vcd");
+}
+
 // The same for an FST: vcd2fst is stopped and its temporary directory (partial FST, side files)
 // removed.
 TEST(RtlVcd, FailedFstRunLeavesNoFiles) {
   if (::access(kVcd2Fst, X_OK) != 0) GTEST_SKIP() << kVcd2Fst << " not installed (gtkwave)";
-  TempDir dir;
-  const Stream s = make_stream(100, false);
-  const SlotMap slots = make_slots(s.header);
-  const auto unit = make_unit(parse_unit_spec("hast"), slots.params);
-  ClockedOptions options;
-  options.vcd_path = dir.file("f.fst");
-  EXPECT_THROW(run_clocked({unit.get()}, slots,
-                           [&] { return std::make_unique<FailingStream>(s.rows); }, options, {}),
-               InputError);
-  EXPECT_TRUE(dir.entries().empty());
+  expect_failed_run_leaves_nothing("f.fst");
 }
 
 // Without vcd2fst an FST cannot be written: an OutputError (exit 2 in the CLI) naming the package,
