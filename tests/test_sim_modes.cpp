@@ -206,8 +206,10 @@ TEST_F(SimModes, BadInputExitsTwoAndLeavesNoFiles) {
 
 TEST_F(SimModes, BadWindowAndSinkAreUsageErrors) {
   const std::string vec = quote((kTraces / "phong_basic.vec").string());
-  for (const char* args : {" --vcd-window 5", " --vcd-window 9:3", " --vcd-window a:b",
-                           " --sink-ready 0", " --sink-ready 1.5", " --mode fast --vcd x.vcd"}) {
+  for (const char* args :
+       {" --vcd-window 5", " --vcd-window 9:3", " --vcd-window a:b", " --sink-ready 0",
+        " --sink-ready 1.5", " --sink-ready 1e-9", " --sink-ready 0.0099", " --sink-ready nan",
+        " --mode fast --vcd x.vcd"}) {
     const std::string cmd = "cd " + quote(dir_.string()) + " && " + quote(kGlint) + " sim " + vec +
                             args + " >/dev/null 2>&1";
     const int st = std::system(cmd.c_str());

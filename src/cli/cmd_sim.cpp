@@ -69,8 +69,9 @@ SimPlan check_sim_options(const SimOptions& o) {
   SimPlan plan;
   for (const auto& s : o.units.empty() ? unit_names() : o.units)
     plan.specs.push_back(parse_unit_spec(s));
-  if (!(o.sink_ready > 0 && o.sink_ready <= 1))
-    throw std::invalid_argument("--sink-ready must be in (0, 1]");
+  if (!(o.sink_ready >= kMinSinkReady && o.sink_ready <= 1))
+    throw std::invalid_argument(fmt::format(
+        "--sink-ready must be in [{}, 1] (a run takes ~vectors / p cycles)", kMinSinkReady));
   for (const auto* out : {&o.report, &o.dump, &o.vcd}) {
     if (out->empty()) continue;
     std::error_code ec;
@@ -255,7 +256,8 @@ void add_sim_command(CLI::App& app, int& status) {
   sub->add_option("--mode", o->mode, "fast | clocked | auto (clocked when --vcd is given)")
       ->check(CLI::IsMember({"fast", "clocked", "auto"}))
       ->capture_default_str();
-  sub->add_option("--sink-ready", o->sink_ready, "Probability the sink is ready in a cycle")
+  sub->add_option("--sink-ready", o->sink_ready,
+                  "Probability the sink is ready in a cycle (0.01..1)")
       ->capture_default_str();
   sub->add_option("--seed", o->seed, "Seed of the sink backpressure pattern")
       ->capture_default_str();

@@ -36,6 +36,10 @@ struct UnitTiming {
 
 // Deterministic sink backpressure: ready in a cycle with the given probability, from a hash of
 // (seed, cycle) so every mode and every re-run sees the same pattern.
+// The least sink-ready probability a run accepts: the sink then takes a result every 1/p cycles
+// on average, so a run lasts ~vectors/p cycles; much below this a run is, in effect, endless.
+inline constexpr double kMinSinkReady = 0.01;
+
 struct SinkReady {
   double probability = 1.0;
   std::uint64_t seed = 0;

@@ -7,6 +7,12 @@
 namespace glint {
 
 UScaler::UScaler(const QFormat& in, std::int64_t root_raw, int fh) {
+  // (t - root) k needs Wi + k_int + fk bits, k_int >= 1: refuse what cannot fit before any shift
+  // by those widths (a shift by 63 or more would be undefined, and k's width search endless).
+  if (fh < 0 || in.width() + 1 + (fh + 2) > 62) {
+    throw std::invalid_argument(fmt::format(
+        "u scaler: input {} with {} fraction bits of u: registers exceed 62 bits", in.name(), fh));
+  }
   fi_ = in.frac_bits;
   fh_ = fh;
   one_in_ = in.raw_one();

@@ -72,6 +72,19 @@ PowUnit::PowUnit(const PowConfig& cfg, const MaterialParams& m) : cfg_(cfg) {
   y_shift_ = cfg.n_format.frac_bits + cfg.log_frac - cfg.y_frac;
   out_shift_ = cfg.exp_frac - cfg.out.frac_bits;
   if (y_shift_ < 0) throw std::invalid_argument("pow: y_frac exceeds the product's fraction bits");
+  // The interpolations multiply a node difference (entry bits + sign) by the remainder bits:
+  // wide inputs leave many remainder bits below the table address (in.frac_bits - log_bits).
+  if (cfg.log_frac + 2 + log_r_bits_ > 62)
+    throw std::invalid_argument(
+        fmt::format("pow: log2 interpolation of {} remainder bits (in {} - log_bits {}) by "
+                    "log_frac {} overflows "
+                    "62-bit products",
+                    log_r_bits_, cfg.in.name(), cfg.log_bits, cfg.log_frac));
+  if (cfg.exp_frac + 3 + exp_r_bits_ > 62)
+    throw std::invalid_argument(fmt::format(
+        "pow: exp2 interpolation of {} remainder bits (y_frac {} - exp_bits {}) by exp_frac {} "
+        "overflows 62-bit products",
+        exp_r_bits_, cfg.y_frac, cfg.exp_bits, cfg.exp_frac));
   // n_raw * log2t must fit: |log2 t| <= fi, so it needs n width + log2(fi) + log_frac + 1 bits.
   if (cfg.n_format.width() + 6 + cfg.log_frac > 62)
     throw std::invalid_argument("pow: n register and log table too wide for 62-bit products");
