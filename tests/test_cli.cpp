@@ -1009,6 +1009,16 @@ TEST_F(CliRegressUpdate, BadSpecOrUnitWithoutUpdateChangesNothing) {
   }
 }
 
+// A golden nested far deeper than any report is refused with its name, not a stack overflow.
+TEST_F(CliRegressUpdate, DeeplyNestedGoldenIsRefused) {
+  const std::size_t depth = 200000;
+  write_text(dir_ / "t" / "golden" / "phong_basic.json",
+             std::string(depth, '[') + std::string(depth, ']'));
+  const CliRun r = glint("regress --traces t");
+  EXPECT_EQ(r.status, 2) << r.out << r.err;
+  EXPECT_NE(r.err.find("phong_basic.json: nested deeper than"), std::string::npos) << r.err;
+}
+
 // A trace that fails part-way leaves every golden as it was, including those already re-run.
 TEST_F(CliRegressUpdate, FailingTraceWritesNoGolden) {
   const std::string before = read_text(dir_ / "t" / "golden" / "phong_basic.json");

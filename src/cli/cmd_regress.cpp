@@ -73,6 +73,26 @@ nlohmann::json run_child(const std::string& trace, const nlohmann::json& setup) 
   return nlohmann::json::parse(out);
 }
 
+// Goldens nest four levels deep; the bound keeps a hostile file from exhausting the stack
+// (nlohmann::json's destructor and dump() recurse once per level).
+constexpr int kMaxGoldenDepth = 32;
+
+nlohmann::json read_golden(const fs::path& path) {
+  std::ifstream in(path);
+  if (!in) throw std::invalid_argument(fmt::format("{}: cannot read", path.string()));
+  const auto bounded = [&](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
+    if (depth > kMaxGoldenDepth)
+      throw std::invalid_argument(
+          fmt::format("{}: nested deeper than {} levels", path.string(), kMaxGoldenDepth));
+    return true;
+  };
+  try {
+    return nlohmann::json::parse(in, bounded);
+  } catch (const nlohmann::json::exception& e) {
+    throw std::invalid_argument(fmt::format("{}: not valid JSON: {}", path.string(), e.what()));
+  }
+}
+
 int run_regress(const RegressOptions& o) {
   const fs::path dir(o.traces), golden_dir = fs::path(o.traces) / "golden";
   if (!fs::is_directory(dir))
@@ -90,13 +110,7 @@ int run_regress(const RegressOptions& o) {
     const fs::path golden_path = golden_dir / (trace.stem().string() + ".json");
     nlohmann::json golden;
     if (fs::exists(golden_path)) {
-      std::ifstream in(golden_path);
-      try {
-        golden = nlohmann::json::parse(in);
-      } catch (const nlohmann::json::exception& e) {
-        throw std::invalid_argument(
-            fmt::format("{}: not valid JSON: {}", golden_path.string(), e.what()));
-      }
+      golden = read_golden(golden_path);
     } else if (o.update) {
       golden = {{"trace", trace.filename().string()},
                 {"units", o.units.empty() ? default_specs() : o.units},
