@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -217,6 +218,25 @@ TEST_F(SimModes, BadWindowAndSinkAreUsageErrors) {
     EXPECT_EQ(WEXITSTATUS(st), 2) << args;
   }
   EXPECT_FALSE(fs::exists(dir_ / "x.vcd"));
+}
+
+// Two outputs on one path would overwrite each other: refused before anything is written.
+TEST_F(SimModes, TwoOutputsOnOnePathAreRefused) {
+  const std::string vec = quote((kTraces / "phong_basic.vec").string());
+  for (const char* args : {" --dump o.txt --report o.txt", " --report ./o.txt --vcd o.txt",
+                           " --vcd w.vcd --dump w.gtkw", " --dump sub/../o.txt --report o.txt"}) {
+    fs::create_directories(dir_ / "sub");
+    const std::string cmd = "cd " + quote(dir_.string()) + " && " + quote(kGlint) + " sim " + vec +
+                            args + " >/dev/null 2>err.txt";
+    const int st = std::system(cmd.c_str());
+    ASSERT_TRUE(WIFEXITED(st));
+    EXPECT_EQ(WEXITSTATUS(st), 2) << args;
+    std::ifstream err(dir_ / "err.txt");
+    const std::string msg((std::istreambuf_iterator<char>(err)), std::istreambuf_iterator<char>());
+    EXPECT_NE(msg.find("name the same file"), std::string::npos) << args << ": " << msg;
+    EXPECT_FALSE(fs::exists(dir_ / "o.txt")) << args;
+    EXPECT_FALSE(fs::exists(dir_ / "w.vcd")) << args;
+  }
 }
 
 TEST_F(SimModes, OutputsThatAreNotRegularFilesAreRefused) {

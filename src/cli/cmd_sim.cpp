@@ -72,13 +72,26 @@ SimPlan check_sim_options(const SimOptions& o) {
   if (!(o.sink_ready >= kMinSinkReady && o.sink_ready <= 1))
     throw std::invalid_argument(fmt::format(
         "--sink-ready must be in [{}, 1] (a run takes ~vectors / p cycles)", kMinSinkReady));
-  for (const auto* out : {&o.report, &o.dump, &o.vcd}) {
-    if (out->empty()) continue;
+  // Outputs by option (the VCD's save file beside it too): none may be the input or another.
+  std::vector<std::pair<std::string, std::filesystem::path>> outputs;
+  for (const auto& [option, path] : {std::pair{"--report", &o.report}, std::pair{"--dump", &o.dump},
+                                     std::pair{"--vcd", &o.vcd}}) {
+    if (path->empty()) continue;
     std::error_code ec;
-    if (std::filesystem::equivalent(o.vectors, *out, ec))
-      throw std::invalid_argument(fmt::format("output {} is the input vector file", *out));
-    check_output_path(*out);
+    if (std::filesystem::equivalent(o.vectors, *path, ec))
+      throw std::invalid_argument(fmt::format("output {} is the input vector file", *path));
+    check_output_path(*path);
+    outputs.emplace_back(option,
+                         std::filesystem::weakly_canonical(std::filesystem::absolute(*path)));
+    if (option == std::string("--vcd"))
+      outputs.emplace_back("--vcd's save file",
+                           std::filesystem::path(outputs.back().second).replace_extension(".gtkw"));
   }
+  for (std::size_t i = 0; i < outputs.size(); ++i)
+    for (std::size_t j = i + 1; j < outputs.size(); ++j)
+      if (outputs[i].second == outputs[j].second)
+        throw std::invalid_argument(fmt::format("{} and {} name the same file {}", outputs[i].first,
+                                                outputs[j].first, outputs[i].second.string()));
   plan.clocked = o.mode == "clocked" || (o.mode == "auto" && !o.vcd.empty());
   if (!plan.clocked && !o.vcd.empty())
     throw std::invalid_argument("--vcd needs the clocked mode (--mode clocked or auto)");
