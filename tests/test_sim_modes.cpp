@@ -210,7 +210,9 @@ TEST_F(SimModes, BadWindowAndSinkAreUsageErrors) {
   for (const char* args :
        {" --vcd-window 5", " --vcd-window 9:3", " --vcd-window a:b", " --sink-ready 0",
         " --sink-ready 1.5", " --sink-ready 1e-9", " --sink-ready 0.0099", " --sink-ready nan",
-        " --mode fast --vcd x.vcd"}) {
+        " --mode fast --vcd x.vcd", " --seed -1", " --seed 18446744073709551616", " --seed 1x",
+        " --vcd x.vcd --vcd-window 1:-1", " --vcd x.vcd --vcd-window +1:5",
+        " --vcd x.vcd --vcd-window 0:18446744073709551616"}) {
     const std::string cmd = "cd " + quote(dir_.string()) + " && " + quote(kGlint) + " sim " + vec +
                             args + " >/dev/null 2>&1";
     const int st = std::system(cmd.c_str());

@@ -7,11 +7,14 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
+#include <string_view>
 
 #include "cli/cli.h"
 #include "eval/sim_report.h"
@@ -46,21 +49,28 @@ void write_atomic(const std::string& path, const std::string& text) {
   f.commit();
 }
 
+// A decimal unsigned 64-bit integer, digits only: no sign (std::stoull would wrap "-1" to
+// 2^64 - 1), no overflow.
+std::optional<std::uint64_t> parse_u64(std::string_view text) {
+  std::uint64_t v = 0;
+  if (text.empty() || text.front() < '0' || text.front() > '9') return std::nullopt;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc() || end != text.data() + text.size()) return std::nullopt;
+  return v;
+}
+
 // --vcd-window FIRST:LAST into `co`; throws std::invalid_argument naming the option.
 void parse_vcd_window(const std::string& text, ClockedOptions& co) {
   const auto colon = text.find(':');
-  try {
-    if (colon == std::string::npos) throw std::invalid_argument("no ':'");
-    std::size_t used = 0;
-    co.vcd_first = std::stoull(text.substr(0, colon), &used);
-    if (used != colon) throw std::invalid_argument("first");
-    const std::string last = text.substr(colon + 1);
-    co.vcd_last = std::stoull(last, &used);
-    if (used != last.size() || co.vcd_last < co.vcd_first) throw std::invalid_argument("last");
-  } catch (const std::exception&) {
+  const std::string_view all(text);
+  const auto first = colon == std::string::npos ? std::nullopt : parse_u64(all.substr(0, colon));
+  const auto last = colon == std::string::npos ? std::nullopt : parse_u64(all.substr(colon + 1));
+  if (!first || !last || *last < *first)
     throw std::invalid_argument(fmt::format(
-        "--vcd-window '{}': expected FIRST:LAST vector indices with FIRST <= LAST", text));
-  }
+        "--vcd-window '{}': expected FIRST:LAST vector indices (0..2^64-1) with FIRST <= LAST",
+        text));
+  co.vcd_first = *first;
+  co.vcd_last = *last;
 }
 
 // Every check that needs no input: unit specs, sink, output paths, mode and VCD window. Output
@@ -272,8 +282,15 @@ void add_sim_command(CLI::App& app, int& status) {
   sub->add_option("--sink-ready", o->sink_ready,
                   "Probability the sink is ready in a cycle (0.01..1)")
       ->capture_default_str();
-  sub->add_option("--seed", o->seed, "Seed of the sink backpressure pattern")
-      ->capture_default_str();
+  sub->add_option_function<std::string>(
+      "--seed",
+      [o](const std::string& text) {
+        const auto v = parse_u64(text);
+        if (!v)
+          throw CLI::ValidationError("--seed", "'" + text + "' is not an integer in 0..2^64-1");
+        o->seed = *v;
+      },
+      "Seed of the sink backpressure pattern (0..2^64-1, default 1)");
   sub->add_option("--batch", o->batch, "Fast mode: requests per time quantum")
       ->check(CLI::Range(1, 1 << 24))
       ->capture_default_str();
