@@ -1009,6 +1009,23 @@ TEST_F(CliRegressUpdate, BadSpecOrUnitWithoutUpdateChangesNothing) {
   }
 }
 
+// Nothing to check, or a tolerance that would pass anything, is a usage error, not a pass.
+TEST_F(CliRegressUpdate, EmptyFolderAndBadToleranceAreRefused) {
+  fs::create_directories(dir_ / "empty");
+  struct Case {
+    const char* args;
+    const char* names;
+  };
+  for (const Case& c :
+       {Case{"--traces empty", "no *.vec"}, Case{"--traces t --tolerance nan", "--tolerance"},
+        Case{"--traces t --tolerance -1", "--tolerance"},
+        Case{"--traces t --tolerance inf", "--tolerance"}}) {
+    const CliRun r = glint(std::string("regress ") + c.args);
+    EXPECT_EQ(r.status, 2) << c.args << ": " << r.out;
+    EXPECT_NE(r.err.find(c.names), std::string::npos) << c.args << ": " << r.err;
+  }
+}
+
 // A golden nested far deeper than any report is refused with its name, not a stack overflow.
 TEST_F(CliRegressUpdate, DeeplyNestedGoldenIsRefused) {
   const std::size_t depth = 200000;

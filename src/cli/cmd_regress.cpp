@@ -10,6 +10,7 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -97,12 +98,19 @@ int run_regress(const RegressOptions& o) {
   const fs::path dir(o.traces), golden_dir = fs::path(o.traces) / "golden";
   if (!fs::is_directory(dir))
     throw std::invalid_argument(fmt::format("--traces {}: not a directory", o.traces));
+  // A NaN or negative tolerance would pass every difference (every comparison with NaN is false).
+  if (!(std::isfinite(o.tolerance) && o.tolerance >= 0))
+    throw std::invalid_argument(
+        fmt::format("--tolerance {}: expected a finite number >= 0", o.tolerance));
   // A bad spec is a usage error here, with the spec named, not a failing child per trace.
   for (const auto& s : o.units) parse_unit_spec(s);
   std::vector<fs::path> traces;
   for (const auto& e : fs::directory_iterator(dir))
     if (e.path().extension() == ".vec") traces.push_back(e.path());
   std::sort(traces.begin(), traces.end());
+  // Nothing checked must not read as "nothing failed".
+  if (traces.empty())
+    throw std::invalid_argument(fmt::format("--traces {}: no *.vec trace in it", o.traces));
   int failed = 0, checked = 0;
   nlohmann::json summary = nlohmann::json::array();
   std::vector<std::pair<fs::path, nlohmann::json>> updates;  // written once every run succeeded
