@@ -73,6 +73,34 @@ Stream make_stream(std::size_t n, bool coloured) {
   return s;
 }
 
+// One traced clocked run of `specs` over a stream: the units, the run's diagnostics, and per lane
+// every result's timing and raw value in stream order.
+struct TracedRun {
+  std::vector<std::unique_ptr<SpecularUnit>> owned;
+  std::vector<const SpecularUnit*> units;
+  ClockedRunInfo info;
+  std::vector<std::vector<ResultTiming>> timing;
+  std::vector<std::vector<std::int64_t>> out_raw;
+  std::vector<TimingStats> stats;
+
+  TracedRun(const Stream& s, const SlotMap& slots, const std::vector<std::string>& specs,
+            const ClockedOptions& options) {
+    for (const std::string& sp : specs) {
+      owned.push_back(make_unit(parse_unit_spec(sp), slots.params));
+      units.push_back(owned.back().get());
+    }
+    timing.resize(units.size());
+    out_raw.resize(units.size());
+    stats = run_clocked(
+        units, slots, [&] { return std::make_unique<MemoryRowStream>(s.rows); }, options,
+        [&](const LaneOutput& o) {
+          timing[o.lane].push_back(o.timing);
+          out_raw[o.lane].push_back(o.out_raw);
+        },
+        &info);
+  }
+};
+
 using VcdInfo = test::VcdReader;
 VcdInfo parse_vcd(const std::string& path) {
   return VcdInfo(path);
@@ -200,27 +228,13 @@ TEST(RtlVcd, ScopesSignalsWidthsGtkwAndFst) {
                                           "schlick:divider=iterative,out=uq1.11",
                                           "lut:in=uq1.11,out=sq2.14",
                                           "pow"};
-  std::vector<std::unique_ptr<SpecularUnit>> owned;
-  std::vector<const SpecularUnit*> units;
-  for (const std::string& sp : specs) {
-    owned.push_back(make_unit(parse_unit_spec(sp), slots.params));
-    units.push_back(owned.back().get());
-  }
   ClockedOptions options;
   options.vcd_path = dir.file("run.vcd");
   options.sink = SinkReady{0.8, 5};
   options.colour_stage = stream_is_coloured(s.header);
   ASSERT_TRUE(options.colour_stage);
-  ClockedRunInfo info;
-  std::vector<std::vector<ResultTiming>> timing(units.size());
-  std::vector<std::vector<std::int64_t>> out_raw(units.size());
-  const auto stats = run_clocked(
-      units, slots, [&] { return std::make_unique<MemoryRowStream>(s.rows); }, options,
-      [&](const LaneOutput& o) {
-        timing[o.lane].push_back(o.timing);
-        out_raw[o.lane].push_back(o.out_raw);
-      },
-      &info);
+  const TracedRun run(s, slots, specs, options);
+  const auto& [owned, units, info, timing, out_raw, stats] = run;
 
   // Tracing changes nothing: the timing is still TimingEngine's.
   for (std::size_t u = 0; u < units.size(); ++u) {
@@ -604,26 +618,12 @@ TEST(RtlVcd, FstOutputReadsBackWithTheSameValues) {
   const Stream s = make_stream(300, true);
   const SlotMap slots = make_slots(s.header);
   const std::vector<std::string> specs = {"hast", "schlick:divider=iterative,out=uq1.11"};
-  std::vector<std::unique_ptr<SpecularUnit>> owned;
-  std::vector<const SpecularUnit*> units;
-  for (const std::string& sp : specs) {
-    owned.push_back(make_unit(parse_unit_spec(sp), slots.params));
-    units.push_back(owned.back().get());
-  }
   ClockedOptions options;
   options.vcd_path = dir.file("run.fst");
   options.sink = SinkReady{0.8, 5};
   options.colour_stage = true;
-  ClockedRunInfo info;
-  std::vector<std::vector<ResultTiming>> timing(units.size());
-  std::vector<std::vector<std::int64_t>> out_raw(units.size());
-  const auto stats = run_clocked(
-      units, slots, [&] { return std::make_unique<MemoryRowStream>(s.rows); }, options,
-      [&](const LaneOutput& o) {
-        timing[o.lane].push_back(o.timing);
-        out_raw[o.lane].push_back(o.out_raw);
-      },
-      &info);
+  const TracedRun run(s, slots, specs, options);
+  const auto& [owned, units, info, timing, out_raw, stats] = run;
   EXPECT_EQ(dir.entries(), (std::vector<std::string>{"run.fst", "run.gtkw"}));
   EXPECT_TRUE(info.fst);
   EXPECT_EQ(info.vcd_path, dir.file("run.fst"));
