@@ -24,7 +24,7 @@
 #include <vector>
 
 #include "rtl_model/rtl_common.h"
-#include "units/catalogue.h"
+#include "units/unit.h"
 
 namespace glint::rtl {
 

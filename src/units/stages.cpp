@@ -7,8 +7,7 @@
 
 namespace glint {
 
-Stage input_stage(const QFormat& in) {
-  (void)in;
+Stage input_stage() {
   return {"in", 0, 0, {}};
 }
 
@@ -46,7 +45,6 @@ StageLayout::StageLayout(std::vector<Stage> stages, int ii, const QFormat& out)
   offset_.assign(stage_of_.size() + 1, 0);
   for (std::size_t p = 1; p < stage_of_.size(); ++p)
     offset_[p + 1] = offset_[p] + stages_[stage_of_[p]].registers.size();
-  offset_[0] = 0;
 }
 
 }  // namespace glint

@@ -60,8 +60,8 @@ class StageLayout {
   std::vector<std::size_t> offset_;    // per position 0..L, plus the end
 };
 
-// The compute input stage every unit starts with (it holds t only).
-Stage input_stage(const QFormat& in);
+// The compute input stage every unit starts with (it holds t only, which every stage carries).
+Stage input_stage();
 
 // Where a datapath's staged evaluation writes: StageProbe records each (position, register) value
 // into a flat array laid out by a StageLayout; NoProbe is the fast path, which the compiler removes

@@ -44,7 +44,7 @@ struct Hast : UnitKindDefaults {
 
   static std::vector<Stage> stages(const Config& c, const std::vector<Datapath>&, UnitTiming) {
     const QFormat uf = uq(1, c.out.frac_bits + c.guard);
-    std::vector<Stage> s{input_stage(c.in)};
+    std::vector<Stage> s{input_stage()};
     if (c.d == 1) {
       s.push_back({"scale", 1, 1, {{"result", c.out}}});
       return s;

@@ -102,7 +102,7 @@ struct Horner : UnitKindDefaults {
     const QFormat uf = uq(1, d.out.frac_bits + d.guard);
     const auto [cf, accf] = coefficient_and_acc(c, units);
     const int p = timing.latency - 1;
-    std::vector<Stage> s{input_stage(d.in), {"scale", 1, 1, {{"u", uf}, {"acc", cf}}}};
+    std::vector<Stage> s{input_stage(), {"scale", 1, 1, {{"u", uf}, {"acc", cf}}}};
     for (int k = 1; k <= p; ++k) {
       Stage m{"mac" + std::to_string(k), k + 1, k + 1, {{"u", uf}, {"acc", accf}}};
       if (k == p) m.registers = {{"result", d.out}};
@@ -120,7 +120,7 @@ struct Horner : UnitKindDefaults {
     int cw = 0, wk = 0, acc_int = 0;
     for (const HornerUnit& u : units) {
       cw = std::max(cw, u.coeff_format().width());
-      wk = std::max(wk, u.scaler().k_int_bits() + fh + 2);
+      wk = std::max(wk, u.scaler().k_int_bits() + u.scaler().k_frac());
       acc_int = std::max(acc_int, u.acc_int_bits());
     }
     const int wacc = acc_int + fh;  // signed accumulator

@@ -53,7 +53,7 @@ struct Lut : UnitKindDefaults {
   static std::vector<Stage> stages(const Config& c, const std::vector<Datapath>& units,
                                    UnitTiming) {
     const QFormat node = uq(1, c.table_frac);
-    return {input_stage(c.in),
+    return {input_stage(),
             {"lookup",
              1,
              1,

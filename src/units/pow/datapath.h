@@ -99,8 +99,6 @@ class PowUnit {
   double shininess_q() const;
   const PowConfig& config() const { return cfg_; }
   std::size_t table_bits() const;
-  int log_remainder_bits() const { return log_r_bits_; }
-  int exp_remainder_bits() const { return exp_r_bits_; }
 
  private:
   PowConfig cfg_;

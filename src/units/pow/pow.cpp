@@ -75,7 +75,7 @@ struct Pow : UnitKindDefaults {
   static std::vector<Stage> stages(const Config& c, const std::vector<Datapath>&, UnitTiming) {
     const Widths w = widths(c);
     const QFormat log_node = uq(1, c.log_frac), exp_node = uq(2, c.exp_frac);
-    return {input_stage(c.in),
+    return {input_stage(),
             {"log_table",
              1,
              1,
@@ -99,15 +99,15 @@ struct Pow : UnitKindDefaults {
                    const std::vector<Datapath>&) {
     const QFormat nf = c.n_format;
     const int lb = c.log_bits, lf = c.log_frac, yf = c.y_frac, eb = c.exp_bits, xf = c.exp_frac;
-    const int wi = L.in.width(), fi = L.in.frac_bits, wo = L.out.width(), wn = nf.width();
+    const int wi = L.in.width(), wo = L.out.width(), wn = nf.width();
     const Widths w = widths(c);
     const int ebits = w.ebits;
-    const int lw = lf + 1;                   // log2(1 + x) in [0, 1]: 1.0 at the last node
-    const int log_r = std::max(0, fi - lb);  // interpolation bits of the mantissa
-    const int log2t_w = lf + ebits + 1;      // signed log2 t
-    const int yint = w.yint;                 // |y| <= n_max fi, signed
-    const int xw = xf + 2;                   // 2^x in [1, 2]: 2.0 at the last node
-    const int exp_r = std::max(0, yf - eb);
+    const int lw = lf + 1;                 // log2(1 + x) in [0, 1]: 1.0 at the last node
+    const int log_r = w.log_r;             // interpolation bits of the mantissa
+    const int log2t_w = lf + w.log2t_int;  // signed log2 t
+    const int yint = w.yint;               // |y| <= n_max fi, signed
+    const int xw = xf + 2;                 // 2^x in [1, 2]: 2.0 at the last node
+    const int exp_r = w.exp_r;
 
     // Stage 1: normalise t, read log2 at the segment's two ends.
     const Seg z = b.lzd(wi, "stage 1: leading-one detector");

@@ -67,7 +67,7 @@ struct Schlick : UnitKindDefaults {
     const QFormat df = denominator_format(d);
     const QFormat rf = uq(df.int_bits + 1, df.frac_bits);  // partial remainder < 2 D
     const int q = d.out.frac_bits + 2;
-    std::vector<Stage> s{input_stage(d.in), {"mac", 1, 1, {{"D", df}}}};
+    std::vector<Stage> s{input_stage(), {"mac", 1, 1, {{"D", df}}}};
     if (c.iterative) {
       // One shift register for every iteration: its k bits are an integer until the last.
       s.push_back({"div", 2, q + 1, {{"remainder", rf}, {"quotient", uq(q, 0)}}});
