@@ -411,7 +411,8 @@ TEST_F(CliTest, EvalJson) {
   ASSERT_TRUE(j.at("units").is_array());
   std::vector<std::string> names;
   // phong_basic: n = 50, eps = 1e-3, c_y = 1. Its t grid (step 0.002) stays far from tau in
-  // input ulps, so the comparator skips exactly the rows with t <= tau.
+  // input ulps. Every unit skips a subset of the float test's t <= tau; the units whose output
+  // stays at or below t^n's there skip exactly those rows, Schlick (above t^n) fewer.
   const double tau = std::pow(1e-3, 1.0 / 50);
   const auto skipped = static_cast<std::size_t>(
       std::count_if(ts.begin(), ts.end(), [&](double t) { return t <= tau; }));
@@ -419,21 +420,37 @@ TEST_F(CliTest, EvalJson) {
     const std::string name = u.at("unit");
     names.push_back(name);
     EXPECT_EQ(u.at("vectors"), ts.size()) << name;
-    EXPECT_EQ(u.at("skipped"), skipped) << name;
-    EXPECT_EQ(u.at("errors").at("count"), ts.size()) << name;
-    const double ulps = u.at("errors").at("max_datapath_ulps");
     if (name == "schlick") {
-      EXPECT_LE(ulps, 0.5 + 1e-9) << "schlick must be correctly rounded";
+      EXPECT_LT(u.at("skipped"), skipped) << name;
+    } else {
+      EXPECT_EQ(u.at("skipped"), skipped) << name;
     }
-    if (name == "schlick" || name == "hast" || name == "horner") {
+    const json& e = u.at("errors");
+    EXPECT_EQ(e.at("count"), ts.size()) << name;
+    const double ulps = e.at("max_datapath_ulps");
+    const std::string contract = e.at("contract");
+    if (name == "schlick" || name == "lut") {
+      EXPECT_EQ(contract, "correctly_rounded") << name;
+      EXPECT_LE(ulps, 0.5 + 1e-9) << name << " must be correctly rounded";
+    }
+    if (name == "hast" || name == "horner") {
+      EXPECT_EQ(contract, "faithful") << name;
       EXPECT_LT(ulps, 1.0) << name << " must be faithful";
     }
-    if (name == "pow" || name == "lut") {
-      ASSERT_TRUE(u.at("errors").at("error_bound").is_number()) << name;
-      EXPECT_LE(u.at("errors").at("max_abs").get<double>(),
-                u.at("errors").at("error_bound").get<double>())
-          << name << " exceeds its stated bound";
+    EXPECT_LE(ulps, e.at("parts").at("datapath").at("bound_ulps").get<double>()) << name;
+    // Every observed part within its bound, the total within the bound, on the pixel too.
+    for (const char* part : {"input", "parameter", "approximation", "datapath", "skip"}) {
+      const json& p = e.at("parts").at(part);
+      EXPECT_LE(p.at("max_abs").get<double>(), p.at("bound").get<double>() * (1 + 1e-12))
+          << name << " " << part;
     }
+    EXPECT_LE(e.at("max_abs").get<double>(), e.at("bound").get<double>()) << name;
+    EXPECT_LE(e.at("weighted").at("max_abs").get<double>(),
+              e.at("weighted").at("bound").get<double>())
+        << name;
+    EXPECT_NEAR(e.at("max_lsb").get<double>(), e.at("max_abs").get<double>() * 255, 1e-9);
+    ASSERT_EQ(e.at("slots").size(), 1u) << name;
+    EXPECT_EQ(e.at("slots")[0].at("name"), "material 'white'") << name;
   }
   EXPECT_EQ(names, kAllUnits);
 }
@@ -540,7 +557,7 @@ TEST_F(CliTest, EvalDumpCsvAgreesWithJson) {
     ok &= std::abs(ref - std::pow(std::max(0.0, std::min(t, 1.0)), 50)) <= 1e-12;
     ok &= std::abs(std::stoll(r.f.at("t_raw")) - std::clamp(t, 0.0, 1.0) * 32768) <= 0.5;
     ok &= fixed == std::ldexp(static_cast<double>(fixed_raw), -15);  // default out = uq1.15
-    ok &= skip == (t <= tau);
+    ok &= !skip || t <= tau;               // the skip set is inside the float test's
     ok &= !skip || fixed_raw == 0;         // a skipped request gives exactly 0
     ok &= t != 1.0 || fixed_raw == 32768;  // every unit gives exactly 1.0 at t = 1
     if (!ok && ++bad_rows <= 5) ADD_FAILURE() << "inconsistent dump row " << i + 2;
@@ -823,14 +840,18 @@ TEST_F(CliTest, ReportsCarrySchemaVersions) {
   const json s = glint_json("sim " + quote(kPhongBasic) + " --json --report r.json");
   ASSERT_TRUE(e.is_object());
   ASSERT_TRUE(s.is_object());
-  // eval 2: version 1 was the unversioned layout with its own key names (README).
-  EXPECT_EQ(e.at("glint_eval_report"), 2);
-  EXPECT_EQ(s.at("glint_sim_report"), 1);
-  EXPECT_EQ(json::parse(read_text(dir_ / "r.json")).at("glint_sim_report"), 1);
-  for (const auto& u : e.at("units")) {
-    for (const char* old : {"error_vs_reference", "datapath_error_ulps", "model_error",
-                            "mismatch_8bit_fraction", "error_bound"})
-      EXPECT_FALSE(u.contains(old)) << old << " is an eval v1 key";
+  // eval 3 / sim 2: errors decomposed into parts with bounds (README); eval 2 nested v1's keys.
+  EXPECT_EQ(e.at("glint_eval_report"), 3);
+  EXPECT_EQ(s.at("glint_sim_report"), 2);
+  EXPECT_EQ(json::parse(read_text(dir_ / "r.json")).at("glint_sim_report"), 2);
+  for (const json* report : {&e, &s}) {
+    for (const auto& u : report->at("units")) {
+      for (const char* old : {"error_vs_reference", "datapath_error_ulps", "model_error",
+                              "mismatch_8bit_fraction", "error_bound"})
+        EXPECT_FALSE(u.contains(old)) << old << " is an eval v1 key";
+      for (const char* old : {"mismatch_8bit_fraction", "error_bound", "model"})
+        EXPECT_FALSE(u.at("errors").contains(old)) << old << " is a key of eval 2 / sim 1";
+    }
   }
 }
 
@@ -852,19 +873,21 @@ TEST_F(CliTest, EvalAndSimUseTheSameKeys) {
       flatten(e.at("units")[i], "", fe);
       flatten(s.at("units")[i], "", fs);
       // sim's accuracy statistics, all present in eval under the same path with the same value.
-      for (const char* k :
-           {"unit", "spec", "vectors", "skipped", "errors.max_abs", "errors.rms", "errors.t_at_max",
-            "errors.max_datapath_ulps", "errors.t_at_max_datapath_ulps",
-            "errors.mismatch_8bit_fraction", "errors.error_bound"}) {
+      for (const char* k : {"unit", "spec", "vectors", "skipped", "errors.max_abs", "errors.rms",
+                            "errors.max_datapath_ulps", "errors.mismatch_fraction", "errors.bound",
+                            "errors.parts.input.bound", "errors.contract", "errors.weighted.bound"})
         ASSERT_EQ(fs.count(k), 1u) << k;
+      for (const auto& [k, v] : fs) {
+        if (k.rfind("errors.", 0) != 0 && k != "unit" && k != "spec" && k != "vectors" &&
+            k != "skipped")
+          continue;
         ASSERT_EQ(fe.count(k), 1u) << "eval lacks " << k;
-        EXPECT_EQ(fe[k], fs[k]) << kAllUnits[i] << " " << k;
+        EXPECT_EQ(fe[k], v) << kAllUnits[i] << " " << k;
       }
       // Eval's own keys, documented in the eval report schema.
       for (const auto& [k, v] : fe) {
         if (fs.count(k)) continue;
-        const bool own = k == "skipped_fraction" || k == "errors.count" ||
-                         k.rfind("errors.model.", 0) == 0 || k.rfind("description.", 0) == 0;
+        const bool own = k == "skipped_fraction" || k.rfind("description.", 0) == 0;
         EXPECT_TRUE(own) << "eval key " << k << " is neither sim's nor documented as eval's own";
       }
     }
@@ -884,7 +907,7 @@ TEST_F(CliTest, EvalAndSimTablesShareColumnNames) {
     return w;
   };
   const auto eh = words(lines_of(e.out).at(1)), sh = words(lines_of(s.out).at(1));
-  for (const char* col : {"unit", "vectors", "skip%", "max_err", "dp_ulps", "8bit%"}) {
+  for (const char* col : {"unit", "vectors", "skip%", "max_err", "dp_ulps", "disp%"}) {
     EXPECT_EQ(std::count(eh.begin(), eh.end(), col), 1) << col << " in eval: " << e.out;
     EXPECT_EQ(std::count(sh.begin(), sh.end(), col), 1) << col << " in sim: " << s.out;
   }

@@ -170,7 +170,12 @@ TEST_F(SimModes, SkippingRaisesIterativeThroughputAndLowersPipelinedActivity) {
   const json it = json::parse(run("sim " + vec + " --json --unit schlick:divider=iterative" +
                                   " --unit schlick:divider=iterative,skip=off"));
   const double with_skip = it["units"][0]["throughput"], without = it["units"][1]["throughput"];
-  EXPECT_GT(with_skip, 2.0 * without) << with_skip << " vs " << without;
+  // Schlick skips below its own threshold (where S_n falls to eps: a lower t than t^n's tau),
+  // ~88 % of phong_basic's rows; an II = q divider then finishes in proportion to the requests it
+  // computes.
+  EXPECT_GT(with_skip, 1.5 * without) << with_skip << " vs " << without;
+  const double computed = it["units"][0]["computed"], vectors = it["units"][0]["vectors"];
+  EXPECT_NEAR(with_skip / without, vectors / computed, 0.1 * vectors / computed);
   const json pl = json::parse(run("sim " + vec + " --json --unit schlick --unit schlick:skip=off"));
   EXPECT_LT(pl["units"][0]["computed"].get<double>(), pl["units"][1]["computed"].get<double>());
   // Pipelined: one result per cycle either way, so throughput barely moves.

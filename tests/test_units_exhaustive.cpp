@@ -3,9 +3,11 @@
 //  - Schlick is correctly rounded (<= ½ ulp of its real-valued model at the quantized t and n);
 //  - Hast and Horner are faithful (< 1 ulp of their real-valued models at the quantized input and
 //    coefficients);
-//  - pow and lut stay within the bound they state against t^n itself;
+//  - pow and lut stay within the bound they state against t^n itself on every computed input;
 //  - every unit is monotone non-decreasing in t, returns exactly 1.0 at t = 1 (Schlick, Hast, the
-//    constrained fits, pow, lut), and exactly 0 for t <= tau when skipping.
+//    constrained fits, pow, lut), and exactly 0 where it skips;
+//  - every unit's comparator skips only inputs that Källberg's float test skips on real t, and
+//    only where the unit's own output is imperceptible (Källberg §3).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -21,12 +23,14 @@ constexpr std::int64_t kInputs = std::int64_t{1} << 16;
 
 MaterialParams material(double n, double c_y = 1.0, double eps = 1e-3) {
   const TauResult t = tau_power(n, eps, c_y);
-  return MaterialParams{n, t.never_skip ? -1.0 : t.tau, t.always_skip};
+  MaterialParams m{n, t.never_skip ? -1.0 : t.tau, t.always_skip};
+  m.level = t.eps / c_y;
+  return m;
 }
 
 struct Sweep {
   double max_ulps = 0;        // |eval - model| / ulp
-  double max_abs_vs_pow = 0;  // |eval - t_q^n|
+  double max_abs_vs_pow = 0;  // |eval - t_q^n| where computed
   std::int64_t first_nonmonotone = -1;
   std::int64_t at_one = -1;
   std::int64_t nonzero_skipped = 0;
@@ -47,7 +51,8 @@ Sweep sweep(const SpecularUnit& u, std::size_t slot, double n) {
       s.max_ulps = std::max(s.max_ulps, std::fabs(v - u.model(slot, t)) / out.ulp());
     }
     const double tq = std::min(1.0, std::ldexp(static_cast<double>(t), -in.frac_bits));
-    s.max_abs_vs_pow = std::max(s.max_abs_vs_pow, std::fabs(v - std::pow(tq, n)));
+    if (!u.skip(slot, t))
+      s.max_abs_vs_pow = std::max(s.max_abs_vs_pow, std::fabs(v - std::pow(tq, n)));
     if (t == in.raw_one()) s.at_one = r;
   }
   return s;
@@ -182,27 +187,34 @@ TEST(ExhaustiveUnits, LutWithinStatedBound) {
         const Sweep s = sweep(*u, 0, n);
         const std::string what = u->canonical_spec() + " n=" + std::to_string(n);
         EXPECT_LE(s.max_abs_vs_pow, u->error_bound(0)) << what;
-        // The datapath against its exact-node interpolation: table ½ ulp + final ½ ulp.
-        EXPECT_LE(s.max_ulps, 0.5 + 0.5 * std::ldexp(1.0, -2) + 1e-9) << what;
+        // The datapath against the exact interpolation of its rounded entries: one final rounding.
+        EXPECT_LE(s.max_ulps, 0.5 + 1e-9) << what;
         expect_common(s, *u, what);
       }
     }
   }
 }
 
-TEST(ExhaustiveUnits, SkipMatchesFloatThreshold) {
-  // The comparator never skips a t that the float test t <= tau keeps (tau rounded down), and
-  // misses at most the one input LSB between tau_q and tau.
-  for (double n : kShininess) {
-    const MaterialParams m = material(n);
-    const auto u = build("schlick", m);
-    for (std::int64_t t = 0; t <= 32768; ++t) {
-      const double tv = std::ldexp(static_cast<double>(t), -15);
-      if (u->skip(0, t)) {
-        EXPECT_LE(tv, m.tau) << n;
-      }
-      if (tv <= m.tau - std::ldexp(1.0, -15)) {
-        EXPECT_TRUE(u->skip(0, t)) << n;
+TEST(ExhaustiveUnits, SkipInsideFloatTestAndImperceptible) {
+  // Every unit's comparator threshold T: each real t that rounds to a code <= T is <= tau (the
+  // float test skips it too), the unit's own output there is at most eps_K / c_y, and T is the
+  // largest such code (either the float test's bound or the next code's output is visible).
+  for (const char* name : {"pow", "schlick", "hast", "horner", "lut"}) {
+    for (double n : kShininess) {
+      for (double cy : {1.0, 0.01}) {
+        const MaterialParams m = material(n, cy);
+        const auto u = build(name, m);
+        const std::int64_t top = u->tau_raw(0);
+        const std::string what = std::string(name) + " n=" + std::to_string(n);
+        ASSERT_GE(top, 0) << what;
+        const double level = 1e-3 / cy;
+        for (std::int64_t t = 0; t <= top; ++t) {
+          ASSERT_LE((static_cast<double>(t) + 0.5) * std::ldexp(1.0, -15), m.tau) << what;
+          ASSERT_LE(std::ldexp(static_cast<double>(u->eval(0, t)), -15), level) << what;
+        }
+        const bool float_bound = (static_cast<double>(top) + 1.5) * std::ldexp(1.0, -15) > m.tau;
+        const bool visible_next = std::ldexp(static_cast<double>(u->eval(0, top + 1)), -15) > level;
+        EXPECT_TRUE(float_bound || visible_next) << what << ": threshold " << top << " not tight";
       }
     }
   }

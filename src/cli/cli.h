@@ -20,6 +20,9 @@ int guarded(const std::function<int()>& body);
 // Prints a JSON document on stdout (one document, newline-terminated).
 void print_json(const nlohmann::json& j);
 
+// --display-bits N: the display depth errors are counted in (LSBs of an N-bit output), 1..16.
+void add_display_bits_option(CLI::App* sub, int& bits);
+
 // Parses "r,g,b" into three doubles; throws std::invalid_argument naming the option.
 std::array<double, 3> parse_rgb(const std::string& text, const std::string& option);
 

@@ -33,6 +33,13 @@ void print_json(const nlohmann::json& j) {
   std::cout << j.dump(2) << '\n';
 }
 
+void add_display_bits_option(CLI::App* sub, int& bits) {
+  sub->add_option("--display-bits", bits,
+                  "Display depth for errors in LSBs (lsb, bound_lsb, mismatch): 1..16")
+      ->check(CLI::Range(1, 16))
+      ->default_val(8);
+}
+
 std::array<double, 3> parse_rgb(const std::string& text, const std::string& option) {
   std::array<double, 3> out{};
   std::size_t pos = 0;

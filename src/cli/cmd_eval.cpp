@@ -19,6 +19,7 @@ struct EvalOptions {
   std::string vectors;
   std::vector<std::string> units;
   std::string dump;
+  int display_bits = 8;
   bool json = false;
 };
 
@@ -27,7 +28,7 @@ int run_eval(const EvalOptions& o) {
   for (const auto& s : o.units.empty() ? unit_names() : o.units)
     specs.push_back(parse_unit_spec(s));
   VectorReader reader(o.vectors);
-  Evaluator ev(reader.header(), specs);
+  Evaluator ev(reader.header(), specs, o.display_bits);
 
   std::unique_ptr<AtomicOutputFile> dump;
   if (!o.dump.empty()) {
@@ -68,7 +69,7 @@ int run_eval(const EvalOptions& o) {
     std::cout << fmt::format("{}: {} vectors, {} slots{}\n", o.vectors, reader.rows_read(),
                              ev.slots().params.size(),
                              ev.slots().per_light ? " (light x material)" : "")
-              << format_eval_table(ev.stats());
+              << format_eval_table(ev.stats()) << format_parts_table(ev.stats());
     for (const auto& s : ev.stats()) std::cout << fmt::format("  {}: {}\n", s.name, s.spec);
   }
   return kExitOk;
@@ -83,6 +84,7 @@ void add_eval_command(CLI::App& app, int& status) {
   sub->add_option("VECTORS", o->vectors, "Vector file (see traces/README.md)")->required();
   sub->add_option("--unit", o->units, "Unit SPEC NAME[:key=value,...] (repeatable; default all)");
   sub->add_option("--dump", o->dump, "Per-vector CSV (written atomically)");
+  add_display_bits_option(sub, o->display_bits);
   sub->add_flag("--json", o->json, "Print one JSON document on stdout");
   sub->callback([o, &status] { status = guarded([&] { return run_eval(*o); }); });
 }

@@ -33,6 +33,7 @@ struct SimOptions {
   double sink_ready = 1.0;
   std::uint64_t seed = 1;
   std::size_t batch = 4096;
+  int display_bits = 8;
   bool json = false;
 };
 
@@ -119,14 +120,16 @@ struct SimLanes {
   std::vector<LaneAccumulator> acc;  // refers to *owned: built once, never moved out of
 };
 
-void make_lanes(const VectorHeader& header, const std::vector<UnitSpec>& specs, SimLanes& lanes) {
+void make_lanes(const VectorHeader& header, const std::vector<UnitSpec>& specs, int display_bits,
+                SimLanes& lanes) {
   lanes.slots = make_slots(header);
   lanes.colour = stream_is_coloured(header);
   for (const auto& s : specs) {
     lanes.owned.push_back(make_unit(s, lanes.slots.params));
     lanes.units.push_back(lanes.owned.back().get());
   }
-  for (const auto* u : lanes.units) lanes.acc.emplace_back(*u);
+  lanes.acc.reserve(lanes.units.size());
+  for (const auto* u : lanes.units) lanes.acc.emplace_back(*u, lanes.slots, display_bits);
   std::vector<std::string> names;
   for (const auto* u : lanes.units) names.push_back(u->name());
   const auto labels = unit_labels(names);
@@ -251,7 +254,7 @@ int run_sim(const SimOptions& o) {
   const SimPlan plan = check_sim_options(o);
   VectorReader reader(o.vectors);
   SimLanes lanes;
-  make_lanes(reader.header(), plan.specs, lanes);
+  make_lanes(reader.header(), plan.specs, o.display_bits, lanes);
   std::unique_ptr<SimDump> dump;
   if (!o.dump.empty()) dump = std::make_unique<SimDump>(o.dump, reader.header(), lanes);
   const bool progress = isatty(STDERR_FILENO);
@@ -294,6 +297,7 @@ void add_sim_command(CLI::App& app, int& status) {
   sub->add_option("--batch", o->batch, "Fast mode: requests per time quantum")
       ->check(CLI::Range(1, 1 << 24))
       ->capture_default_str();
+  add_display_bits_option(sub, o->display_bits);
   sub->add_flag("--json", o->json, "Print the report as one JSON document on stdout");
   sub->callback([o, &status] { status = guarded([&] { return run_sim(*o); }); });
 }

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "eval/contract.h"
 #include "io/vectors.h"
 #include "reference/reference.h"
 #include "units/catalogue.h"
@@ -21,7 +22,7 @@ struct SlotMap {
   std::vector<MaterialParams> params;  // one per slot
   std::vector<Lobe> lobe;              // lobe of each slot's material
   std::vector<double> roughness;       // gaussian omega (0 otherwise)
-  std::vector<double> c_y;             // luminance behind each slot's tau
+  std::vector<double> c_y;             // luminance behind each slot's tau (its pixel weight)
   bool per_light = false;              // slots are light x material (coloured lights)
   std::size_t materials = 0;
 
@@ -59,33 +60,56 @@ struct ErrorStats {
   nlohmann::json to_json() const;
 };
 
+// The largest observed |error| of one part (contract.h) and where it was.
+struct PartStats {
+  double max_abs = 0;
+  double t_at_max = 0;
+  void add(double err, double t) {
+    const double a = err < 0 ? -err : err;
+    if (a > max_abs) {
+      max_abs = a;
+      t_at_max = t;
+    }
+  }
+};
+
 struct UnitStats {
   std::string name, spec;
   nlohmann::json description;
   std::uint64_t vectors = 0, skipped = 0;
-  ErrorStats total;     // fixed result vs float reference (what a user sees)
-  ErrorStats model;     // unit's float approximation vs float reference (model error)
+  std::uint64_t always_skipped_vectors = 0;  // of always-skipped slots: in no scalar statistic
+  ErrorStats total;     // fixed result vs the reference lobe at the real t (what a user sees)
+  ErrorStats weighted;  // the same times the slot's c_y: what reaches the pixel (Källberg eq.3)
+  // Observed parts (contract.h): input, parameter, approximation and datapath on computed
+  // requests, skip (the lobe's value) on skipped ones.
+  PartStats input, parameter, approximation, datapath, skip;
   double max_ulps = 0;  // fixed result vs the unit's own real model, in output ulps
   double t_at_max_ulps = 0;
-  std::uint64_t mismatch8 = 0;  // round(255 x) differs from the float reference's
-  double error_bound = 0;       // largest stated bound over slots (pow, lut); NaN otherwise
+  int display_bits = 8;
+  std::uint64_t mismatch = 0;  // the display code of the result differs from the reference's
+  // The contracts of the slots the stream used, always-skipped ones included (reported apart).
+  std::vector<SlotContract> slots;
 
+  // Bounds over the computed slots (always-skipped ones apart), and the weakest datapath contract.
+  ErrorParts bound() const;
+  double weighted_bound() const;  // over every slot, always-skipped ones included
+  ContractKind contract() const;
+  nlohmann::json errors_json() const;  // the "errors" object of eval and sim reports
   nlohmann::json to_json() const;
 };
 
-// Accuracy statistics of one lane (a unit), fed one result at a time: by `glint eval`, by the fast
-// mode's batch loop and by the clocked mode's scoreboard. One accumulation for every path.
 // The float reference of one request, computed once and shared by every lane.
 struct RowReference {
   double t = 0;
   double value = 0;  // reference_value(): max(0,t)^n or the Gaussian lobe
-  long value8 = 0;   // round(255 * value): the 8-bit display code
 };
 RowReference make_reference(const SlotMap& slots, std::size_t slot, double t);
 
+// Accuracy statistics of one lane (a unit), fed one result at a time: by `glint eval`, by the fast
+// mode's batch loop and by the clocked mode's scoreboard. One accumulation for every path.
 class LaneAccumulator {
  public:
-  explicit LaneAccumulator(const SpecularUnit& unit);
+  LaneAccumulator(const SpecularUnit& unit, const SlotMap& slots, int display_bits = 8);
 
   void add(std::size_t slot, const RowReference& ref, std::int64_t t_raw, bool skipped,
            std::int64_t out_raw);
@@ -95,15 +119,23 @@ class LaneAccumulator {
   UnitStats& stats() { return stats_; }
 
  private:
-  double model(std::size_t slot, std::int64_t t_raw);
+  // M, F and r at one input code (contract.h), memoised per (slot, code) for narrow inputs: a
+  // long stream revisits the same codes, and these are the costly part of the check.
+  struct CodeValues {
+    double model = 0, ideal = 0, reference = 0;
+  };
+  const CodeValues& values(std::size_t slot, std::int64_t t_raw);
+  void add_scalar(std::size_t slot, const RowReference& ref, std::int64_t t_raw, bool skipped,
+                  double fixed);
 
   const SpecularUnit& unit_;
+  const SlotMap& slots_;
   UnitStats stats_;
   std::uint64_t digest_ = 0xcbf29ce484222325ULL;
-  double ulp_ = 0, out_scale_ = 0;
-  // The unit's real-valued model per (slot, input raw), memoised when the input is <= 20 bits:
-  // a long stream revisits the same 2^16 inputs, and the model is the costly part of the check.
-  std::vector<std::vector<double>> memo_;
+  double ulp_ = 0, in_ulp_ = 0, display_ = 0;
+  std::vector<std::int32_t> contract_index_;  // slot -> index in stats_.slots, -1: not seen yet
+  std::vector<std::vector<CodeValues>> memo_;
+  CodeValues scratch_;
 };
 
 // One evaluated request for the optional per-vector dump.
@@ -118,12 +150,13 @@ struct EvalRecord {
 
 // Schema version of the `glint eval` JSON report (key "glint_eval_report", schema in README.md).
 // Version 1 is the unversioned layout before eval took `glint sim`'s key names (error_vs_reference,
-// datapath_error_ulps, top-level mismatch_8bit_fraction and error_bound); 2 nests them in "errors".
-inline constexpr int kEvalReportVersion = 2;
+// datapath_error_ulps, top-level mismatch_8bit_fraction and error_bound); 2 nests them in "errors";
+// 3 decomposes them (errors.parts, bounds per slot, display and weighted errors, contract).
+inline constexpr int kEvalReportVersion = 3;
 
 class Evaluator {
  public:
-  Evaluator(const VectorHeader& header, const std::vector<UnitSpec>& specs);
+  Evaluator(const VectorHeader& header, const std::vector<UnitSpec>& specs, int display_bits = 8);
 
   void add(const VectorRow& row, const std::function<void(const EvalRecord&)>& dump = {});
   std::vector<UnitStats> stats() const;
@@ -139,7 +172,8 @@ class Evaluator {
   std::vector<LaneAccumulator> lanes_;
 };
 
-// The summary table printed by `glint eval`.
+// The summary table printed by `glint eval`, and the table of error parts printed after it.
 std::string format_eval_table(const std::vector<UnitStats>& stats);
+std::string format_parts_table(const std::vector<UnitStats>& stats);
 
 }  // namespace glint

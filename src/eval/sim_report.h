@@ -12,7 +12,7 @@
 
 namespace glint {
 
-inline constexpr int kSimReportVersion = 1;
+inline constexpr int kSimReportVersion = 2;  // 2: errors decomposed (README)
 
 // One unit's report: config, counts, timing, operations, area and critical path, errors.
 nlohmann::json unit_sim_report(const SpecularUnit& unit, const TimingStats& timing,

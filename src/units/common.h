@@ -2,9 +2,11 @@
 // front end that turns a float t into the unit's input format, and the tau comparator.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <string>
 
 #include "fixed/fixed_point.h"
 
@@ -13,9 +15,19 @@ namespace glint {
 // One "slot" of a unit: a material, or a light x material pair when lights are coloured. Plain data
 // derived from the vector header (or later a scene); the unit quantizes what it needs.
 struct MaterialParams {
+  MaterialParams() = default;
+  MaterialParams(double n, double threshold, bool skip_always = false)
+      : shininess(n), tau(threshold), always_skip(skip_always) {}
+
   double shininess = 1.0;    // exponent n (gaussian lobes: equivalent 2/omega^2)
   double tau = 0.0;          // skip threshold, Källberg eq.5 (or eq.9); may be < 0
   bool always_skip = false;  // c_y <= eps: the lobe is never perceptible
+  // eps_K / c_y: the largest scalar lobe value the eye cannot see (Källberg eq.4 solved for the
+  // lobe). Each unit's comparator skips only where its own output is at most this level
+  // (unit_threshold_raw). < 0: not given, tau^n stands in (the float lobe at tau, the same level
+  // for power lobes).
+  double level = -1.0;
+  std::string name;  // how errors name the slot: "material 'm'" or "light 2 x material 'm'"
 };
 
 // Default formats: 16-bit input and output, enough for 8-bit display output with guard bits.
@@ -46,15 +58,48 @@ inline double input_value(std::int64_t raw, const QFormat& in) {
   return std::ldexp(static_cast<double>(raw), -in.frac_bits);
 }
 
-// The comparator threshold for one slot, in the input format. tau is rounded DOWN (floor) so the
-// fixed-point comparator never skips a t that the float test t <= tau would keep: its skip set is a
-// subset of Källberg's. always_skip puts the threshold at the top of the format, which every input
-// meets;
-// tau < 0 (a Gaussian lobe visible at every angle) gives -1, which no input meets.
+// The float test's threshold in the input format, for a comparator that must never skip a real t
+// that Källberg's t <= tau keeps. t is rounded to nearest, so every real t that lands on code T
+// lies below (T + ½) 2^-F: the largest safe code is floor(tau 2^F - ½), not floor(tau 2^F) (that
+// one would skip t up to half a step above tau). always_skip puts the threshold at the top of the
+// format, which every input meets; tau < 0 (a Gaussian lobe visible at every angle) gives -1,
+// which no input meets.
 inline std::int64_t tau_threshold_raw(const MaterialParams& m, const QFormat& in) {
-  if (m.always_skip || m.tau >= 1.0) return in.raw_max();
+  if (m.always_skip) return in.raw_max();
   if (m.tau < 0.0) return -1;
-  return Fixed::from_double(m.tau, in, Quant::kTrn, Overflow::kSat).raw();
+  if (m.tau >= 1.0) return in.raw_one() - 1;  // t = 1 exactly is never skipped by t <= tau < 1
+  const double scaled = std::ldexp(m.tau, in.frac_bits) - 0.5;
+  return scaled < 0.0 ? -1 : static_cast<std::int64_t>(std::floor(scaled));
+}
+
+// The level below which a slot's lobe is imperceptible, as a raw code of the output format
+// (floor: out <= limit means out * c_y <= eps).
+inline std::int64_t imperceptible_raw(const MaterialParams& m, const QFormat& out) {
+  const double level =
+      m.level >= 0.0 ? m.level : (m.tau > 0.0 ? std::pow(std::min(m.tau, 1.0), m.shininess) : 0.0);
+  return static_cast<std::int64_t>(std::floor(std::ldexp(std::min(level, 1.0), out.frac_bits)));
+}
+
+// A unit's own comparator threshold for one slot (Källberg §3: combining the skip with another
+// formula "assumes a corresponding derivation of tau"): the largest input code T <=
+// tau_threshold_raw(m) at which the unit's own output is still imperceptible, eval(T) <= level.
+// The first bound keeps the skip set inside the float test's on real t; the second keeps a unit
+// that overshoots t^n (Schlick) from being cut off by a visible step. The unit's output is
+// monotone in t (tests prove it on every input), so a bisection finds T and every skipped input's
+// output is at most eval(T). eval(0) = 0 for every unit, so T >= 0 whenever tau_threshold_raw is.
+template <class Eval>
+std::int64_t unit_threshold_raw(const MaterialParams& m, const QFormat& in, const QFormat& out,
+                                const Eval& eval) {
+  const std::int64_t top = tau_threshold_raw(m, in);
+  if (m.always_skip || top < 0) return top;
+  const std::int64_t limit = imperceptible_raw(m, out);
+  if (eval(top) <= limit) return top;
+  std::int64_t lo = -1, hi = top;  // eval(lo) <= limit (lo = -1: nothing), eval(hi) > limit
+  while (hi - lo > 1) {
+    const std::int64_t mid = lo + (hi - lo) / 2;
+    (eval(mid) <= limit ? lo : hi) = mid;
+  }
+  return lo;
 }
 
 // The root of the u scaler (Hast's tau, the origin of the Horner variable u): the comparator

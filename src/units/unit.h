@@ -54,7 +54,8 @@ class SpecularUnit {
   virtual QFormat out_format() const = 0;
   virtual std::size_t slots() const = 0;
 
-  // Comparator threshold of a slot in the input format (-1: never skips).
+  // Comparator threshold of a slot in the input format (-1: never skips): the unit's own
+  // (unit_threshold_raw in units/common.h), so every skipped output is imperceptible.
   virtual std::int64_t tau_raw(std::size_t slot) const = 0;
   // The datapath alone (no skip), the unit's real-valued model at the same quantized input, and
   // the float approximation at the exact t (no quantization anywhere).
@@ -71,6 +72,9 @@ class SpecularUnit {
   // Stated bound on |result - t^n| for units that approximate t^n itself (pow, lut); NaN for units
   // whose contract is against their own model.
   virtual double error_bound(std::size_t slot) const = 0;
+  // The unit's error budget against its own real-valued model(): |eval - model| <= this many
+  // output ulps on every input code (½: correctly rounded; < 1: faithful).
+  virtual double datapath_bound_ulps(std::size_t slot) const = 0;
   // Structured description: config and per-slot constants (tables sizes, coefficients, widths).
   virtual nlohmann::json describe() const = 0;
   // Latency, initiation interval and merge-buffer depth of the unit's hardware (timing keys).

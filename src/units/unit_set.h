@@ -14,14 +14,18 @@
 //   static double error_bound(const Datapath&);    // optional (UnitKindDefaults: NaN)
 //   static bool carries_root(const Config&);       // optional (UnitKindDefaults: false)
 // (deriving from UnitKindDefaults for the optional ones), and its Datapath has eval(t), run(t,
-// probe) (eval is run with NoProbe), model, float_model and tau_raw. build() ends with
-// make_unit_set<Kind>(...).
+// probe) (eval is run with NoProbe), model, float_model and datapath_bound_ulps() (its error
+// budget: |eval - model| in output ulps). build() ends with make_unit_set<Kind>(...), which also
+// sets every slot's comparator threshold from the unit's own output (unit_threshold_raw).
 #pragma once
+
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -52,7 +56,7 @@ class UnitSet final : public SpecularUnit {
   using Datapath = typename Kind::Datapath;
 
   UnitSet(std::string canonical, const CommonKeys& common, Config cfg, std::vector<Datapath> units,
-          nlohmann::json config, UnitTiming timing)
+          const std::vector<MaterialParams>& slots, nlohmann::json config, UnitTiming timing)
       : name_(Kind::kName),
         canonical_(std::move(canonical)),
         in_(common.in),
@@ -62,21 +66,29 @@ class UnitSet final : public SpecularUnit {
         units_(std::move(units)),
         config_(std::move(config)),
         timing_(timing),
-        layout_(Kind::stages(cfg_, units_, timing_), timing_.ii, out_) {}
+        layout_(Kind::stages(cfg_, units_, timing_), timing_.ii, out_) {
+    thresholds_.assign(units_.size(), -1);
+    if (!skip_) return;
+    for (std::size_t s = 0; s < units_.size(); ++s) {
+      const Datapath& u = units_[s];
+      thresholds_[s] =
+          unit_threshold_raw(slots[s], in_, out_, [&u](std::int64_t t) { return u.eval(t); });
+    }
+  }
 
   const std::string& name() const override { return name_; }
   std::string canonical_spec() const override { return canonical_; }
   QFormat in_format() const override { return in_; }
   QFormat out_format() const override { return out_; }
   std::size_t slots() const override { return units_.size(); }
-  std::int64_t tau_raw(std::size_t s) const override { return units_[s].tau_raw(); }
+  std::int64_t tau_raw(std::size_t s) const override { return thresholds_[s]; }
   std::int64_t eval(std::size_t s, std::int64_t t) const override { return units_[s].eval(t); }
   double model(std::size_t s, std::int64_t t) const override { return units_[s].model(t); }
   double float_model(std::size_t s, double t) const override { return units_[s].float_model(t); }
   void eval_batch(std::size_t s, const std::int64_t* t, std::int64_t* out, std::uint8_t* skipped,
                   std::size_t n) const override {
     const Datapath& u = units_[s];
-    const std::int64_t tau = u.tau_raw();
+    const std::int64_t tau = thresholds_[s];
     for (std::size_t i = 0; i < n; ++i) {
       const bool sk = tau_skip(t[i], tau);
       skipped[i] = sk;
@@ -90,6 +102,9 @@ class UnitSet final : public SpecularUnit {
   }
   const StageLayout& stages() const override { return layout_; }
   double error_bound(std::size_t s) const override { return Kind::error_bound(units_[s]); }
+  double datapath_bound_ulps(std::size_t s) const override {
+    return units_[s].datapath_bound_ulps();
+  }
   UnitTiming timing() const override { return timing_; }
   bool comparator_enabled() const override { return skip_; }
   bool comparator_carries_root() const override { return Kind::carries_root(cfg_); }
@@ -104,7 +119,11 @@ class UnitSet final : public SpecularUnit {
     j["timing"] = {
         {"latency", timing_.latency}, {"ii", timing_.ii}, {"buffer_depth", timing_.buffer_depth}};
     nlohmann::json slots = nlohmann::json::array();
-    for (const Datapath& u : units_) slots.push_back(Kind::describe_slot(u));
+    for (std::size_t s = 0; s < units_.size(); ++s) {
+      nlohmann::json slot = Kind::describe_slot(units_[s]);
+      slot["threshold_raw"] = thresholds_[s];
+      slots.push_back(std::move(slot));
+    }
     j["slots"] = std::move(slots);
     return j;
   }
@@ -118,11 +137,24 @@ class UnitSet final : public SpecularUnit {
   nlohmann::json config_;
   UnitTiming timing_;
   StageLayout layout_;
+  std::vector<std::int64_t> thresholds_;  // comparator threshold per slot (-1: never skips)
 };
 
 // The description JSON's config of the common keys; a kind's build adds its own keys.
 inline nlohmann::json common_config(const CommonKeys& c) {
   return {{"in", c.in.name()}, {"out", c.out.name()}, {"skip", on_off(c.skip)}};
+}
+
+// Runs one slot's part of a build; a refusal names the slot's material (and light), so that one
+// faint or extreme material in a file says which it is.
+template <class F>
+decltype(auto) for_slot(const MaterialParams& m, F&& f) {
+  try {
+    return f();
+  } catch (const std::invalid_argument& e) {
+    if (m.name.empty()) throw;
+    throw std::invalid_argument(fmt::format("{}: {}", m.name, e.what()));
+  }
 }
 
 // One datapath instance per slot.
@@ -131,7 +163,7 @@ std::vector<Datapath> build_per_slot(const Config& cfg, const std::vector<Materi
                                      const Extra&... extra) {
   std::vector<Datapath> units;
   units.reserve(slots.size());
-  for (const auto& m : slots) units.emplace_back(cfg, m, extra...);
+  for (const auto& m : slots) for_slot(m, [&] { units.emplace_back(cfg, m, extra...); });
   return units;
 }
 
@@ -142,6 +174,7 @@ template <class Kind>
 std::unique_ptr<SpecularUnit> make_unit_set(const CommonKeys& common, nlohmann::json config,
                                             typename Kind::Config cfg,
                                             std::vector<typename Kind::Datapath> units,
+                                            const std::vector<MaterialParams>& slots,
                                             UnitTiming timing) {
   timing.buffer_depth = common.buffer > 0 ? common.buffer : timing.latency + 3;
   config["buffer"] = timing.buffer_depth;
@@ -157,7 +190,7 @@ std::unique_ptr<SpecularUnit> make_unit_set(const CommonKeys& common, nlohmann::
     sep = ',';
   }
   return std::make_unique<UnitSet<Kind>>(std::move(canonical), common, std::move(cfg),
-                                         std::move(units), std::move(config), timing);
+                                         std::move(units), slots, std::move(config), timing);
 }
 
 // The catalogue entry of a kind.

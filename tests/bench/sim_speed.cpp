@@ -93,7 +93,8 @@ int sc_main(int argc, char* argv[]) {
     units.push_back(owned.back().get());
   }
   std::vector<glint::LaneAccumulator> acc;
-  for (const auto* u : units) acc.emplace_back(*u);
+  acc.reserve(units.size());
+  for (const auto* u : units) acc.emplace_back(*u, slots);
   std::vector<std::uint64_t> skipped(units.size(), 0);
   const auto start = std::chrono::steady_clock::now();
   std::vector<glint::TimingStats> stats;

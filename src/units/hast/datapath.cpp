@@ -32,9 +32,16 @@ HastUnit::HastUnit(const HastConfig& cfg, const MaterialParams& m) : cfg_(cfg) {
   tau_ = std::clamp(m.tau, 0.0, 1.0);
   const std::int64_t root_raw = root_threshold_raw(m, cfg.in);
   scaler_ = UScaler(cfg.in, root_raw, fh_);
-  tau_raw_ = cfg.skip ? root_raw : -1;
   first_shift_ = fh_ - cfg.out.frac_bits;
   last_shift_ = 2 * fh_ - cfg.out.frac_bits;
+}
+
+double HastUnit::datapath_bound_ulps() const {
+  // u's rounding times |d(u^d)/du| <= d, plus d - 2 inner products (d = 1: u's rounding alone,
+  // then the final ½ ulp).
+  const int d = cfg_.d;
+  const int roundings = d == 1 ? 1 : 2 * d - 2;
+  return 0.5 + roundings * std::ldexp(1.0, -(cfg_.guard + 1));
 }
 
 double HastUnit::model(std::int64_t t_raw) const {

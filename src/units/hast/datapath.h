@@ -62,7 +62,8 @@ class HastUnit {
   double model(std::int64_t t_raw) const;  // real-valued at quantized t, tau and k
   double float_model(double t) const;      // Hast's f at exact t and tau
 
-  std::int64_t tau_raw() const { return tau_raw_; }
+  // The budget of the header comment, in output ulps.
+  double datapath_bound_ulps() const;
   const UScaler& scaler() const { return scaler_; }
   int internal_frac() const { return fh_; }
   const HastConfig& config() const { return cfg_; }
@@ -71,7 +72,6 @@ class HastUnit {
   HastConfig cfg_;
   double tau_ = 0;  // Hast's root (the material's tau, clamped to [0, 1))
   UScaler scaler_;
-  std::int64_t tau_raw_ = -1;  // comparator threshold (skip); -1 when skip is off
   int fh_ = 0, first_shift_ = 0, last_shift_ = 0;
 };
 

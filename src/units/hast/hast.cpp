@@ -39,7 +39,7 @@ struct Hast : UnitKindDefaults {
     // u scaler stage, then d - 1 multiplier stages.
     const UnitTiming timing{c.d, 1, 0};
     auto units = build_per_slot<HastUnit>(c, slots);
-    return make_unit_set<Hast>(common, std::move(config), c, std::move(units), timing);
+    return make_unit_set<Hast>(common, std::move(config), c, std::move(units), slots, timing);
   }
 
   static std::vector<Stage> stages(const Config& c, const std::vector<Datapath>&, UnitTiming) {
@@ -91,8 +91,7 @@ struct Hast : UnitKindDefaults {
   }
 
   static nlohmann::json describe_slot(const Datapath& u) {
-    return {{"tau_raw", u.tau_raw()},
-            {"root_raw", u.scaler().root_raw()},
+    return {{"root_raw", u.scaler().root_raw()},
             {"k", u.scaler().k_value()},
             {"k_int_bits", u.scaler().k_int_bits()},
             {"k_frac_bits", u.scaler().k_frac()}};

@@ -59,7 +59,6 @@ HornerUnit::HornerUnit(const HornerConfig& cfg, const MaterialParams& m,
   const std::int64_t tau_q = root_threshold_raw(m, cfg.in);
   // Full domain: u = t (root 0, k = 1). The comparator still uses the material's tau.
   scaler_ = UScaler(cfg.in, coeffs.tau_domain ? tau_q : 0, fh_);
-  tau_raw_ = cfg.skip ? tau_q : -1;
 
   // Coefficients: nearest at fh fraction bits, then repair the fit's constraints exactly.
   const std::size_t p = coeffs.c.size() - 1;
@@ -95,6 +94,18 @@ HornerUnit::HornerUnit(const HornerConfig& cfg, const MaterialParams& m,
   acc_int_ = 1;
   while ((std::int64_t{1} << (acc_int_ - 1 + fh_)) <= acc_bound + static_cast<std::int64_t>(p))
     ++acc_int_;
+}
+
+double HornerUnit::datapath_bound_ulps() const {
+  // p - 1 inner roundings scaled by u^k <= 1, u's rounding times |P'| <= sum k |c_k| (tau domain
+  // only: on the full domain u = t exactly), then the final ½ ulp; the clamp is 1-Lipschitz.
+  double roundings = static_cast<double>(c_raw_.size()) - 2.0;
+  if (coeffs_.tau_domain) {
+    for (std::size_t k = 1; k < c_raw_.size(); ++k)
+      roundings +=
+          static_cast<double>(k) * std::ldexp(std::fabs(static_cast<double>(c_raw_[k])), -fh_);
+  }
+  return 0.5 + roundings * std::ldexp(1.0, -(cfg_.guard + 1));
 }
 
 double HornerUnit::model(std::int64_t t_raw) const {

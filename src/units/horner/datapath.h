@@ -72,7 +72,8 @@ class HornerUnit {
   double model(std::int64_t t_raw) const;  // real-valued at quantized t, tau, k, coefficients
   double float_model(double t) const;      // the fitted polynomial at the exact t (unquantized)
 
-  std::int64_t tau_raw() const { return tau_raw_; }
+  // The budget of the header comment for the quantized coefficients, in output ulps.
+  double datapath_bound_ulps() const;
   const UScaler& scaler() const { return scaler_; }
   const std::vector<std::int64_t>& coeff_raw() const { return c_raw_; }
   QFormat coeff_format() const { return coeff_fmt_; }
@@ -88,7 +89,7 @@ class HornerUnit {
   UScaler scaler_;
   std::vector<std::int64_t> c_raw_;
   QFormat coeff_fmt_;
-  std::int64_t tau_raw_ = -1, one_out_ = 0;
+  std::int64_t one_out_ = 0;
   int fh_ = 0, last_shift_ = 0, acc_int_ = 0;
 };
 

@@ -61,7 +61,7 @@ struct Horner : UnitKindDefaults {
       o.tau = std::clamp(m.always_skip ? 0.0 : m.tau, 0.0, 0.999);
       o.constrain_one = constrain;
       o.constrain_zero = constrain && domain == "tau";
-      const FitResult r = fit_power(o);
+      const FitResult r = for_slot(m, [&] { return fit_power(o); });
       HornerCoefficients hc{r.coeffs, domain == "tau", o.constrain_one, o.constrain_zero};
       guard = std::max(guard, horner_preferred_guard(hc));
       required = std::max(required, horner_required_guard(hc));
@@ -77,11 +77,12 @@ struct Horner : UnitKindDefaults {
     config["guard"] = c.guard;
     std::vector<HornerUnit> units;
     units.reserve(slots.size());
-    for (std::size_t i = 0; i < slots.size(); ++i) units.emplace_back(c, slots[i], fits[i]);
+    for (std::size_t i = 0; i < slots.size(); ++i)
+      for_slot(slots[i], [&] { units.emplace_back(c, slots[i], fits[i]); });
     // u scaler stage, then one multiply-add stage per degree.
     const UnitTiming timing{degree + 1, 1, 0};
     return make_unit_set<Horner>(common, std::move(config), HornerSetup{c, domain == "tau"},
-                                 std::move(units), timing);
+                                 std::move(units), slots, timing);
   }
 
   // Widest coefficient and accumulator over the slots (the registers are shared).
@@ -151,8 +152,7 @@ struct Horner : UnitKindDefaults {
   }
 
   static nlohmann::json describe_slot(const Datapath& u) {
-    return {{"tau_raw", u.tau_raw()},
-            {"root_raw", u.scaler().root_raw()},
+    return {{"root_raw", u.scaler().root_raw()},
             {"k", u.scaler().k_value()},
             {"k_int_bits", u.scaler().k_int_bits()},
             {"k_frac_bits", u.scaler().k_frac()},

@@ -59,7 +59,6 @@ LutUnit::LutUnit(const LutConfig& cfg, const MaterialParams& m) : cfg_(cfg) {
     chord_ = std::max(chord_, std::fabs(fa + s * (x - a) - std::pow(x, n_)));
   }
   bound_ = chord_ + std::ldexp(0.5, -cfg_.table_frac) + std::ldexp(0.5, -cfg.out.frac_bits);
-  if (tau_raw_ >= 0) bound_ = std::max(bound_, std::pow(input_value(tau_raw_, cfg.in), n_));
 }
 
 double LutUnit::interp_exact(double t) const {
@@ -74,7 +73,13 @@ double LutUnit::interp_exact(double t) const {
 }
 
 double LutUnit::model(std::int64_t t_raw) const {
-  return interp_exact(input_value(t_raw, cfg_.in));
+  if (t_raw <= t0_raw_) return 0.0;
+  const std::int64_t t = t_raw > one_in_ ? one_in_ : t_raw;
+  const std::int64_t v = (t - t0_raw_) << pad_;
+  const std::int64_t i = v >> r_bits_;
+  const long double a = table_[i], b = table_[i + 1];
+  const long double r = std::ldexp(static_cast<long double>(v & r_mask_), -r_bits_);
+  return static_cast<double>(std::ldexp(a + (b - a) * r, -cfg_.table_frac));
 }
 
 double LutUnit::float_model(double t) const {

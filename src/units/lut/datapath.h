@@ -7,9 +7,11 @@
 // output is T[i] + (T[i+1] - T[i]) r / 2^rbits, formed exactly and rounded once.
 //
 // Error bound against t^n: the largest chord error over the segments (exact: at the tangent point
-// t* = (slope / n)^(1/(n-1)) of each segment) + ½ ulp of the table + ½ ulp_out final rounding,
-// plus tau^n where skipping (error_bound()). The float model is the interpolation between exact
-// table values, so the datapath error is the two rounding terms only.
+// t* = (slope / n)^(1/(n-1)) of each segment) + ½ ulp of the table + ½ ulp_out final rounding
+// (error_bound()). The three parts: approximation = the chord error (float_model interpolates
+// exact t^n nodes), parameter quantization = the table rounding (model() interpolates the rounded
+// entries, a convex combination, so at most ½ ulp of the table), datapath = the final rounding
+// alone (the interpolation is formed exactly and rounded once: ½ ulp).
 #pragma once
 
 #include <cstdint>
@@ -57,12 +59,12 @@ class LutUnit {
     return result;
   }
   int remainder_bits() const { return r_bits_; }
-  double model(std::int64_t t_raw) const;  // exact-node interpolation at the quantized t
-  double float_model(double t) const;      // same, at the exact t
+  double model(std::int64_t t_raw) const;  // the rounded entries interpolated exactly, at t_q
+  double float_model(double t) const;      // exact-node interpolation at the exact t
+  static double datapath_bound_ulps() { return 0.5; }
   double error_bound() const { return bound_; }
   double chord_error() const { return chord_; }
 
-  std::int64_t tau_raw() const { return tau_raw_; }
   std::int64_t t0_raw() const { return t0_raw_; }
   int span_log2() const { return s_; }
   const std::vector<std::int64_t>& table() const { return table_; }

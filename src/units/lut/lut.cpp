@@ -40,7 +40,7 @@ struct Lut : UnitKindDefaults {
     // index + table read, interpolation + rounding.
     const UnitTiming timing{2, 1, 0};
     auto units = build_per_slot<LutUnit>(c, slots);
-    return make_unit_set<Lut>(common, std::move(config), c, std::move(units), timing);
+    return make_unit_set<Lut>(common, std::move(config), c, std::move(units), slots, timing);
   }
 
   // Interpolation bits: Fi - span - bits, the widest over slots.
@@ -103,9 +103,11 @@ struct Lut : UnitKindDefaults {
   }
 
   static nlohmann::json describe_slot(const Datapath& u) {
-    return {{"tau_raw", u.tau_raw()},         {"t0_raw", u.t0_raw()},
-            {"span_log2", u.span_log2()},     {"entries", u.table().size() - 1},
-            {"chord_error", u.chord_error()}, {"error_bound", u.error_bound()}};
+    return {{"t0_raw", u.t0_raw()},
+            {"span_log2", u.span_log2()},
+            {"entries", u.table().size() - 1},
+            {"chord_error", u.chord_error()},
+            {"error_bound", u.error_bound()}};
   }
   static double error_bound(const Datapath& u) { return u.error_bound(); }
 };

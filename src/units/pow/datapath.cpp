@@ -59,7 +59,6 @@ PowUnit::PowUnit(const PowConfig& cfg, const MaterialParams& m) : cfg_(cfg) {
   fi_ = cfg.in.frac_bits;
   one_in_ = cfg.in.raw_one();
   one_out_ = cfg.out.raw_one();
-  tau_raw_ = cfg.skip ? tau_threshold_raw(m, cfg.in) : -1;
 
   // Mantissa fraction has fi bits: the top log_bits address the table (padded when fi is
   // smaller), the rest interpolate.
@@ -106,7 +105,6 @@ PowUnit::PowUnit(const PowConfig& cfg, const MaterialParams& m) : cfg_(cfg) {
   const double nq = shininess_q();
   const double dy = nq * eps_log_ + std::ldexp(0.5, -cfg.y_frac);
   bound_ = (std::exp2(dy) * (1 + eps_exp_) - 1) + std::ldexp(0.5, -cfg.out.frac_bits);
-  if (tau_raw_ >= 0) bound_ = std::max(bound_, std::pow(input_value(tau_raw_, cfg.in), nq));
 }
 
 double PowUnit::shininess_q() const {

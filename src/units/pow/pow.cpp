@@ -58,7 +58,7 @@ struct Pow : UnitKindDefaults {
     // exp2 interpolation + shift + rounding.
     const UnitTiming timing{5, 1, 0};
     auto units = build_per_slot<PowUnit>(c, slots);
-    return make_unit_set<Pow>(common, std::move(config), c, std::move(units), timing);
+    return make_unit_set<Pow>(common, std::move(config), c, std::move(units), slots, timing);
   }
 
   // The widths of the registers (the cost model counts the same).
@@ -166,9 +166,11 @@ struct Pow : UnitKindDefaults {
   }
 
   static nlohmann::json describe_slot(const Datapath& u) {
-    return {{"tau_raw", u.tau_raw()},       {"n", u.shininess_q()},
-            {"table_bits", u.table_bits()}, {"log_error", u.log_error()},
-            {"exp_error", u.exp_error()},   {"error_bound", u.error_bound()}};
+    return {{"n", u.shininess_q()},
+            {"table_bits", u.table_bits()},
+            {"log_error", u.log_error()},
+            {"exp_error", u.exp_error()},
+            {"error_bound", u.error_bound()}};
   }
   static double error_bound(const Datapath& u) { return u.error_bound(); }
 };

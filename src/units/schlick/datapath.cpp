@@ -32,7 +32,6 @@ SchlickUnit::SchlickUnit(const SchlickConfig& cfg, const MaterialParams& m) : cf
     throw std::invalid_argument(
         "schlick: formats too wide for the exact divider model (<= 52 bits)");
   }
-  tau_raw_ = cfg.skip ? tau_threshold_raw(m, cfg.in) : -1;
 }
 
 double SchlickUnit::shininess_q() const {

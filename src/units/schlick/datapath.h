@@ -63,7 +63,8 @@ class SchlickUnit {
   // Float approximation at the exact t and shininess (for the model error).
   double float_model(double t) const;
 
-  std::int64_t tau_raw() const { return tau_raw_; }
+  // Budget: numerator and denominator exact, quotient correctly rounded.
+  static double datapath_bound_ulps() { return 0.5; }
   double shininess_q() const;
   std::int64_t n_raw() const { return n_raw_; }
   const SchlickConfig& config() const { return cfg_; }
@@ -86,7 +87,7 @@ class SchlickUnit {
     }
   }
 
-  std::int64_t n_raw_ = 0, one_in_ = 0, out_max_ = 0, tau_raw_ = -1;
+  std::int64_t n_raw_ = 0, one_in_ = 0, out_max_ = 0;
   int n_frac_ = 0, num_shift_ = 0;
 };
 

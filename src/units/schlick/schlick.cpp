@@ -53,7 +53,7 @@ struct Schlick : UnitKindDefaults {
     const UnitTiming timing{q + 2, iterative ? q : 1, 0};
     auto units = build_per_slot<SchlickUnit>(c, slots);
     return make_unit_set<Schlick>(common, std::move(config), SchlickSetup{c, iterative},
-                                  std::move(units), timing);
+                                  std::move(units), slots, timing);
   }
 
   // D in units of 2^-(Fn + Fi): D = n (1 - t) + t < max(n, 1) needs max(Wn, Fn + 1) + Fi bits.
@@ -135,7 +135,7 @@ struct Schlick : UnitKindDefaults {
   }
 
   static nlohmann::json describe_slot(const Datapath& u) {
-    return {{"tau_raw", u.tau_raw()}, {"n_raw", u.n_raw()}, {"n", u.shininess_q()}};
+    return {{"n_raw", u.n_raw()}, {"n", u.shininess_q()}};
   }
 };
 

@@ -1,0 +1,138 @@
+#include "eval/contract.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "eval/evaluate.h"
+
+namespace glint {
+
+void ErrorParts::max_with(const ErrorParts& o) {
+  input = std::max(input, o.input);
+  parameter = std::max(parameter, o.parameter);
+  approximation = std::max(approximation, o.approximation);
+  datapath = std::max(datapath, o.datapath);
+  skip = std::max(skip, o.skip);
+}
+
+const char* to_string(ContractKind kind) {
+  switch (kind) {
+    case ContractKind::kCorrectlyRounded:
+      return "correctly_rounded";
+    case ContractKind::kFaithful:
+      return "faithful";
+    case ContractKind::kBound:
+      return "bound";
+    case ContractKind::kNone:
+      break;
+  }
+  return "none";
+}
+
+namespace {
+
+nlohmann::json parts_json(const ErrorParts& p, double scale) {
+  return {{"input", p.input * scale},
+          {"parameter", p.parameter * scale},
+          {"approximation", p.approximation * scale},
+          {"datapath", p.datapath * scale},
+          {"skip", p.skip * scale}};
+}
+
+}  // namespace
+
+nlohmann::json SlotContract::to_json(int display_bits) const {
+  nlohmann::json j{{"slot", slot},
+                   {"name", name},
+                   {"weight", weight},
+                   {"threshold_raw", threshold_raw},
+                   {"always_skipped", always_skipped}};
+  if (always_skipped) {
+    // The lobe never reaches eps on the pixel: not folded into any bound (its scalar error is the
+    // whole lobe, its weighted error at most c_y <= eps).
+    j["weighted_bound"] = weight;
+    return j;
+  }
+  j["contract"] = to_string(kind);
+  j["reason"] = reason;
+  j["datapath_bound_ulps"] = datapath_ulps;
+  j["bound"] = parts_json(bound, 1.0);
+  j["bound"]["total"] = bound.total();
+  j["bound_lsb"] = bound.total() * display_scale(display_bits);
+  j["weighted_bound_lsb"] = bound.total() * weight * display_scale(display_bits);
+  j["exact"] = exact;
+  return j;
+}
+
+SlotContract slot_contract(const SpecularUnit& unit, std::size_t slot, const SlotMap& slots) {
+  SlotContract c;
+  const MaterialParams& m = slots.params[slot];
+  c.slot = slot;
+  c.name = m.name;
+  c.weight = slots.c_y[slot];
+  c.threshold_raw = unit.tau_raw(slot);
+  if (m.always_skip && unit.comparator_enabled()) {
+    c.always_skipped = true;
+    c.bound.skip = 1.0;
+    c.kind = ContractKind::kNone;
+    c.reason = "always skipped: c_y <= eps";
+    return c;
+  }
+  const QFormat in = unit.in_format();
+  const double h = in.ulp();
+  const std::int64_t one = in.raw_one();
+  const auto ref = [&](double t) { return reference_value(slots, slot, std::clamp(t, 0.0, 1.0)); };
+
+  // Skip part: every real t that lands on a code <= T lies below (T + ½) h.
+  const std::int64_t top = std::min(c.threshold_raw, one);
+  if (top >= 0) c.bound.skip = ref((static_cast<double>(top) + 0.5) * h);
+
+  // The codes the comparator keeps: all of them up to kExactInputBits, else evenly spaced ones.
+  const std::int64_t first = std::max<std::int64_t>(top + 1, 0);
+  const std::int64_t count = one - first + 1;
+  const std::int64_t limit = std::int64_t{1} << kExactInputBits;
+  const std::int64_t step = count > limit ? (count + limit - 1) / limit : 1;
+  c.exact = step == 1;
+  double lower_edge = ref((static_cast<double>(first) - 0.5) * h);
+  for (std::int64_t code = first; code <= one; code += step) {
+    const double t = static_cast<double>(code) * h;
+    const double r = ref(t);
+    if (step != 1) lower_edge = ref(t - 0.5 * h);
+    const double upper_edge = ref(t + 0.5 * h);
+    const double f = unit.float_model(slot, t);
+    const double model = unit.model(slot, code);
+    c.bound.input = std::max({c.bound.input, r - lower_edge, upper_edge - r});
+    c.bound.parameter = std::max(c.bound.parameter, std::fabs(model - f));
+    c.bound.approximation = std::max(c.bound.approximation, std::fabs(f - r));
+    lower_edge = upper_edge;
+  }
+  c.datapath_ulps = unit.datapath_bound_ulps(slot);
+  c.bound.datapath = c.datapath_ulps * unit.out_format().ulp();
+
+  if (!(c.datapath_ulps <= 0.5)) {
+    c.kind = c.datapath_ulps < 1.0 ? ContractKind::kFaithful : ContractKind::kBound;
+  } else {
+    c.kind = ContractKind::kCorrectlyRounded;
+  }
+  switch (c.kind) {
+    case ContractKind::kCorrectlyRounded:
+      c.reason = "datapath correctly rounded against the unit's model";
+      break;
+    case ContractKind::kFaithful:
+      c.reason =
+          fmt::format("datapath faithful: within {:.3g} ulp of the unit's model", c.datapath_ulps);
+      break;
+    default:
+      c.reason = fmt::format("datapath error up to {:.3g} ulp of the unit's model (not faithful)",
+                             c.datapath_ulps);
+  }
+  if (!std::isfinite(c.bound.total()) || c.bound.computed_sum() >= 1.0) {
+    c.kind = ContractKind::kNone;
+    c.reason = fmt::format("the stated error ({:.3g}) covers the whole output range",
+                           c.bound.computed_sum());
+  }
+  return c;
+}
+
+}  // namespace glint

@@ -1,0 +1,77 @@
+// The accuracy contract of one slot of a unit: every error source bounded on its own, on every
+// input code the datapath can see, so that the total against the reference lobe is bounded on any
+// real t, on the input grid or off it.
+//
+// For a real t in [0, 1] whose code c = quantize_input(t) (value t_c) the comparator keeps:
+//   y(c) - r(t) = [y(c) - M(c)]       datapath rounding: the unit's own budget
+//   (datapath_bound_ulps)
+//               + [M(c) - F(t_c)]     parameter quantization: n, tau, k, coefficients, table
+//               entries
+//               + [F(t_c) - r(t_c)]   approximation: the unit's real-valued function vs the lobe
+//               + [r(t_c) - r(t)]     input quantization: t rounded to the input format
+// with M = SpecularUnit::model (real arithmetic at the quantized parameters), F = float_model
+// (exact parameters) and r the reference lobe (t^n, or Källberg eq.7 for Gaussian materials). The
+// parameter and approximation parts are measured at every code the comparator keeps, the input
+// part over each code's whole rounding cell (r is monotone, so the cell's ends bound it), so by
+// the triangle inequality |y - r(t)| never exceeds their sum plus the datapath budget.
+// A skipped t gives 0 where r(t) <= r at the top of the threshold code's cell, which the unit's
+// threshold keeps at or below tau (unit_threshold_raw), i.e. <= eps_K / c_y: the skip part. The
+// total bound is the larger of the skip part and the sum of the other four.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "units/unit.h"
+
+namespace glint {
+
+struct SlotMap;
+
+// Absolute errors in units of the scalar lobe (1.0 = the lobe's peak).
+struct ErrorParts {
+  double input = 0, parameter = 0, approximation = 0, datapath = 0, skip = 0;
+
+  double computed_sum() const { return input + parameter + approximation + datapath; }
+  double total() const { return std::max(skip, computed_sum()); }
+  void max_with(const ErrorParts& o);
+};
+
+// What the datapath promises against its own model: correctly rounded (<= ½ ulp), faithful
+// (< 1 ulp), a stated bound in ulps (a user-forced weak configuration, e.g. guard=0), or none
+// (the stated error covers the whole output range).
+enum class ContractKind : std::uint8_t { kCorrectlyRounded, kFaithful, kBound, kNone };
+const char* to_string(ContractKind kind);  // "correctly_rounded", "faithful", "bound", "none"
+
+// Inputs up to this many bits are measured at every code; wider ones at 2^20 evenly spaced codes
+// (SlotContract::exact = false: the parts are then estimates, not bounds).
+inline constexpr int kExactInputBits = 20;
+
+struct SlotContract {
+  std::size_t slot = 0;
+  std::string name;             // "material 'm'" or "light 2 x material 'm'"
+  bool always_skipped = false;  // c_y <= eps: never computed, reported apart from the bounds
+  double weight = 1.0;          // c_y: what the scalar lobe is multiplied by on the pixel
+  std::int64_t threshold_raw = -1;
+  ErrorParts bound;
+  double datapath_ulps = 0.0;
+  ContractKind kind = ContractKind::kFaithful;
+  std::string reason;
+  bool exact = true;
+
+  nlohmann::json to_json(int display_bits) const;
+};
+
+// Measures and bounds every part for one slot (cost: a few evaluations per code above the
+// threshold, ~1-10 ms for a 16-bit input).
+SlotContract slot_contract(const SpecularUnit& unit, std::size_t slot, const SlotMap& slots);
+
+// A display depth's LSB: errors in LSBs of a `bits`-bit output are err * (2^bits - 1).
+inline double display_scale(int bits) {
+  return static_cast<double>((std::int64_t{1} << bits) - 1);
+}
+
+}  // namespace glint
