@@ -82,7 +82,9 @@ SlotContract slot_contract(const SpecularUnit& unit, std::size_t slot, const Slo
   const QFormat in = unit.in_format();
   const double h = in.ulp();
   const std::int64_t one = in.raw_one();
-  const auto ref = [&](double t) { return reference_value(slots, slot, std::clamp(t, 0.0, 1.0)); };
+  // The lobe over the whole range a code can stand for: t >= -1 (the front end clamps t < 0 to
+  // code 0, and a Gaussian lobe is not 0 there) up to 1 (reference_value clamps above).
+  const auto ref = [&](double t) { return reference_value(slots, slot, std::max(t, -1.0)); };
 
   // Skip part: every real t that lands on a code <= T lies below (T + ½) h.
   const std::int64_t top = std::min(c.threshold_raw, one);
@@ -94,11 +96,14 @@ SlotContract slot_contract(const SpecularUnit& unit, std::size_t slot, const Slo
   const std::int64_t limit = std::int64_t{1} << kExactInputBits;
   const std::int64_t step = count > limit ? (count + limit - 1) / limit : 1;
   c.exact = step == 1;
-  double lower_edge = ref((static_cast<double>(first) - 0.5) * h);
+  const auto cell_bottom = [&](std::int64_t code) {
+    return code == 0 ? ref(-1.0) : ref((static_cast<double>(code) - 0.5) * h);
+  };
+  double lower_edge = cell_bottom(first);
   for (std::int64_t code = first; code <= one; code += step) {
     const double t = static_cast<double>(code) * h;
     const double r = ref(t);
-    if (step != 1) lower_edge = ref(t - 0.5 * h);
+    if (step != 1) lower_edge = cell_bottom(code);
     const double upper_edge = ref(t + 0.5 * h);
     const double f = unit.float_model(slot, t);
     const double model = unit.model(slot, code);

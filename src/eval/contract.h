@@ -2,13 +2,12 @@
 // input code the datapath can see, so that the total against the reference lobe is bounded on any
 // real t, on the input grid or off it.
 //
-// For a real t in [0, 1] whose code c = quantize_input(t) (value t_c) the comparator keeps:
-//   y(c) - r(t) = [y(c) - M(c)]       datapath rounding: the unit's own budget
-//   (datapath_bound_ulps)
-//               + [M(c) - F(t_c)]     parameter quantization: n, tau, k, coefficients, table
-//               entries
-//               + [F(t_c) - r(t_c)]   approximation: the unit's real-valued function vs the lobe
-//               + [r(t_c) - r(t)]     input quantization: t rounded to the input format
+// For a real t (the front end clamps it to [0, 1]) whose code c = quantize_input(t) (value t_c)
+// the comparator keeps:
+//   y(c) - r(t) = [y(c) - M(c)]     datapath rounding: the unit's budget, datapath_bound_ulps
+//               + [M(c) - F(t_c)]   parameter quantization: n, tau, k, coefficients, tables
+//               + [F(t_c) - r(t_c)] approximation: the unit's real-valued function vs the lobe
+//               + [r(t_c) - r(t)]   input quantization: t rounded to the input format
 // with M = SpecularUnit::model (real arithmetic at the quantized parameters), F = float_model
 // (exact parameters) and r the reference lobe (t^n, or Källberg eq.7 for Gaussian materials). The
 // parameter and approximation parts are measured at every code the comparator keeps, the input

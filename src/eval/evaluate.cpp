@@ -332,9 +332,13 @@ std::string format_parts_table(const std::vector<UnitStats>& stats) {
     out += fmt::format("{:<9} {:>17} {:>17} {:>17} {:>17} {:>17}\n", s.name, cell(s.input, b.input),
                        cell(s.parameter, b.parameter), cell(s.approximation, b.approximation),
                        cell(s.datapath, b.datapath), cell(s.skip, b.skip));
-    for (const SlotContract& c : s.slots)
-      if (c.always_skipped)
+    for (const SlotContract& c : s.slots) {
+      if (c.always_skipped) {
         out += fmt::format("{:<9} {} is always skipped (c_y <= eps): in no bound\n", "", c.name);
+      } else if (c.kind == ContractKind::kBound || c.kind == ContractKind::kNone) {
+        out += fmt::format("{:<9} {}: contract {}: {}\n", "", c.name, to_string(c.kind), c.reason);
+      }
+    }
   }
   return out;
 }

@@ -75,6 +75,14 @@ CommonKeys read_common_keys(const KeyReader& keys) {
   CommonKeys c;
   c.in = keys.format("in", kDefaultIn);
   c.out = keys.format("out", kDefaultOut);
+  // A format without a fraction bit cannot carry a highlight: uq1.0 holds 0 and 1 only (its
+  // input rounding alone is a whole-range error), so it is refused rather than reported.
+  for (const auto& [key, f] : {std::pair<const char*, QFormat>{"in", c.in}, {"out", c.out}}) {
+    if (f.frac_bits < 1 || f.raw_one() == 0)
+      throw std::invalid_argument(
+          fmt::format("key '{}' = '{}': needs at least one fraction bit and must represent 1.0",
+                      key, f.name()));
+  }
   c.skip = keys.flag("skip", true);
   c.buffer = keys.integer("buffer", -1, 1, 1 << 16, true);
   return c;
