@@ -150,15 +150,17 @@ nlohmann::json UnitStats::to_json() const {
           {"description", description}};
 }
 
-RowReference make_reference(const SlotMap& slots, std::size_t slot, double t) {
-  return RowReference{t, reference_value(slots, slot, t)};
+RowReference make_reference(const SlotMap& slots, std::size_t slot, double t, int display_bits) {
+  RowReference r{t, reference_value(slots, slot, t), 0, display_bits};
+  r.display = std::lround(std::clamp(r.value, 0.0, 1.0) * display_scale(display_bits));
+  return r;
 }
 
 namespace {
-// The memo holds M, F and r per (slot, code) for inputs up to 16 bits, up to this many codes over
-// all slots (48 MiB): beyond it every request computes them (a file with thousands of materials
-// must not allocate per slot what a short stream never revisits).
-constexpr std::size_t kMemoCodes = std::size_t{1} << 21;
+// The memo holds r per (slot, code) for inputs up to 16 bits, up to this many codes over all slots
+// (32 MiB): beyond it every request computes its parts (a file with thousands of materials must
+// not allocate per slot what a short stream never revisits).
+constexpr std::size_t kMemoCodes = std::size_t{1} << 22;
 }  // namespace
 
 LaneAccumulator::LaneAccumulator(const SpecularUnit& unit, const SlotMap& slots, int display_bits)
@@ -169,34 +171,48 @@ LaneAccumulator::LaneAccumulator(const SpecularUnit& unit, const SlotMap& slots,
   ulp_ = unit.out_format().ulp();
   in_ulp_ = unit.in_format().ulp();
   display_ = display_scale(display_bits);
-  contract_index_.assign(unit.slots(), -1);
+  slot_state_.assign(unit.slots(), -1);
   const int width = unit.in_format().width();
   if (width <= 16 && unit.slots() << width <= kMemoCodes) memo_.resize(unit.slots());
 }
 
-const LaneAccumulator::CodeValues& LaneAccumulator::values(std::size_t slot, std::int64_t t_raw) {
-  const auto compute = [&](CodeValues& v) {
-    const double t = static_cast<double>(t_raw) * in_ulp_;
-    v.model = unit_.model(slot, t_raw);
-    v.ideal = unit_.float_model(slot, t);
-    v.reference = reference_value(slots_, slot, t);
-  };
-  if (memo_.empty()) {
-    compute(scratch_);
-    return scratch_;
+void LaneAccumulator::fold_code(std::size_t slot, std::int64_t t_raw, double fixed, double t,
+                                double r_code) {
+  const double model = unit_.model(slot, t_raw);
+  const double ideal = unit_.float_model(slot, static_cast<double>(t_raw) * in_ulp_);
+  stats_.approximation.add(ideal - r_code, t);
+  stats_.parameter.add(model - ideal, t);
+  stats_.datapath.add(fixed - model, t);
+  const double ulps = std::fabs(fixed - model) / ulp_;
+  if (ulps > stats_.max_ulps) {
+    stats_.max_ulps = ulps;
+    stats_.t_at_max_ulps = t;
   }
-  std::vector<CodeValues>& m = memo_[slot];
-  if (m.empty()) m.assign(std::size_t{1} << unit_.in_format().width(), CodeValues{-1, 0, 0});
-  CodeValues& v = m[static_cast<std::size_t>(t_raw - unit_.in_format().raw_min())];
-  if (v.model < 0) compute(v);
-  return v;
+}
+
+double LaneAccumulator::code_reference(std::size_t slot, std::int64_t t_raw, double fixed,
+                                       double t) {
+  if (memo_.empty()) {
+    const double r = reference_value(slots_, slot, static_cast<double>(t_raw) * in_ulp_);
+    fold_code(slot, t_raw, fixed, t, r);
+    return r;
+  }
+  std::vector<double>& m = memo_[slot];
+  if (m.empty())
+    m.assign(std::size_t{1} << unit_.in_format().width(), std::numeric_limits<double>::quiet_NaN());
+  double& r = m[static_cast<std::size_t>(t_raw - unit_.in_format().raw_min())];
+  if (std::isnan(r)) {
+    r = reference_value(slots_, slot, static_cast<double>(t_raw) * in_ulp_);
+    fold_code(slot, t_raw, fixed, t, r);
+  }
+  return r;
 }
 
 void LaneAccumulator::add(std::size_t slot, const RowReference& ref, std::int64_t t_raw,
                           bool skipped, std::int64_t out_raw) {
-  if (contract_index_[slot] < 0) {
-    contract_index_[slot] = static_cast<std::int32_t>(stats_.slots.size());
+  if (slot_state_[slot] < 0) {
     stats_.slots.push_back(slot_contract(unit_, slot, slots_));
+    slot_state_[slot] = stats_.slots.back().always_skipped ? 1 : 0;
   }
   const double fixed = static_cast<double>(out_raw) * ulp_;
   const double err = fixed - ref.value;
@@ -205,7 +221,7 @@ void LaneAccumulator::add(std::size_t slot, const RowReference& ref, std::int64_
   stats_.weighted.add(err * slots_.c_y[slot], ref.t);
   // A lobe that never reaches eps on the pixel is counted apart: its scalar error is the whole
   // lobe and would hide every other slot's (it stays in the weighted error and the digest).
-  if (stats_.slots[static_cast<std::size_t>(contract_index_[slot])].always_skipped) {
+  if (slot_state_[slot] == 1) {
     ++stats_.always_skipped_vectors;
   } else {
     add_scalar(slot, ref, t_raw, skipped, fixed);
@@ -223,25 +239,17 @@ void LaneAccumulator::add_scalar(std::size_t slot, const RowReference& ref, std:
   if (skipped) {
     stats_.skip.add(ref.value, ref.t);
   } else {
-    const CodeValues& v = values(slot, t_raw);
-    stats_.input.add(v.reference - ref.value, ref.t);
-    stats_.approximation.add(v.ideal - v.reference, ref.t);
-    stats_.parameter.add(v.model - v.ideal, ref.t);
-    stats_.datapath.add(fixed - v.model, ref.t);
-    const double ulps = std::fabs(fixed - v.model) / ulp_;
-    if (ulps > stats_.max_ulps) {
-      stats_.max_ulps = ulps;
-      stats_.t_at_max_ulps = ref.t;
-    }
+    stats_.input.add(code_reference(slot, t_raw, fixed, ref.t) - ref.value, ref.t);
   }
-  if (std::lround(std::clamp(fixed, 0.0, 1.0) * display_) !=
-      std::lround(std::clamp(ref.value, 0.0, 1.0) * display_))
-    ++stats_.mismatch;
+  const long ref_code = ref.display_bits == stats_.display_bits
+                            ? ref.display
+                            : std::lround(std::clamp(ref.value, 0.0, 1.0) * display_);
+  if (std::lround(std::clamp(fixed, 0.0, 1.0) * display_) != ref_code) ++stats_.mismatch;
 }
 
 Evaluator::Evaluator(const VectorHeader& header, const std::vector<UnitSpec>& specs,
                      int display_bits)
-    : slots_(make_slots(header)) {
+    : slots_(make_slots(header)), display_bits_(display_bits) {
   for (const UnitSpec& spec : specs) units_.push_back(make_unit(spec, slots_.params));
   std::vector<std::string> names;
   for (const auto& u : units_) names.push_back(u->name());
@@ -256,7 +264,7 @@ Evaluator::Evaluator(const VectorHeader& header, const std::vector<UnitSpec>& sp
 
 void Evaluator::add(const VectorRow& row, const std::function<void(const EvalRecord&)>& dump) {
   const std::size_t slot = slots_.slot(row);
-  const RowReference ref = make_reference(slots_, slot, row.t);
+  const RowReference ref = make_reference(slots_, slot, row.t, display_bits_);
   for (std::size_t u = 0; u < units_.size(); ++u) {
     const SpecularUnit& unit = *units_[u];
     const std::int64_t t_raw = quantize_input(row.t, unit.in_format());

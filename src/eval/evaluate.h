@@ -101,9 +101,11 @@ struct UnitStats {
 // The float reference of one request, computed once and shared by every lane.
 struct RowReference {
   double t = 0;
-  double value = 0;  // reference_value(): max(0,t)^n or the Gaussian lobe
+  double value = 0;      // reference_value(): max(0,t)^n or the Gaussian lobe
+  long display = 0;      // round(value (2^display_bits - 1)): its display code
+  int display_bits = 8;  // lanes with another depth compute their own code
 };
-RowReference make_reference(const SlotMap& slots, std::size_t slot, double t);
+RowReference make_reference(const SlotMap& slots, std::size_t slot, double t, int display_bits = 8);
 
 // Accuracy statistics of one lane (a unit), fed one result at a time: by `glint eval`, by the fast
 // mode's batch loop and by the clocked mode's scoreboard. One accumulation for every path.
@@ -119,12 +121,12 @@ class LaneAccumulator {
   UnitStats& stats() { return stats_; }
 
  private:
-  // M, F and r at one input code (contract.h), memoised per (slot, code) for narrow inputs: a
-  // long stream revisits the same codes, and these are the costly part of the check.
-  struct CodeValues {
-    double model = 0, ideal = 0, reference = 0;
-  };
-  const CodeValues& values(std::size_t slot, std::int64_t t_raw);
+  // The lobe at a code's value, r(t_c). The parameter, approximation and datapath parts depend on
+  // the code alone (contract.h), so they are folded in at a code's first visit; a long stream
+  // revisits the same codes, and M, F and r are the costly part of the check. Memoised per
+  // (slot, code) for narrow inputs (NaN: not visited yet).
+  double code_reference(std::size_t slot, std::int64_t t_raw, double fixed, double t);
+  void fold_code(std::size_t slot, std::int64_t t_raw, double fixed, double t, double r_code);
   void add_scalar(std::size_t slot, const RowReference& ref, std::int64_t t_raw, bool skipped,
                   double fixed);
 
@@ -133,9 +135,9 @@ class LaneAccumulator {
   UnitStats stats_;
   std::uint64_t digest_ = 0xcbf29ce484222325ULL;
   double ulp_ = 0, in_ulp_ = 0, display_ = 0;
-  std::vector<std::int32_t> contract_index_;  // slot -> index in stats_.slots, -1: not seen yet
-  std::vector<std::vector<CodeValues>> memo_;
-  CodeValues scratch_;
+  // Per slot: -1 not seen yet (its contract not computed), 0 computed, 1 always skipped.
+  std::vector<std::int8_t> slot_state_;
+  std::vector<std::vector<double>> memo_;
 };
 
 // One evaluated request for the optional per-vector dump.
@@ -170,6 +172,7 @@ class Evaluator {
   SlotMap slots_;
   std::vector<std::unique_ptr<SpecularUnit>> units_;
   std::vector<LaneAccumulator> lanes_;
+  int display_bits_ = 8;
 };
 
 // The summary table printed by `glint eval`, and the table of error parts printed after it.
