@@ -7,6 +7,48 @@
 #include <stdexcept>
 
 namespace glint {
+namespace {
+
+// |t^n - chord| at its extreme on the segment [a, a + h]: t^n is convex (n >= 1) or concave
+// (n < 1), so the extreme is where n t^(n-1) equals the chord slope.
+double segment_chord_error(double a, double h, double n) {
+  const double b = a + h;
+  const double fa = std::pow(a, n), s = (std::pow(b, n) - fa) / h;
+  double x = n == 1.0 ? a : std::pow(s / n, 1.0 / (n - 1.0));
+  x = std::isfinite(x) ? std::clamp(x, a, b) : a;
+  return std::fabs(fa + s * (x - a) - std::pow(x, n));
+}
+
+// The largest segment_chord_error over the segments [t0 + j h, t0 + (j + 1) h], j < count: the
+// same value as evaluating every segment (a maximum does not depend on the order), but most
+// segments are skipped because they provably cannot reach it.
+//
+// A segment's true chord error is at most h^2/8 max|f''| on it, and |f''| = n |n - 1| t^(n-2) is
+// monotone: increasing for n > 2 (the last segment has the largest bound), decreasing for n < 2
+// (the first). The segments are visited from that end, so each one's bound also bounds every
+// segment still to come, and the walk stops once the bound is below the largest value found.
+// The computed value may exceed the true error by its rounding: every term is in [0, 1] (t, t^n
+// and s (x - a) <= t^n(b) - t^n(a)), so a few 2^-53 (pow within 1 ulp, four roundings);
+// kRoundingMargin is 2^-40, hundreds of times that. The bound's own rounding is covered by
+// scaling it by 1 + 2^-30.
+double max_chord_error(double t0, double h, std::size_t count, double n) {
+  // n = 1: every chord is t itself and each segment computes exactly 0 (pow(a, 1) = a, x = a).
+  if (n == 1.0) return 0.0;
+  constexpr double kRoundingMargin = 0x1p-40, kBoundScale = 1 + 0x1p-30;
+  const bool rising = n > 2.0;  // |f''| increasing: visit the segments from the last
+  const double scale = h * h / 8 * n * std::fabs(n - 1) * kBoundScale;
+  double worst = 0;
+  for (std::size_t step = 0; step < count; ++step) {
+    const std::size_t j = rising ? count - 1 - step : step;
+    const double a = t0 + h * static_cast<double>(j);
+    const double bound = scale * std::pow(rising ? a + h : a, n - 2) + kRoundingMargin;
+    if (bound < worst) break;  // this segment and every later one stay below worst
+    worst = std::max(worst, segment_chord_error(a, h, n));
+  }
+  return worst;
+}
+
+}  // namespace
 
 LutUnit::LutUnit(const LutConfig& cfg, const MaterialParams& m) : cfg_(cfg) {
   check_format(cfg.in);
@@ -38,27 +80,35 @@ LutUnit::LutUnit(const LutConfig& cfg, const MaterialParams& m) : cfg_(cfg) {
   out_shift_ = r_bits_ + cfg_.table_frac - cfg.out.frac_bits;
   if (2 * (cfg_.table_frac + 1) + r_bits_ > 62) throw std::invalid_argument("lut: too wide");
 
-  const std::size_t entries = (std::size_t{1} << cfg.bits) + 1;
-  const double t0 = std::ldexp(static_cast<double>(std::min(t0_raw_, one_in_)), -fi);
-  const double h = (1.0 - t0) / static_cast<double>(entries - 1);
-  table_.resize(entries + 1);
-  for (std::size_t j = 0; j < entries; ++j) {
-    const double t = j + 1 == entries ? 1.0 : t0 + h * static_cast<double>(j);
-    table_[j] = std::llround(std::ldexp(std::pow(t, n_), cfg_.table_frac));
+  // Keep entries 0, 2^pad, ..., 2^bits (all of them when pad = 0), then the padding entry that
+  // lets the interpolation read k + 1 at the last node (with a zero remainder).
+  const std::size_t kept = (std::size_t{1} << (cfg.bits - pad_)) + 1;
+  table_.resize(kept + 1);
+  for (std::size_t k = 0; k < kept; ++k) {
+    table_[k] = static_cast<std::uint32_t>(compute_entry(static_cast<std::int64_t>(k) << pad_));
   }
-  table_[entries] = table_[entries - 1];  // read with a zero remainder at t = 1
+  table_[kept] = table_[kept - 1];
 
-  // Chord error per segment: t^n is convex (n >= 1) or concave (n < 1), so the extreme of
-  // t^n - chord is where n t^(n-1) equals the chord slope.
-  chord_ = 0;
-  for (std::size_t j = 0; j + 1 < entries && h > 0; ++j) {
-    const double a = t0 + h * static_cast<double>(j), b = a + h;
-    const double fa = std::pow(a, n_), s = (std::pow(b, n_) - fa) / h;
-    double x = n_ == 1.0 ? a : std::pow(s / n_, 1.0 / (n_ - 1.0));
-    x = std::isfinite(x) ? std::clamp(x, a, b) : a;
-    chord_ = std::max(chord_, std::fabs(fa + s * (x - a) - std::pow(x, n_)));
-  }
+  const double t0 = std::ldexp(static_cast<double>(std::min(t0_raw_, one_in_)), -fi);
+  const double h = (1.0 - t0) * std::ldexp(1.0, -cfg.bits);
+  chord_ = h > 0 ? max_chord_error(t0, h, std::size_t{1} << cfg.bits, n_) : 0.0;
   bound_ = chord_ + std::ldexp(0.5, -cfg_.table_frac) + std::ldexp(0.5, -cfg.out.frac_bits);
+}
+
+std::int64_t LutUnit::compute_entry(std::int64_t j) const {
+  const std::int64_t last = std::int64_t{1} << cfg_.bits;
+  const double t0 = std::ldexp(static_cast<double>(std::min(t0_raw_, one_in_)), -cfg_.in.frac_bits);
+  const double h = (1.0 - t0) * std::ldexp(1.0, -cfg_.bits);
+  const double t = j >= last ? 1.0 : t0 + h * static_cast<double>(j);
+  return std::llround(std::ldexp(std::pow(t, n_), cfg_.table_frac));
+}
+
+std::int64_t LutUnit::entry(std::int64_t j) const {
+  const std::int64_t last = std::int64_t{1} << cfg_.bits;
+  if (j >= last) return table_[table_.size() - 2];  // the last node (and its padding copy)
+  if ((j & ((std::int64_t{1} << pad_) - 1)) == 0)
+    return table_[static_cast<std::size_t>(j >> pad_)];
+  return compute_entry(j);
 }
 
 double LutUnit::interp_exact(double t) const {
@@ -75,9 +125,9 @@ double LutUnit::interp_exact(double t) const {
 double LutUnit::model(std::int64_t t_raw) const {
   if (t_raw <= t0_raw_) return 0.0;
   const std::int64_t t = t_raw > one_in_ ? one_in_ : t_raw;
-  const std::int64_t v = (t - t0_raw_) << pad_;
-  const std::int64_t i = v >> r_bits_;
-  const long double a = table_[i], b = table_[i + 1];
+  const std::int64_t v = t - t0_raw_;  // as eval: pad > 0 means a zero remainder
+  const std::int64_t k = v >> r_bits_;
+  const long double a = table_[k], b = table_[k + 1];
   const long double r = std::ldexp(static_cast<long double>(v & r_mask_), -r_bits_);
   return static_cast<double>(std::ldexp(a + (b - a) * r, -cfg_.table_frac));
 }

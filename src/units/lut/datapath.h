@@ -12,6 +12,13 @@
 // exact t^n nodes), parameter quantization = the table rounding (model() interpolates the rounded
 // entries, a convex combination, so at most ½ ulp of the table), datapath = the final rounding
 // alone (the interpolation is formed exactly and rounded once: ½ ulp).
+//
+// Storage: when the span holds fewer input codes than the table has segments (bits > Fi - s, pad
+// > 0), the inputs read only every 2^pad-th entry, with a zero remainder. Only those entries are
+// kept (the ROM's other entries show only in the staged evaluation, as the node_hi register, and
+// are computed there on demand): lut:bits=16 would otherwise keep 2^16 + 1 entries per material
+// of which at most 2^15 + 1 are ever read. Entries are at most 2^table_frac <= 2^30 (the width
+// check), so 32 bits hold them.
 #pragma once
 
 #include <cstdint>
@@ -44,14 +51,19 @@ class LutUnit {
       return 0;
     }
     const std::int64_t t = t_raw > one_in_ ? one_in_ : t_raw;
-    const std::int64_t v = (t - t0_raw_) << pad_;
-    const std::int64_t i = v >> r_bits_;
+    // The hardware index is ((t - t0) << pad) >> r_bits; pad > 0 implies r_bits = 0, so the kept
+    // entry (every 2^pad-th) is at (t - t0) >> r_bits either way.
+    const std::int64_t v = t - t0_raw_;
+    const std::int64_t k = v >> r_bits_;
     const std::int64_t r = v & r_mask_;
-    const std::int64_t a = table_[i], b = table_[i + 1];
-    probe(1, 0, i);
-    probe(1, 1, r);
-    probe(1, 2, a);
-    probe(1, 3, b);
+    const std::int64_t a = table_[k], b = table_[k + 1];  // b: the next kept entry
+    if constexpr (Probe::kActive) {
+      const std::int64_t i = k << pad_;
+      probe(1, 0, i);
+      probe(1, 1, r);
+      probe(1, 2, a);
+      probe(1, 3, pad_ == 0 ? b : entry(i + 1));  // the ROM's own next entry
+    }
     const std::int64_t y = (a << r_bits_) + (b - a) * r;  // exact, r_bits + tfrac
     const std::int64_t q = round_nearest(y, out_shift_);
     const std::int64_t result = q > one_out_ ? one_out_ : q;
@@ -59,6 +71,11 @@ class LutUnit {
     return result;
   }
   int remainder_bits() const { return r_bits_; }
+  // Entry j of the ROM (0..2^bits, and the padding entry 2^bits + 1 that repeats the last), as
+  // kept or, between the kept ones, computed the same way.
+  std::int64_t entry(std::int64_t j) const;
+  std::size_t entries() const { return (std::size_t{1} << cfg_.bits) + 1; }
+  std::size_t kept_entries() const { return table_.size() - 1; }
   double model(std::int64_t t_raw) const;  // the rounded entries interpolated exactly, at t_q
   double float_model(double t) const;      // exact-node interpolation at the exact t
   static double datapath_bound_ulps() { return 0.5; }
@@ -67,17 +84,17 @@ class LutUnit {
 
   std::int64_t t0_raw() const { return t0_raw_; }
   int span_log2() const { return s_; }
-  const std::vector<std::int64_t>& table() const { return table_; }
   const LutConfig& config() const { return cfg_; }
 
  private:
   double interp_exact(double t) const;
+  std::int64_t compute_entry(std::int64_t j) const;  // node j's t^n rounded, j in 0..2^bits
 
   LutConfig cfg_;
   double n_ = 1;
   int s_ = 0, pad_ = 0, r_bits_ = 0, out_shift_ = 0;
   std::int64_t t0_raw_ = 0, one_in_ = 0, one_out_ = 0, tau_raw_ = -1, r_mask_ = 0;
-  std::vector<std::int64_t> table_;
+  std::vector<std::uint32_t> table_;  // entries 0, 2^pad, 2 2^pad, ..., 2^bits, the padding
   double chord_ = 0, bound_ = 0;
 };
 

@@ -105,7 +105,7 @@ struct Lut : UnitKindDefaults {
   static nlohmann::json describe_slot(const Datapath& u) {
     return {{"t0_raw", u.t0_raw()},
             {"span_log2", u.span_log2()},
-            {"entries", u.table().size() - 1},
+            {"entries", u.entries()},
             {"chord_error", u.chord_error()},
             {"error_bound", u.error_bound()}};
   }

@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
+
+#include "units/unit_set.h"
 
 namespace glint {
 namespace {
@@ -39,7 +42,29 @@ double max_chord_error(int bits, F f, DInv df_inv) {
 
 }  // namespace
 
-PowUnit::PowUnit(const PowConfig& cfg, const MaterialParams& m) : cfg_(cfg) {
+PowTables::PowTables(const PowConfig& cfg)
+    : log_bits(cfg.log_bits),
+      log_frac(cfg.log_frac),
+      exp_bits(cfg.exp_bits),
+      exp_frac(cfg.exp_frac) {
+  log_table = build_table(cfg.log_bits, cfg.log_frac, [](double x) { return std::log2(1 + x); });
+  exp_table = build_table(cfg.exp_bits, cfg.exp_frac, [](double x) { return std::exp2(x); });
+  // Interpolation with fewer remainder bits than the table resolution (pad) is exact at the
+  // nodes, so the chord terms still bound it.
+  const double ln2 = std::log(2.0);
+  eps_log = max_chord_error(
+                cfg.log_bits, [](double x) { return std::log2(1 + x); },
+                [ln2](double s) { return 1.0 / (s * ln2) - 1.0; }) +
+            std::ldexp(1.0, -cfg.log_frac);  // table ½ ulp + interpolation ½ ulp
+  eps_exp = max_chord_error(
+                cfg.exp_bits, [](double x) { return std::exp2(x); },
+                [ln2](double s) { return std::log2(s / ln2); }) +
+            std::ldexp(1.0, -cfg.exp_frac);
+}
+
+PowUnit::PowUnit(const PowConfig& cfg, const MaterialParams& m,
+                 std::shared_ptr<const PowTables> tables)
+    : cfg_(cfg), tables_(std::move(tables)) {
   check_format(cfg.in);
   check_format(cfg.out);
   check_format(cfg.n_format);
@@ -88,23 +113,32 @@ PowUnit::PowUnit(const PowConfig& cfg, const MaterialParams& m) : cfg_(cfg) {
   if (cfg.n_format.width() + 6 + cfg.log_frac > 62)
     throw std::invalid_argument("pow: n register and log table too wide for 62-bit products");
 
-  log_table_ = build_table(cfg.log_bits, cfg.log_frac, [](double x) { return std::log2(1 + x); });
-  exp_table_ = build_table(cfg.exp_bits, cfg.exp_frac, [](double x) { return std::exp2(x); });
+  if (tables_ == nullptr) {
+    tables_ = std::make_shared<const PowTables>(cfg);
+  } else if (!tables_->fits(cfg)) {
+    throw std::invalid_argument("pow: shared tables built for other table keys");
+  }
+  log_table_ = tables_->log_table.data();
+  exp_table_ = tables_->exp_table.data();
 
-  // Error bound, the terms named in the header comment. Interpolation with fewer remainder bits
-  // than the table resolution (pad) is exact at the nodes, so the chord terms still bound it.
-  const double ln2 = std::log(2.0);
-  eps_log_ = max_chord_error(
-                 cfg.log_bits, [](double x) { return std::log2(1 + x); },
-                 [ln2](double s) { return 1.0 / (s * ln2) - 1.0; }) +
-             std::ldexp(1.0, -cfg.log_frac);  // table ½ ulp + interpolation ½ ulp
-  eps_exp_ = max_chord_error(
-                 cfg.exp_bits, [](double x) { return std::exp2(x); },
-                 [ln2](double s) { return std::log2(s / ln2); }) +
-             std::ldexp(1.0, -cfg.exp_frac);
+  // Error bound, the terms named in the header comment; only dy depends on the material.
   const double nq = shininess_q();
-  const double dy = nq * eps_log_ + std::ldexp(0.5, -cfg.y_frac);
-  bound_ = (std::exp2(dy) * (1 + eps_exp_) - 1) + std::ldexp(0.5, -cfg.out.frac_bits);
+  const double dy = nq * tables_->eps_log + std::ldexp(0.5, -cfg.y_frac);
+  bound_ = (std::exp2(dy) * (1 + tables_->eps_exp) - 1) + std::ldexp(0.5, -cfg.out.frac_bits);
+}
+
+std::vector<PowUnit> build_pow_units(const PowConfig& cfg,
+                                     const std::vector<MaterialParams>& slots) {
+  std::vector<PowUnit> units;
+  units.reserve(slots.size());
+  // The first slot builds the tables (and checks the config, so a refusal reads as before: from
+  // within a slot, naming it); every later slot shares them.
+  std::shared_ptr<const PowTables> shared;
+  for (const auto& m : slots) {
+    for_slot(m, [&] { units.emplace_back(cfg, m, shared); });
+    shared = units.back().tables();
+  }
+  return units;
 }
 
 double PowUnit::shininess_q() const {

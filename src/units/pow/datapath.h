@@ -20,6 +20,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "units/common.h"
@@ -39,9 +40,28 @@ struct PowConfig {
   bool skip = true;
 };
 
+// What pow's datapath reads that does not depend on the material: the log2 and exp2 tables and
+// their error terms (eps_L, eps_E of the header comment). One per configuration, shared by every
+// slot of a unit: 65536 slots would otherwise build (and keep) 65536 identical copies.
+struct PowTables {
+  explicit PowTables(const PowConfig& cfg);  // cfg already checked (PowUnit's constructor)
+  // The tables are those of cfg (same table keys).
+  bool fits(const PowConfig& cfg) const {
+    return cfg.log_bits == log_bits && cfg.log_frac == log_frac && cfg.exp_bits == exp_bits &&
+           cfg.exp_frac == exp_frac;
+  }
+
+  int log_bits, log_frac, exp_bits, exp_frac;
+  std::vector<std::int64_t> log_table, exp_table;
+  double eps_log = 0, eps_exp = 0;
+};
+
 class PowUnit {
  public:
-  PowUnit(const PowConfig& cfg, const MaterialParams& m);
+  // `tables`: a PowTables built for a config with the same table keys (log_bits, log_frac,
+  // exp_bits, exp_frac), to share; null builds the unit's own.
+  PowUnit(const PowConfig& cfg, const MaterialParams& m,
+          std::shared_ptr<const PowTables> tables = nullptr);
 
   std::int64_t eval(std::int64_t t_raw) const { return run(t_raw, NoProbe{}); }
   // The datapath, stage by stage (pow.cpp's layout): 1 normalisation shift, log2 nodes and the
@@ -96,8 +116,9 @@ class PowUnit {
   // Bound on |eval - t_q^n_q| over every input (see the header comment).
   double error_bound() const { return bound_; }
   double datapath_bound_ulps() const { return std::ldexp(bound_, cfg_.out.frac_bits); }
-  double log_error() const { return eps_log_; }
-  double exp_error() const { return eps_exp_; }
+  double log_error() const { return tables_->eps_log; }
+  double exp_error() const { return tables_->eps_exp; }
+  const std::shared_ptr<const PowTables>& tables() const { return tables_; }
 
   double shininess_q() const;
   const PowConfig& config() const { return cfg_; }
@@ -110,8 +131,17 @@ class PowUnit {
   int fi_ = 0, log_r_bits_ = 0, log_pad_ = 0, exp_r_bits_ = 0, exp_pad_ = 0, y_shift_ = 0;
   int out_shift_ = 0;
   std::int64_t log_r_mask_ = 0, exp_r_mask_ = 0;
-  std::vector<std::int64_t> log_table_, exp_table_;
-  double eps_log_ = 0, eps_exp_ = 0, bound_ = 0;
+  std::shared_ptr<const PowTables> tables_;
+  // tables_'s entries, cached so that eval reads a table through one pointer as it did from a
+  // vector of its own (no extra indirection through the shared object).
+  const std::int64_t* log_table_ = nullptr;
+  const std::int64_t* exp_table_ = nullptr;
+  double bound_ = 0;
 };
+
+// One PowUnit per slot, all sharing one PowTables (built with the first slot). A refusal names
+// the slot's material, as every kind's per-slot build does.
+std::vector<PowUnit> build_pow_units(const PowConfig& cfg,
+                                     const std::vector<MaterialParams>& slots);
 
 }  // namespace glint

@@ -57,7 +57,7 @@ struct Pow : UnitKindDefaults {
     // leading-one detect + log2 table read, log2 interpolation, multiply by n, exp2 table read,
     // exp2 interpolation + shift + rounding.
     const UnitTiming timing{5, 1, 0};
-    auto units = build_per_slot<PowUnit>(c, slots);
+    auto units = build_pow_units(c, slots);
     return make_unit_set<Pow>(common, std::move(config), c, std::move(units), slots, timing);
   }
 
