@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
+#include <cstdlib>
 #include <stdexcept>
 
 namespace glint {
@@ -40,6 +42,17 @@ int KeyReader::integer(const std::string& key, int def, int lo, int hi, bool all
   if (ec != std::errc() || p != v->data() + v->size() || out < lo || out > hi)
     fail(key, *v, fmt::format("expected an integer in {}..{}", lo, hi));
   return out;
+}
+
+std::optional<double> KeyReader::real(const std::string& key, double lo, double hi) const {
+  const std::string* v = find(key);
+  if (!v) return std::nullopt;
+  // strtod, not from_chars: libstdc++ before 11 has no floating-point from_chars.
+  char* end = nullptr;
+  const double x = v->empty() ? 0.0 : std::strtod(v->c_str(), &end);
+  if (v->empty() || end != v->c_str() + v->size() || !std::isfinite(x) || !(x >= lo && x < hi))
+    fail(key, *v, fmt::format("expected a number x with {} <= x < {}", lo, hi));
+  return x;
 }
 
 bool KeyReader::flag(const std::string& key, bool def) const {

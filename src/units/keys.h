@@ -2,6 +2,7 @@
 // every unit shares (formats, skip, merge buffer).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,8 @@ class KeyReader {
   QFormat format(const std::string& key, QFormat def) const;
   // An integer in lo..hi; allow_auto: "auto" gives def.
   int integer(const std::string& key, int def, int lo, int hi, bool allow_auto = false) const;
+  // A finite real number x with lo <= x < hi; nullopt when the key is absent.
+  std::optional<double> real(const std::string& key, double lo, double hi) const;
   bool flag(const std::string& key, bool def) const;
   std::string choice(const std::string& key, const std::string& def,
                      const std::vector<std::string>& allowed) const;

@@ -17,7 +17,8 @@ int hast_default_guard(int d) {
   return g + 1;
 }
 
-HastUnit::HastUnit(const HastConfig& cfg, const MaterialParams& m) : cfg_(cfg) {
+HastUnit::HastUnit(const HastConfig& cfg, const MaterialParams& m, const HastSlot& slot)
+    : cfg_(cfg) {
   check_format(cfg.in);
   check_format(cfg.out);
   if (cfg.d < 1 || cfg.d > 16) throw std::invalid_argument("hast: d must be in 1..16");
@@ -27,10 +28,22 @@ HastUnit::HastUnit(const HastConfig& cfg, const MaterialParams& m) : cfg_(cfg) {
   cfg_.guard = g;
   fh_ = cfg.out.frac_bits + g;
   if (2 * (fh_ + 1) > 62) throw std::invalid_argument("hast: chain register wider than 31 bits");
-  // The root: the material's tau (Källberg) clamped into [0, 1); the comparator and the root are
-  // the same floor-rounded threshold, so skipping changes activity, never the result.
-  tau_ = std::clamp(m.tau, 0.0, 1.0);
-  const std::int64_t root_raw = root_threshold_raw(m, cfg.in);
+  if (slot.d < 1 || slot.d > cfg.d) throw std::invalid_argument("hast: slot order outside 1..d");
+  d_ = slot.d;
+  n_ = m.shininess;
+  std::int64_t root_raw = 0;
+  if (slot.from_material) {
+    // The material's tau (Källberg) clamped into [0, 1), rounded as the float test's threshold.
+    tau_ = std::clamp(m.tau, 0.0, 1.0);
+    root_raw = root_threshold_raw(m, cfg.in);
+  } else {
+    if (!(slot.root >= 0.0 && slot.root < 1.0))
+      throw std::invalid_argument(fmt::format("hast: root {} outside [0, 1)", slot.root));
+    // Nearest input code, kept below 1.0: a root at 1.0 would leave no highlight at all.
+    tau_ = slot.root;
+    root_raw = std::min<std::int64_t>(std::llround(std::ldexp(slot.root, cfg.in.frac_bits)),
+                                      cfg.in.raw_one() - 1);
+  }
   scaler_ = UScaler(cfg.in, root_raw, fh_);
   first_shift_ = fh_ - cfg.out.frac_bits;
   last_shift_ = 2 * fh_ - cfg.out.frac_bits;
@@ -39,18 +52,21 @@ HastUnit::HastUnit(const HastConfig& cfg, const MaterialParams& m) : cfg_(cfg) {
 double HastUnit::datapath_bound_ulps() const {
   // u's rounding times |d(u^d)/du| <= d, plus d - 2 inner products (d = 1: u's rounding alone,
   // then the final ½ ulp).
-  const int d = cfg_.d;
-  const int roundings = d == 1 ? 1 : 2 * d - 2;
+  // A slot shorter than the chain (d=auto) has one more: u^d rounded to Fh before the last
+  // stage's multiply by 1.0 rounds it to Fo (datapath.h).
+  const int d = d_;
+  const int roundings = d < cfg_.d ? 2 * d - 1 : (d == 1 ? 1 : 2 * d - 2);
   return 0.5 + roundings * std::ldexp(1.0, -(cfg_.guard + 1));
 }
 
 double HastUnit::model(std::int64_t t_raw) const {
-  return static_cast<double>(std::pow(scaler_.exact(t_raw), static_cast<long double>(cfg_.d)));
+  return static_cast<double>(std::pow(scaler_.exact(t_raw), static_cast<long double>(d_)));
 }
 
 double HastUnit::float_model(double t) const {
   if (scaler_.root_raw() >= cfg_.in.raw_one()) return 0.0;
-  return hast(t > 1 ? 1.0 : t, tau_, cfg_.d);
+  if (tau_ >= 1.0) return 0.0;
+  return hast(t > 1 ? 1.0 : t, tau_, d_);
 }
 
 }  // namespace glint

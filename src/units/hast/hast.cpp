@@ -8,8 +8,12 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
+#include <optional>
+#include <unordered_map>
 
 #include "units/hast/datapath.h"
+#include "units/match.h"
 #include "units/u_scaler_cost.h"
 #include "units/unit_set.h"
 
@@ -24,21 +28,105 @@ struct Hast : UnitKindDefaults {
       "Hast kappa (t - tau)^d as u^d, u = (t - tau)/(1 - tau): multiplier chain";
 
   static std::vector<UnitKey> keys() {
-    return {{"d", "exponent: d - 1 multipliers", "4"},
-            {"guard", "guard bits of the chain (auto: ceil(log2(2d-2)) + 1)", "auto"}};
+    return {{"d",
+             "exponent: d - 1 multipliers (auto, with match=minimax: per slot, d in 1..16 and "
+             "the root jointly by minimax, the chain as long as the largest d; ~0.5 ms per "
+             "distinct n)",
+             "4"},
+            {"guard", "guard bits of the chain (auto: ceil(log2(2d-2)) + 1)", "auto"},
+            {"match",
+             "root against t^n of the material's n (Gaussian lobes: their equivalent n = "
+             "2/omega^2): none (the material's Källberg threshold, or root=) | minimax (the root "
+             "minimizing max |f - t^n| on [0, 1]; ~40 us per distinct n) | width (f(t_half) = "
+             "1/2 where t_half^n = 1/2: matched half-width, closed form, clamped at 0)",
+             "none"},
+            {"root",
+             "explicit root tau in [0, 1) for every slot, as Hast et al. 2003 use it (their "
+             "tau = 0.92 for s = 75); not with match=minimax|width",
+             "none"}};
+  }
+
+  // Each slot's root and order from the keys; solved once per distinct n.
+  static std::vector<HastSlot> slot_roots(const KeyReader& keys, MatchMode match, bool auto_d,
+                                          int d, const std::optional<double>& root,
+                                          const std::vector<MaterialParams>& slots) {
+    std::vector<HastSlot> out;
+    out.reserve(slots.size());
+    std::unordered_map<double, HastSlot> solved;
+    for (const MaterialParams& m : slots) {
+      for_slot(m, [&] {
+        if (root) {
+          out.push_back(HastSlot{d, *root, false});
+          return;
+        }
+        if (match == MatchMode::kNone) {
+          out.push_back(HastSlot{d, 0.0, true});
+          return;
+        }
+        const double n = m.shininess;
+        if (!(n > 0) || !std::isfinite(n))
+          keys.fail("match", to_string(match),
+                    fmt::format("needs the material's shininess n > 0, got {}", n));
+        auto it = solved.find(n);
+        if (it == solved.end()) {
+          HastSlot s{d, 0.0, false};
+          if (match == MatchMode::kWidth) {
+            s.root = hast_width_root(n, d);
+          } else if (auto_d) {
+            const HastMatch j = hast_minimax_joint(n, 16);
+            s.d = j.d;
+            s.root = j.tau;
+          } else {
+            s.root = hast_minimax_root(n, d);
+          }
+          it = solved.emplace(n, s).first;
+        }
+        out.push_back(it->second);
+      });
+    }
+    return out;
   }
 
   static std::unique_ptr<SpecularUnit> build(const KeyReader& keys, const CommonKeys& common,
                                              const std::vector<MaterialParams>& slots) {
-    HastConfig c{common.in, common.out, keys.integer("d", 4, 1, 16),
+    const std::string* d_key = keys.find("d");
+    const bool auto_d = d_key && *d_key == "auto";
+    HastConfig c{common.in, common.out, auto_d ? 16 : keys.integer("d", 4, 1, 16),
                  keys.integer("guard", -1, 0, 20, true), common.skip};
+    const MatchMode match = parse_match_mode(keys.choice("match", "none", match_mode_names()));
+    const std::optional<double> root = keys.real("root", 0.0, 1.0);
+    if (root && match != MatchMode::kNone)
+      keys.fail("root", *keys.find("root"),
+                fmt::format("an explicit root cannot be combined with match={}, which chooses "
+                            "the root (drop one of them)",
+                            to_string(match)));
+    if (auto_d && match != MatchMode::kMinimax)
+      keys.fail("d", "auto",
+                fmt::format("d=auto chooses d by minimax: it needs match=minimax (given "
+                            "match={}{})",
+                            to_string(match), root ? ", root=" + *keys.find("root") : ""));
+    const std::vector<HastSlot> roots = slot_roots(keys, match, auto_d, c.d, root, slots);
+    if (auto_d) {
+      // The chain is as long as the largest order any slot chose.
+      c.per_slot_d = true;
+      c.d = 1;
+      for (const HastSlot& s : roots) c.d = std::max(c.d, s.d);
+    }
     if (c.guard < 0) c.guard = hast_default_guard(c.d);
     nlohmann::json config = common_config(common);
-    config["d"] = c.d;
+    config["d"] = auto_d ? nlohmann::json("auto") : nlohmann::json(c.d);
+    if (auto_d) config["chain"] = c.d;
     config["guard"] = c.guard;
+    // match=none is left out of the canonical spec, so that specs and goldens written before the
+    // key existed read the same.
+    if (match != MatchMode::kNone) config["match"] = to_string(match);
+    if (root) config["root"] = *root;
     // u scaler stage, then d - 1 multiplier stages.
     const UnitTiming timing{c.d, 1, 0};
-    auto units = build_per_slot<HastUnit>(c, slots);
+    std::vector<HastUnit> units;
+    units.reserve(slots.size());
+    for (std::size_t s = 0; s < slots.size(); ++s)
+      for_slot(slots[s], [&] { units.emplace_back(c, slots[s], roots[s]); });
     return make_unit_set<Hast>(common, std::move(config), c, std::move(units), slots, timing);
   }
 
@@ -70,28 +158,46 @@ struct Hast : UnitKindDefaults {
     for (const HastUnit& u : units)
       wk = std::max(wk, u.scaler().k_int_bits() + u.scaler().k_frac());
     std::vector<Seg> path = u_scaler_cost(b, L, wk, fh);
+    // d=auto: each slot's order, read with its k and carried down the chain, where stage s
+    // multiplies by u while s <= d_s and by 1.0 after (a 2:1 operand mux per stage).
+    const int db = c.per_slot_d ? clog2(d + 1) : 0;
+    if (c.per_slot_d) {
+      // Read beside the k table: off the stage's path.
+      b.slot_table(L.slots, db, 1, true, "stage 1: d table (per slot)");
+      b.op("table_read");
+    }
     if (d == 1) {
       path.push_back(b.adder(wo + 1, "stage 1: rounding incrementer"));
       b.op("add");
       b.reg(wo, "stage 1: result");
     } else {
-      b.reg(fh + 1, "stage 1: u");
+      b.reg(fh + 1 + db, "stage 1: u");
     }
     b.stage("stage 1", path);
     for (int s = 2; s <= d; ++s) {
       // u^(s-1) * u, rounded in the tree (to fh bits, the last one to the output format).
-      const Seg mul = b.multiplier(fh + 1, fh + 1, fmt::format("stage {}: chain multiplier", s));
+      std::vector<Seg> seg;
+      if (c.per_slot_d) {
+        seg.push_back(b.mux(fh + 1, 2, fmt::format("stage {}: operand u or 1.0 (d per slot)", s)));
+        if (s < d) b.reg(db, fmt::format("stage {}: d", s));
+      }
+      seg.push_back(b.multiplier(fh + 1, fh + 1, fmt::format("stage {}: chain multiplier", s)));
       b.op("mul");
       if (s < d)
         b.reg(2 * (fh + 1), fmt::format("stage {}: u and u^{}", s, s));
       else
         b.reg(wo, fmt::format("stage {}: result", s));
-      b.stage(fmt::format("stage {}", s), {mul});
+      b.stage(fmt::format("stage {}", s), seg);
     }
   }
 
   static nlohmann::json describe_slot(const Datapath& u) {
-    return {{"root_raw", u.scaler().root_raw()},
+    // n: the material's shininess (what match= matched); root: the root exact (the material's
+    // Källberg threshold for match=none), root_raw: as the u scaler holds it.
+    return {{"n", u.shininess()},
+            {"d", u.order()},
+            {"root", u.root()},
+            {"root_raw", u.scaler().root_raw()},
             {"k", u.scaler().k_value()},
             {"k_int_bits", u.scaler().k_int_bits()},
             {"k_frac_bits", u.scaler().k_frac()}};

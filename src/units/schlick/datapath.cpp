@@ -2,13 +2,28 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <stdexcept>
 
 #include "reference/reference.h"
 
 namespace glint {
 
-SchlickUnit::SchlickUnit(const SchlickConfig& cfg, const MaterialParams& m) : cfg_(cfg) {
+double schlick_n_prime(MatchMode match, double n) {
+  if (!(n > 0) || !std::isfinite(n)) return n;  // refused by the constructor, naming n
+  switch (match) {
+    case MatchMode::kMinimax:
+      return schlick_minimax_n(n);
+    case MatchMode::kWidth:
+      return schlick_width_n(n);
+    case MatchMode::kNone:
+      break;
+  }
+  return n;
+}
+
+SchlickUnit::SchlickUnit(const SchlickConfig& cfg, const MaterialParams& m, double n_prime)
+    : cfg_(cfg) {
   check_format(cfg.in);
   check_format(cfg.out);
   check_format(cfg.n_format);
@@ -20,8 +35,15 @@ SchlickUnit::SchlickUnit(const SchlickConfig& cfg, const MaterialParams& m) : cf
     throw std::invalid_argument(fmt::format("schlick: shininess {} outside the n register {}",
                                             m.shininess, cfg.n_format.name()));
   }
-  n_ = m.shininess;
-  n_raw_ = Fixed::from_double(m.shininess, cfg.n_format, Quant::kRndConv, Overflow::kSat).raw();
+  if (!(n_prime > 0) || n_prime > cfg.n_format.max_value()) {
+    throw std::invalid_argument(fmt::format(
+        "schlick: match={} gives n' = {:.6g} for shininess {}, outside the n register {} "
+        "(give a wider n format)",
+        to_string(cfg.match), n_prime, m.shininess, cfg.n_format.name()));
+  }
+  n_ = n_prime;
+  material_n_ = m.shininess;
+  n_raw_ = Fixed::from_double(n_prime, cfg.n_format, Quant::kRndConv, Overflow::kSat).raw();
   if (n_raw_ == 0) n_raw_ = 1;  // the smallest representable n, never a zero divisor
   one_in_ = cfg.in.raw_one();
   out_max_ = cfg.out.raw_one();

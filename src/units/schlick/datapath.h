@@ -7,11 +7,15 @@
 // Error budget (against the real-valued S at the quantized t and n): the numerator and denominator
 // are exact and the quotient is correctly rounded, so the whole budget is the final ½ ulp. The
 // float model error S(t) - t^n is Schlick's own and is reported separately.
+//
+// The n register holds n': the material's n as Schlick uses it (match=none), or the n' that best
+// matches t^n (match=minimax or width, units/match.h); the slot keeps both.
 #pragma once
 
 #include <cstdint>
 
 #include "units/common.h"
+#include "units/match.h"
 #include "units/stages.h"
 
 namespace glint {
@@ -21,11 +25,18 @@ struct SchlickConfig {
   QFormat out = kDefaultOut;
   QFormat n_format = uq(14, 4);  // shininess register: n <= 16383.9375 in steps of 1/16
   bool skip = true;
+  MatchMode match = MatchMode::kNone;  // how n' is chosen from the material's n
 };
+
+// The n' a slot's register gets for the material's n (n itself for match=none).
+double schlick_n_prime(MatchMode match, double n);
 
 class SchlickUnit {
  public:
-  SchlickUnit(const SchlickConfig& cfg, const MaterialParams& m);
+  // n_prime: the value for the n register (schlick_n_prime of the material's shininess).
+  SchlickUnit(const SchlickConfig& cfg, const MaterialParams& m, double n_prime);
+  SchlickUnit(const SchlickConfig& cfg, const MaterialParams& m)
+      : SchlickUnit(cfg, m, m.shininess) {}
 
   // Bit-accurate result for an input already in cfg.in (any raw; > 1.0 is clamped to 1.0).
   std::int64_t eval(std::int64_t t_raw) const { return run(t_raw, NoProbe{}); }
@@ -60,18 +71,21 @@ class SchlickUnit {
   int quotient_bits() const { return cfg_.out.frac_bits + 2; }
   // Real-valued model at the quantized input and shininess.
   double model(std::int64_t t_raw) const;
-  // Float approximation at the exact t and shininess (for the model error).
+  // Float approximation S_n'(t) at the exact t and n' (for the model error).
   double float_model(double t) const;
 
   // Budget: numerator and denominator exact, quotient correctly rounded.
   static double datapath_bound_ulps() { return 0.5; }
-  double shininess_q() const;
+  double shininess_q() const;                        // n' as the register holds it
+  double n_prime() const { return n_; }              // n' exact
+  double material_n() const { return material_n_; }  // the n it matches
   std::int64_t n_raw() const { return n_raw_; }
   const SchlickConfig& config() const { return cfg_; }
 
  private:
   SchlickConfig cfg_;
-  double n_ = 1.0;
+  double n_ = 1.0;           // n' (exact)
+  double material_n_ = 1.0;  // the material's n
   // The restoring divider's state after quotient bit k of Q = floor(2 num / D) (q bits): the
   // quotient bits so far, Q >> (q - k) (k bits, as the hardware's quotient register holds them),
   // and the partial remainder floor(2 num / 2^(q - k)) - D (Q >> (q - k)).

@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <unordered_map>
 
 #include "units/schlick/datapath.h"
 #include "units/unit_set.h"
@@ -33,7 +34,13 @@ struct Schlick : UnitKindDefaults {
       "Schlick t/(n - n t + t) with an exact, correctly rounded divider";
 
   static std::vector<UnitKey> keys() {
-    return {{"n", "shininess register format", SchlickConfig{}.n_format.name()},
+    return {{"n", "shininess register format (holds n')", SchlickConfig{}.n_format.name()},
+            {"match",
+             "n' in S = t/(n' - n' t + t), against t^n of the material's n (Gaussian lobes: their "
+             "equivalent n = 2/omega^2): none (n' = n, as Schlick 1994) | minimax (n' minimizing "
+             "max |S - t^n| on [0, 1]; ~30 us per distinct n) | width (S(t_half) = 1/2 where "
+             "t_half^n = 1/2: matched half-width, n' = t_half/(1 - t_half))",
+             "none"},
             {"divider",
              "divider kind (timing): pipelined (one quotient bit per stage, II 1) | "
              "iterative (radix-2, one quotient bit per cycle, II = quotient bits)",
@@ -43,15 +50,30 @@ struct Schlick : UnitKindDefaults {
   static std::unique_ptr<SpecularUnit> build(const KeyReader& keys, const CommonKeys& common,
                                              const std::vector<MaterialParams>& slots) {
     SchlickConfig c{common.in, common.out, keys.format("n", SchlickConfig{}.n_format), common.skip};
+    c.match = parse_match_mode(keys.choice("match", "none", match_mode_names()));
     nlohmann::json config = common_config(common);
     config["n"] = c.n_format.name();
+    // match=none is left out of the canonical spec, so that specs and goldens written before the
+    // key existed read the same.
+    if (c.match != MatchMode::kNone) config["match"] = to_string(c.match);
     const std::string divider = keys.choice("divider", "pipelined", {"pipelined", "iterative"});
     config["divider"] = divider;
     // Denominator multiply-add stage, q quotient bits, rounding stage.
     const int q = common.out.frac_bits + 2;
     const bool iterative = divider == "iterative";
     const UnitTiming timing{q + 2, iterative ? q : 1, 0};
-    auto units = build_per_slot<SchlickUnit>(c, slots);
+    // n' per slot, solved once per distinct n (materials often share one; minimax costs ~30 us).
+    std::vector<SchlickUnit> units;
+    units.reserve(slots.size());
+    std::unordered_map<double, double> n_prime;
+    for (const MaterialParams& m : slots) {
+      for_slot(m, [&] {
+        auto it = n_prime.find(m.shininess);
+        if (it == n_prime.end())
+          it = n_prime.emplace(m.shininess, schlick_n_prime(c.match, m.shininess)).first;
+        units.emplace_back(c, m, it->second);
+      });
+    }
     return make_unit_set<Schlick>(common, std::move(config), SchlickSetup{c, iterative},
                                   std::move(units), slots, timing);
   }
@@ -135,7 +157,12 @@ struct Schlick : UnitKindDefaults {
   }
 
   static nlohmann::json describe_slot(const Datapath& u) {
-    return {{"n_raw", u.n_raw()}, {"n", u.shininess_q()}};
+    // n: the material's shininess; n_prime: what Schlick's formula uses for it (exact), n_q: the
+    // register's value of n_prime.
+    return {{"n", u.material_n()},
+            {"n_prime", u.n_prime()},
+            {"n_raw", u.n_raw()},
+            {"n_q", u.shininess_q()}};
   }
 };
 
