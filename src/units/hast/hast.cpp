@@ -30,7 +30,7 @@ struct Hast : UnitKindDefaults {
   static std::vector<UnitKey> keys() {
     return {{"d",
              "exponent: d - 1 multipliers (auto, with match=minimax: per slot, d in 1..16 and "
-             "the root jointly by minimax, the chain as long as the largest d; ~0.5 ms per "
+             "the root jointly by minimax, the chain as long as the largest d; ~0.25 ms per "
              "distinct n)",
              "4"},
             {"guard", "guard bits of the chain (auto: ceil(log2(2d-2)) + 1)", "auto"},
