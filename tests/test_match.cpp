@@ -19,6 +19,7 @@
 
 #include "reference/reference.h"
 #include "units/catalogue.h"
+#include "units/lane_cost.h"
 #include "units/match.h"
 
 namespace glint {
@@ -267,6 +268,31 @@ TEST(MatchUnits, AutoOrderPerSlot) {
     EXPECT_LE(worst, u->datapath_bound_ulps(s)) << "n " << n;
     EXPECT_LT(u->datapath_bound_ulps(s), 1.0) << "faithful";
   }
+}
+
+TEST(MatchUnits, AutoOrderStagedAndCosted) {
+  // The staged evaluation (what the clocked model traces) runs the same per-slot chain as eval,
+  // and the cost inventory has the d table and one operand mux per multiplier stage.
+  const std::vector<MaterialParams> slots{material(1), material(3), material(100)};
+  const auto u = build("hast:match=minimax,d=auto", slots);
+  const std::size_t at = u->stages().result_index();
+  std::vector<std::int64_t> values(u->stages().size());
+  for (std::size_t s = 0; s < slots.size(); ++s) {
+    for (std::int64_t t = 0; t < kInputs; t += 7) {
+      u->eval_staged(s, t, values.data());
+      ASSERT_EQ(values[at], u->eval(s, t)) << "slot " << s << " t " << t;
+    }
+  }
+  const UnitCost auto_cost = unit_cost(*u);
+  const auto fixed = build("hast:match=minimax,d=" + std::to_string(u->timing().latency), slots);
+  int muxes = 0, tables = 0;
+  for (const Primitive& p : auto_cost.inventory) {
+    muxes += p.where.find("operand u or 1.0") != std::string::npos;
+    tables += p.where.find("d table") != std::string::npos;
+  }
+  EXPECT_EQ(muxes, u->timing().latency - 1);
+  EXPECT_EQ(tables, 1);
+  EXPECT_GT(auto_cost.area_ge, unit_cost(*fixed).area_ge);
 }
 
 // ---- Hast's own setting ----
