@@ -391,6 +391,8 @@ TEST(MatchKeys, BadValuesAreRefusedNamingUnitKeyAndValue) {
       EXPECT_NE(what.find(part), std::string::npos) << what;
   }
   EXPECT_NO_THROW(build("schlick:match=minimax,n=uq15.4", {material(10000)}));
+  // root=none is the listed default: the same as leaving the key out.
+  EXPECT_EQ(build("hast:root=none", m)->canonical_spec(), build("hast", m)->canonical_spec());
 }
 
 // ---- build speed ----

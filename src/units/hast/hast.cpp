@@ -3,13 +3,15 @@
 // Hardware (L = d, II 1): the u scaler (k table, subtractor Wi, multiplier Wi x Wk with Wk the
 // widest slot's k_int_bits + k_frac_bits, clamp), then d - 1 multipliers (fh + 1) x (fh + 1),
 // fh = Fo + guard; each rounds in its tree (to fh bits, the last one to the output format).
+// Keys match= and root= change only the per-slot root in the k/root tables (units/match.h);
+// d=auto adds a per-slot d table and a 2:1 operand mux (u or 1.0) in front of every chain
+// multiplier, the chain as long as the largest d chosen.
 #include "units/hast/hast.h"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
-#include <optional>
 #include <unordered_map>
 
 #include "units/hast/datapath.h"
@@ -46,17 +48,17 @@ struct Hast : UnitKindDefaults {
              "none"}};
   }
 
-  // Each slot's root and order from the keys; solved once per distinct n.
+  // Each slot's root and order from the keys (root >= 0: explicit); solved once per distinct n.
   static std::vector<HastSlot> slot_roots(const KeyReader& keys, MatchMode match, bool auto_d,
-                                          int d, const std::optional<double>& root,
+                                          int d, double root,
                                           const std::vector<MaterialParams>& slots) {
     std::vector<HastSlot> out;
     out.reserve(slots.size());
     std::unordered_map<double, HastSlot> solved;
     for (const MaterialParams& m : slots) {
       for_slot(m, [&] {
-        if (root) {
-          out.push_back(HastSlot{d, *root, false});
+        if (root >= 0) {
+          out.push_back(HastSlot{d, root, false});
           return;
         }
         if (match == MatchMode::kNone) {
@@ -94,8 +96,10 @@ struct Hast : UnitKindDefaults {
     HastConfig c{common.in, common.out, auto_d ? 16 : keys.integer("d", 4, 1, 16),
                  keys.integer("guard", -1, 0, 20, true), common.skip};
     const MatchMode match = parse_match_mode(keys.choice("match", "none", match_mode_names()));
-    const std::optional<double> root = keys.real("root", 0.0, 1.0);
-    if (root && match != MatchMode::kNone)
+    const std::string* root_key = keys.find("root");
+    double root = -1.0;  // < 0: no explicit root
+    if (root_key && *root_key != "none") root = keys.real("root", 0.0, 1.0).value_or(-1.0);
+    if (root >= 0 && match != MatchMode::kNone)
       keys.fail("root", *keys.find("root"),
                 fmt::format("an explicit root cannot be combined with match={}, which chooses "
                             "the root (drop one of them)",
@@ -104,7 +108,7 @@ struct Hast : UnitKindDefaults {
       keys.fail("d", "auto",
                 fmt::format("d=auto chooses d by minimax: it needs match=minimax (given "
                             "match={}{})",
-                            to_string(match), root ? ", root=" + *keys.find("root") : ""));
+                            to_string(match), root >= 0 ? ", root=" + *root_key : ""));
     const std::vector<HastSlot> roots = slot_roots(keys, match, auto_d, c.d, root, slots);
     if (auto_d) {
       // The chain is as long as the largest order any slot chose.
@@ -120,7 +124,7 @@ struct Hast : UnitKindDefaults {
     // match=none is left out of the canonical spec, so that specs and goldens written before the
     // key existed read the same.
     if (match != MatchMode::kNone) config["match"] = to_string(match);
-    if (root) config["root"] = *root;
+    if (root >= 0) config["root"] = root;
     // u scaler stage, then d - 1 multiplier stages.
     const UnitTiming timing{c.d, 1, 0};
     std::vector<HastUnit> units;

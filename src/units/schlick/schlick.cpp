@@ -7,6 +7,9 @@
 // register of remainder, divisor and quotient so far per stage, II 1) or iterative (one radix-2
 // row reused q times with remainder/divisor/quotient/counter registers and a load mux, II = q);
 // the last stage rounds (Q + 1) >> 1 with an incrementer of q bits and clamps to 1.
+//
+// Key match= picks what the n register holds per slot: the material's n (Schlick's own use), or the
+// n' matching t^n by minimax or by half-width (units/match.h); the hardware is the same.
 #include "units/schlick/schlick.h"
 
 #include <fmt/format.h>
