@@ -106,6 +106,9 @@ std::int64_t unit_threshold_raw(const MaterialParams& m, const QFormat& in, cons
 // threshold clamped at 0, because max(0,t)^n has no lobe below t = 0 even when the material's
 // threshold is "never skip" (-1).
 inline std::int64_t root_threshold_raw(const MaterialParams& m, const QFormat& in) {
+  // An always-skipped material has no threshold inside the lobe (c_y <= eps): its root is 0, so a
+  // unit built without the comparator (skip=off) still computes the whole lobe and f(1) = 1.
+  if (m.always_skip) return 0;
   const std::int64_t raw = tau_threshold_raw(m, in);
   return raw < 0 ? 0 : raw;
 }

@@ -78,7 +78,11 @@ LutUnit::LutUnit(const LutConfig& cfg, const MaterialParams& m) : cfg_(cfg) {
   pad_ = std::max(0, cfg.bits - v_bits);
   r_mask_ = (std::int64_t{1} << r_bits_) - 1;
   out_shift_ = r_bits_ + cfg_.table_frac - cfg.out.frac_bits;
-  if (2 * (cfg_.table_frac + 1) + r_bits_ > 62) throw std::invalid_argument("lut: too wide");
+  if (2 * (cfg_.table_frac + 1) + r_bits_ > 62)
+    throw std::invalid_argument(fmt::format(
+        "lut: table_frac {} with {} input bits below the {}-bit table index: the interpolation "
+        "product exceeds 62 bits (lower table_frac or raise bits)",
+        cfg_.table_frac, r_bits_, cfg.bits));
 
   // Keep entries 0, 2^pad, ..., 2^bits (all of them when pad = 0), then the padding entry that
   // lets the interpolation read k + 1 at the last node (with a zero remainder).

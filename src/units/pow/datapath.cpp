@@ -70,11 +70,18 @@ PowUnit::PowUnit(const PowConfig& cfg, const MaterialParams& m,
   check_format(cfg.n_format);
   if (cfg.in.raw_one() == 0 || cfg.out.raw_one() == 0 || cfg.in.frac_bits < 1)
     throw std::invalid_argument("pow: input and output formats must represent 1.0");
-  if (cfg.log_bits < 1 || cfg.log_bits > 16 || cfg.exp_bits < 1 || cfg.exp_bits > 16)
-    throw std::invalid_argument("pow: table address bits must be in 1..16");
-  if (cfg.log_frac < 4 || cfg.log_frac > 30 || cfg.exp_frac < cfg.out.frac_bits ||
-      cfg.exp_frac > 30 || cfg.y_frac < 4 || cfg.y_frac > 30)
-    throw std::invalid_argument("pow: table/y fraction bits out of range");
+  if (cfg.log_bits < 1 || cfg.log_bits > 16)
+    throw std::invalid_argument(fmt::format("pow: log_bits {}: must be in 1..16", cfg.log_bits));
+  if (cfg.exp_bits < 1 || cfg.exp_bits > 16)
+    throw std::invalid_argument(fmt::format("pow: exp_bits {}: must be in 1..16", cfg.exp_bits));
+  if (cfg.log_frac < 4 || cfg.log_frac > 30)
+    throw std::invalid_argument(fmt::format("pow: log_frac {}: must be in 4..30", cfg.log_frac));
+  if (cfg.y_frac < 4 || cfg.y_frac > 30)
+    throw std::invalid_argument(fmt::format("pow: y_frac {}: must be in 4..30", cfg.y_frac));
+  if (cfg.exp_frac < cfg.out.frac_bits || cfg.exp_frac > 30)
+    throw std::invalid_argument(
+        fmt::format("pow: exp_frac {}: must be in {}..30 (at least the output's {} fraction bits)",
+                    cfg.exp_frac, cfg.out.frac_bits, cfg.out.frac_bits));
   if (!(m.shininess > 0) || m.shininess > cfg.n_format.max_value())
     throw std::invalid_argument(fmt::format("pow: shininess {} outside the n register {}",
                                             m.shininess, cfg.n_format.name()));
@@ -111,7 +118,9 @@ PowUnit::PowUnit(const PowConfig& cfg, const MaterialParams& m,
         exp_r_bits_, cfg.y_frac, cfg.exp_bits, cfg.exp_frac));
   // n_raw * log2t must fit: |log2 t| <= fi, so it needs n width + log2(fi) + log_frac + 1 bits.
   if (cfg.n_format.width() + 6 + cfg.log_frac > 62)
-    throw std::invalid_argument("pow: n register and log table too wide for 62-bit products");
+    throw std::invalid_argument(
+        fmt::format("pow: n register {} with log_frac {}: n log2 t exceeds 62-bit products",
+                    cfg.n_format.name(), cfg.log_frac));
 
   if (tables_ == nullptr) {
     tables_ = std::make_shared<const PowTables>(cfg);
