@@ -60,7 +60,12 @@ double HastUnit::datapath_bound_ulps() const {
 }
 
 double HastUnit::model(std::int64_t t_raw) const {
-  return static_cast<double>(std::pow(scaler_.exact(t_raw), static_cast<long double>(d_)));
+  // u^d by d - 1 long double products (d <= 16: relative error below 2^-59, far under any output
+  // ulp), several times cheaper than powl in the contract's sweep over every input code.
+  const long double u = scaler_.exact(t_raw);
+  long double p = u;
+  for (int i = 1; i < d_; ++i) p *= u;
+  return static_cast<double>(p);
 }
 
 double HastUnit::float_model(double t) const {
