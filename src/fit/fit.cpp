@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "fit/linalg.h"
+#include "fit/monotone.h"
 #include "reference/reference.h"
 
 namespace glint {
@@ -245,13 +246,14 @@ struct RemezOut {
 // each pass solves the levelled-error system on the reference, takes the extremum of every
 // sign-run of the error on a fine Chebyshev-spaced grid, polishes it by golden-section search,
 // and keeps m + 1 consecutive alternating extrema around the global maximum.
-RemezOut remez(const Subspace& sub, const Target& target, int max_iterations, double rtol) {
+RemezOut remez(const Subspace& sub, const Target& target, int max_iterations, double rtol,
+               int grid_points) {
   RemezOut out;
   const int m = sub.m;
   auto g_at = [&](double v) { return target.y(v) - sub.a(v); };
   // Candidate grid, clustered at the ends where polynomial error extrema crowd (and where the
   // steep part of t^n sits).
-  const int grid = std::max(4097, 256 * (m + 1));
+  const int grid = grid_points > 0 ? std::max(grid_points, 4 * (m + 2)) : std::max(4097, 256 * (m + 1));
   std::vector<double> gv, gg;
   gv.reserve(grid);
   gg.reserve(grid);
@@ -330,7 +332,10 @@ RemezOut remez(const Subspace& sub, const Target& target, int max_iterations, do
       const double gr = 0.5 * (std::sqrt(5.0) - 1.0);
       double x1 = hi - gr * (hi - lo), x2 = lo + gr * (hi - lo);
       double f1 = sgn * err(x1), f2 = sgn * err(x2);
-      for (int k = 0; k < 100 && hi - lo > 1e-15; ++k) {
+      // Stop at a millionth of the bracket: the error is flat at its extremum, so the value is
+      // then good to ~1e-12 relative, far inside the exchange's tolerance.
+      const double stop = std::max(1e-15, 1e-6 * (hi - lo));
+      for (int k = 0; k < 100 && hi - lo > stop; ++k) {
         if (f1 > f2) {
           hi = x2;
           x2 = x1;
@@ -441,7 +446,12 @@ void check_options(const FitOptions& o) {
     throw std::invalid_argument(fmt::format(
         "fit: {} samples cannot determine a degree-{} polynomial", o.samples, o.degree));
   }
-  if (o.error_grid < 2) throw std::invalid_argument("fit: error_grid must be >= 2");
+  if (o.error_grid < 0 || o.error_grid == 1)
+    throw std::invalid_argument("fit: error_grid must be 0 (none) or >= 2");
+  if (o.remez_grid < 0) throw std::invalid_argument("fit: remez_grid must be >= 0");
+  if (o.monotone && o.degree < 1) throw std::invalid_argument("fit: a monotone fit needs degree >= 1");
+  if (!(o.min_step >= 0.0) || (o.constrain_one && o.min_step * o.degree >= 1.0))
+    throw std::invalid_argument(fmt::format("fit: min_step {} is out of range", o.min_step));
   if (o.method == FitMethod::kMinimax && o.max_remez_iterations < 1) {
     throw std::invalid_argument("fit: max_remez_iterations must be >= 1");
   }
@@ -473,6 +483,45 @@ void measure(FitResult& r, const Target& target, int grid) {
   r.rms_error = std::sqrt(sum2 / grid);
   r.t_at_max_error = t_max;
   r.monotone = monotone;
+}
+
+// With f(1) = 1: the Chebyshev-to-monomial conversion rounds, and in t on (0, 1] the monomial
+// coefficients of a degree-10 fit run into the thousands, so sum(coeffs) can miss 1 by ~1e-10.
+// Fold the residual into the lowest coefficient the other constraint leaves free, so that Horner
+// at v = 1 (a plain sum) gives exactly 1; f(0) = coeffs[0] = 0 is already exact.
+void fold_one(std::vector<double>& coeffs, const Subspace& sub) {
+  if (!sub.one) return;
+  const std::size_t k = sub.zero ? 1 : 0;
+  for (int pass = 0; pass < 4; ++pass) {
+    const double miss = 1.0 - horner(coeffs, 1.0);
+    if (miss == 0.0) break;
+    coeffs[k] += miss;
+  }
+}
+
+// The monotone replacement fit (monotone.h) on the method's own samples: least squares and
+// robust on the uniform samples (robust weights would reject the highlight on noise-free t^n, see
+// fit.h, so both are plain least squares in the cone), minimax by Lawson's reweighting on a
+// Chebyshev-spaced set, dense where the error of a polynomial peaks.
+std::vector<double> monotone_fit(const FitOptions& o, const Subspace& sub, const Target& target) {
+  std::vector<double> v, y;
+  if (o.method == FitMethod::kMinimax) {
+    const int count = std::max(200, 40 * (o.degree + 1));
+    for (int i = 0; i < count; ++i) v.push_back(0.5 * (1.0 - std::cos(kPi * i / (count - 1))));
+  } else {
+    for (int i = 0; i < o.samples; ++i) {
+      v.push_back(o.domain == FitDomain::kFull ? static_cast<double>(i + 1) / o.samples
+                                               : static_cast<double>(i) / (o.samples - 1));
+    }
+  }
+  for (double vi : v) y.push_back(target.y(vi));
+  MonotoneFitOptions m;
+  m.degree = o.degree;
+  m.zero = sub.zero;
+  m.one = sub.one;
+  m.minimax = o.method == FitMethod::kMinimax;
+  m.min_step = o.min_step;
+  return fit_monotone(v, y, m);
 }
 
 }  // namespace
@@ -544,7 +593,7 @@ FitResult fit_power(const FitOptions& o) {
 
   std::vector<double> c;
   if (o.method == FitMethod::kMinimax) {
-    RemezOut rz = remez(sub, target, o.max_remez_iterations, o.remez_tolerance);
+    RemezOut rz = remez(sub, target, o.max_remez_iterations, o.remez_tolerance, o.remez_grid);
     c = std::move(rz.c);
     r.iterations = rz.iterations;
     r.converged = rz.converged;
@@ -565,19 +614,15 @@ FitResult fit_power(const FitOptions& o) {
     r.converged = cf.converged;
   }
   r.coeffs = sub.monomial(c, o.degree);
-  if (sub.one) {
-    // The Chebyshev-to-monomial conversion rounds, and in t on (0, 1] the monomial coefficients
-    // of a degree-10 fit run into the thousands, so sum(coeffs) can miss 1 by ~1e-10. Fold the
-    // residual into the lowest coefficient the other constraint leaves free, so that Horner at
-    // v = 1 (a plain sum) gives exactly 1; f(0) = coeffs[0] = 0 is already exact.
-    const std::size_t k = sub.zero ? 1 : 0;
-    for (int pass = 0; pass < 4; ++pass) {
-      const double miss = 1.0 - horner(r.coeffs, 1.0);
-      if (miss == 0.0) break;
-      r.coeffs[k] += miss;
-    }
+  fold_one(r.coeffs, sub);
+  if (o.monotone && (o.min_step > 0.0 || check_monotone(r.coeffs) != Monotonicity::kProven)) {
+    r.coeffs = monotone_fit(o, sub, target);
+    fold_one(r.coeffs, sub);
+    r.monotone_fit = true;
+    r.levelled_error = 0.0;
+    r.reference.clear();
   }
-  measure(r, target, o.error_grid);
+  if (o.error_grid > 0) measure(r, target, o.error_grid);
   return r;
 }
 

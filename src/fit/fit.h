@@ -60,7 +60,18 @@ struct FitOptions {
   RobustOptions robust{};
   int max_remez_iterations = 60;
   double remez_tolerance = 1e-9;  // relative gap between the levelled and the true max error
-  int error_grid = 20001;         // points of the dense grid the reported errors come from
+  // Points of Remez's search grid (Chebyshev-spaced); each extremum found on it is then refined
+  // by golden-section search. 0: max(4097, 256 (m + 1)), dense enough for any domain; a smooth
+  // target (t^n in u on [tau, 1]) needs far fewer.
+  int remez_grid = 0;
+  int error_grid = 20001;  // points of the dense grid the reported errors come from; 0: none
+  // Guarantee P non-decreasing in its variable on [0, 1] (monotone.h): the fit is kept if
+  // check_monotone() proves it monotone, else replaced by the monotone fit in the Bernstein cone
+  // (ls, robust: least squares; minimax: Lawson's reweighting) with the same constraints.
+  bool monotone = false;
+  // With monotone: force the Bernstein fit with every step b_{k+1} - b_k >= min_step, so that
+  // P' >= degree * min_step everywhere (a margin against coefficient quantization).
+  double min_step = 0.0;
 };
 
 inline constexpr int kMaxFitDegree = 16;
@@ -83,6 +94,7 @@ struct FitResult {
   // Largest error of the gated unit below tau (truth t^n, output 0): tau^n; 0 for kFull.
   double skipped_error_bound = 0.0;
   bool monotone = false;  // non-decreasing on the dense grid, up to Horner rounding
+  bool monotone_fit = false;  // the Bernstein-cone fit replaced the method's own (see monotone)
 
   int iterations = 0;     // Remez exchanges or IRLS passes; 0 for plain least squares
   bool converged = true;  // Remez/IRLS met its tolerance

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "fit/monotone.h"
+
 namespace glint {
 
 namespace {
@@ -15,10 +17,13 @@ int guard_for(double need) {
   return g;
 }
 double derivative_bound(const HornerCoefficients& coeffs) {
-  double deriv = 0;  // bound on |P'| over [0, 1]
-  for (std::size_t k = 1; k < coeffs.c.size(); ++k)
-    deriv += static_cast<double>(k) * std::fabs(coeffs.c[k]);
-  return deriv;
+  return slope_bound(coeffs.c);  // bound on |P'| over [0, 1]
+}
+// Integer bits (with the sign) of a register holding values up to `magnitude`.
+int signed_int_bits(double magnitude) {
+  int bits = 1;
+  while (std::ldexp(1.0, bits - 1) <= magnitude) ++bits;
+  return bits;
 }
 }  // namespace
 
@@ -33,12 +38,20 @@ int horner_preferred_guard(const HornerCoefficients& coeffs) {
   return guard_for(2.0 * (p - 1.0 + derivative_bound(coeffs)));
 }
 
-int horner_max_guard(const HornerCoefficients& coeffs, const QFormat& out) {
+int horner_max_guard(const HornerCoefficients& coeffs, const MaterialParams& m, const QFormat& in,
+                     const QFormat& out) {
   double sum_abs = 0;
   for (double c : coeffs.c) sum_abs += std::fabs(c);
-  int bits = 0;  // integer bits of the accumulator
-  while (std::ldexp(1.0, bits) <= sum_abs + 1) ++bits;
-  return (60 - bits) / 2 - out.frac_bits;  // acc * u: bits + 2 fh + sign <= 62
+  // Accumulator: sum |c| plus one LSB per rounding, signed, fh fraction bits, <= 62 bits.
+  int fh_max = 62 - signed_int_bits(sum_abs + 1);
+  if (coeffs.tau_domain) {
+    // u scaler (u_scaler.cpp): (t - root) k needs in + k_int + fh + 2 <= 62 bits, k ~ 2^F / span.
+    const std::int64_t span = in.raw_one() - root_threshold_raw(m, in);
+    int k_int = 1;
+    while (span > 0 && (std::int64_t{1} << (k_int + 1)) * span <= 2 * in.raw_one()) ++k_int;
+    fh_max = std::min(fh_max, 62 - in.width() - (k_int + 1) - 2);
+  }
+  return fh_max - out.frac_bits;
 }
 
 HornerUnit::HornerUnit(const HornerConfig& cfg, const MaterialParams& m,
@@ -55,10 +68,11 @@ HornerUnit::HornerUnit(const HornerConfig& cfg, const MaterialParams& m,
   one_out_ = cfg.out.raw_one();
   last_shift_ = 2 * fh_ - cfg.out.frac_bits;
 
-  tau_ = std::clamp(m.tau, 0.0, 1.0);
   const std::int64_t tau_q = root_threshold_raw(m, cfg.in);
   // Full domain: u = t (root 0, k = 1). The comparator still uses the material's tau.
   scaler_ = UScaler(cfg.in, coeffs.tau_domain ? tau_q : 0, fh_);
+  // The fit's domain [tau_q, 1] is the u scaler's: float_model's u is the hardware's variable.
+  tau_ = coeffs.tau_domain ? input_value(scaler_.root_raw(), cfg.in) : 0.0;
 
   // Coefficients: nearest at fh fraction bits, then repair the fit's constraints exactly.
   const std::size_t p = coeffs.c.size() - 1;
@@ -68,10 +82,11 @@ HornerUnit::HornerUnit(const HornerConfig& cfg, const MaterialParams& m,
     if (!std::isfinite(coeffs.c[k])) throw std::invalid_argument("horner: non-finite coefficient");
     sum_abs += std::fabs(coeffs.c[k]);
   }
-  if (sum_abs > std::ldexp(1.0, 60 - 2 * fh_))
-    throw std::invalid_argument(
-        fmt::format("horner: coefficients up to {} overflow 62-bit registers at {} fraction bits",
-                    sum_abs, fh_));
+  if (signed_int_bits(sum_abs + static_cast<double>(p) + 1) + fh_ > 62)
+    throw std::invalid_argument(fmt::format(
+        "horner: key 'guard' = {}: coefficients up to {} at {} fraction bits need an accumulator "
+        "wider than 62 bits (use a smaller guard or degree)",
+        cfg_.guard, sum_abs, fh_));
   for (std::size_t k = 0; k <= p; ++k) c_raw_[k] = std::llround(std::ldexp(coeffs.c[k], fh_));
   const std::int64_t one_h = std::int64_t{1} << fh_;
   if (coeffs.constrain_zero) c_raw_[0] = 0;
@@ -94,17 +109,26 @@ HornerUnit::HornerUnit(const HornerConfig& cfg, const MaterialParams& m,
   acc_int_ = 1;
   while ((std::int64_t{1} << (acc_int_ - 1 + fh_)) <= acc_bound + static_cast<std::int64_t>(p))
     ++acc_int_;
+  // acc * u: acc_int + fh + (fh + 1) bits with the sign; int64 holds 63 of them.
+  wide_ = acc_int_ + 2 * fh_ + 1 > 63;
+}
+
+double HornerUnit::slope_bound() const {
+  return glint::slope_bound(real_coefficients());
+}
+
+std::vector<long double> HornerUnit::real_coefficients() const {
+  std::vector<long double> c(c_raw_.size());  // exact: |c_raw| < 2^62 fits a 64-bit mantissa
+  for (std::size_t k = 0; k < c.size(); ++k)
+    c[k] = std::ldexp(static_cast<long double>(c_raw_[k]), -fh_);
+  return c;
 }
 
 double HornerUnit::datapath_bound_ulps() const {
-  // p - 1 inner roundings scaled by u^k <= 1, u's rounding times |P'| <= sum k |c_k| (tau domain
+  // p - 1 inner roundings scaled by u^k <= 1, u's rounding times |P'| <= slope_bound() (tau domain
   // only: on the full domain u = t exactly), then the final ½ ulp; the clamp is 1-Lipschitz.
   double roundings = static_cast<double>(c_raw_.size()) - 2.0;
-  if (coeffs_.tau_domain) {
-    for (std::size_t k = 1; k < c_raw_.size(); ++k)
-      roundings +=
-          static_cast<double>(k) * std::ldexp(std::fabs(static_cast<double>(c_raw_[k])), -fh_);
-  }
+  if (coeffs_.tau_domain) roundings += slope_bound();
   return 0.5 + roundings * std::ldexp(1.0, -(cfg_.guard + 1));
 }
 

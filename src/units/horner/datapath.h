@@ -7,16 +7,26 @@
 //
 // Error budget (against the real-valued clamp(sum c_kq u^k, 0, 1) at the quantized t, tau, k and
 // coefficients): final rounding ½ ulp_out; the p - 1 inner roundings add 2^-(fh+1) each (scaled by
-// u^k <= 1); rounding u costs |P'| 2^-(fh+1) <= (sum k |c_k|) 2^-(fh+1). Faithful needs
-// (p - 1 + sum k |c_k|) 2^-(fh+1) < 2^-(fo+1): horner_required_guard() picks g = fh - fo with
-// 2^g >= 2 (p - 1 + sum k |c_k|), a factor-2 margin for the coefficients' own quantization. On the
-// full domain u = t is exact and the derivative term is not needed for faithfulness, but
-// horner_preferred_guard() keeps it where the registers allow (horner_max_guard()): the extra bits
-// keep the inner error far below the model's step per input LSB, which keeps the rounded output
-// monotone wherever the model is (faithful rounding alone would allow a 1-ulp step back).
+// u^k <= 1); rounding u costs |P'| 2^-(fh+1) <= S 2^-(fh+1), with S the largest |Bernstein
+// coefficient| of P' (fit/monotone.h's slope_bound: a bound of |P'| on [0, 1] that, unlike
+// sum k |c_k|, does not grow with the cancelling monomial coefficients of degrees 8-10). Faithful
+// needs (p - 1 + S) 2^-(fh+1) < 2^-(fo+1): horner_required_guard() picks g = fh - fo with
+// 2^g >= 2 (p - 1 + S), a factor-2 margin for the coefficients' own quantization. On the full
+// domain u = t is exact and the derivative term is not needed for faithfulness, but
+// horner_preferred_guard() keeps it where the registers allow (horner_max_guard()).
+//
+// Registers: coefficients and the accumulator are signed with fh fraction bits and as many integer
+// bits as the largest |c| (high-degree fits in u have monomial coefficients in the thousands); each
+// register stays <= 62 bits, and the product acc * u (acc bits + fh + 1) is formed in 128 bits only
+// when it would not fit 63 (the `wide` datapath; the default specs never need it).
+//
+// Monotone output (horner_monotone.cpp): y = P_q(u_hw) + e with |e| <= (p - 1) 2^-(fh+1) and u_hw
+// non-decreasing in t, so the output cannot step back where P_q' dmin > 2 |e|max (dmin: the least
+// step of u_hw between neighbouring codes); elsewhere every code is checked.
 #pragma once
 
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "units/common.h"
@@ -41,7 +51,10 @@ struct HornerConfig {
 
 int horner_required_guard(const HornerCoefficients& coeffs);                 // faithful minimum
 int horner_preferred_guard(const HornerCoefficients& coeffs);                // + derivative term
-int horner_max_guard(const HornerCoefficients& coeffs, const QFormat& out);  // 62-bit limit
+// The largest guard whose registers fit 62 bits for this slot: the accumulator (coefficient
+// magnitude) and the u scaler (in + k + u bits, k = 1/(1 - tau_q) of the material).
+int horner_max_guard(const HornerCoefficients& coeffs, const MaterialParams& m, const QFormat& in,
+                     const QFormat& out);
 
 class HornerUnit {
  public:
@@ -52,28 +65,21 @@ class HornerUnit {
   // (2..p) u and the accumulator after its multiply-add, position p + 1 the result.
   template <class Probe>
   std::int64_t run(std::int64_t t_raw, const Probe& probe) const {
-    const std::int64_t u = scaler_.apply(t_raw);
-    const std::size_t p = c_raw_.size() - 1;
-    std::int64_t acc = c_raw_[p];
-    probe(1, 0, u);
-    probe(1, 1, acc);
-    int position = 2;
-    for (std::size_t k = p; k-- > 1; ++position) {
-      acc = round_nearest(acc * u, fh_) + c_raw_[k];
-      probe(position, 0, u);
-      probe(position, 1, acc);
-    }
-    const std::int64_t y = acc * u + shift_left(c_raw_[0], fh_);
-    const std::int64_t q = round_nearest(y, last_shift_);
-    const std::int64_t r = q < 0 ? 0 : (q > one_out_ ? one_out_ : q);
-    probe(position, 0, r);
-    return r;
+    return wide_ ? run_as<true>(t_raw, probe) : run_as<false>(t_raw, probe);
   }
   double model(std::int64_t t_raw) const;  // real-valued at quantized t, tau, k, coefficients
   double float_model(double t) const;      // the fitted polynomial at the exact t (unquantized)
 
   // The budget of the header comment for the quantized coefficients, in output ulps.
   double datapath_bound_ulps() const;
+  // P_q (the quantized coefficients as a real polynomial) proven non-decreasing on [0, 1].
+  bool polynomial_monotone() const;
+  // eval() non-decreasing over every input code (the proof of the header comment).
+  bool output_monotone() const;
+  // An upper bound of |P_q'| on [0, 1].
+  double slope_bound() const;
+  std::vector<long double> real_coefficients() const;  // c_raw 2^-fh, exactly
+  bool wide() const { return wide_; }
   const UScaler& scaler() const { return scaler_; }
   const std::vector<std::int64_t>& coeff_raw() const { return c_raw_; }
   QFormat coeff_format() const { return coeff_fmt_; }
@@ -83,6 +89,39 @@ class HornerUnit {
   const HornerConfig& config() const { return cfg_; }
 
  private:
+  template <bool Wide, class Probe>
+  std::int64_t run_as(std::int64_t t_raw, const Probe& probe) const {
+    using Wider = std::conditional_t<Wide, __int128, std::int64_t>;
+    const std::int64_t u = scaler_.apply(t_raw);
+    const std::size_t p = c_raw_.size() - 1;
+    std::int64_t acc = c_raw_[p];
+    probe(1, 0, u);
+    probe(1, 1, acc);
+    int position = 2;
+    for (std::size_t k = p; k-- > 1; ++position) {
+      if constexpr (Wide) {
+        // Round half up, as round_nearest: floor((x + half) / 2^fh).
+        const Wider x = static_cast<Wider>(acc) * u + (static_cast<Wider>(1) << (fh_ - 1));
+        acc = static_cast<std::int64_t>(x >> fh_) + c_raw_[k];
+      } else {
+        acc = round_nearest(acc * u, fh_) + c_raw_[k];
+      }
+      probe(position, 0, u);
+      probe(position, 1, acc);
+    }
+    std::int64_t q;
+    if constexpr (Wide) {
+      const Wider y = static_cast<Wider>(acc) * u + (static_cast<Wider>(c_raw_[0]) << fh_);
+      q = static_cast<std::int64_t>((y + (static_cast<Wider>(1) << (last_shift_ - 1))) >>
+                                    last_shift_);
+    } else {
+      q = round_nearest(acc * u + shift_left(c_raw_[0], fh_), last_shift_);
+    }
+    const std::int64_t r = q < 0 ? 0 : (q > one_out_ ? one_out_ : q);
+    probe(position, 0, r);
+    return r;
+  }
+
   HornerConfig cfg_;
   HornerCoefficients coeffs_;
   double tau_ = 0;
@@ -91,6 +130,7 @@ class HornerUnit {
   QFormat coeff_fmt_;
   std::int64_t one_out_ = 0;
   int fh_ = 0, last_shift_ = 0, acc_int_ = 0;
+  bool wide_ = false;  // acc * u exceeds 63 bits: form it in 128
 };
 
 }  // namespace glint

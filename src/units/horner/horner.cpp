@@ -11,8 +11,8 @@
 
 #include <algorithm>
 
-#include "fit/fit.h"
 #include "units/horner/datapath.h"
+#include "units/horner/slots.h"
 #include "units/u_scaler_cost.h"
 #include "units/unit_set.h"
 
@@ -35,8 +35,12 @@ struct Horner : UnitKindDefaults {
 
   static std::vector<UnitKey> keys() {
     return {{"degree", "polynomial degree p (1..10)", "4"},
-            {"method", "fit: ls | robust (Öztürk, bisquare) | minimax (Remez)", "minimax"},
-            {"domain", "fit domain: tau ([tau, 1], u = (t-tau)/(1-tau)) | full ((0, 1])", "tau"},
+            {"method",
+             "fit: ls | robust (Öztürk, bisquare) | minimax (Remez); each made monotone",
+             "minimax"},
+            {"domain",
+             "fit domain: tau ([tau_q, 1], u = (t-tau_q)/(1-tau_q), tau_q the root code) | full",
+             "tau"},
             {"constrain", "on: P(1) = 1 and, on the tau domain, P(tau) = 0", "on"},
             {"guard", "guard bits (auto: faithful bound from the coefficients)", "auto"}};
   }
@@ -48,37 +52,18 @@ struct Horner : UnitKindDefaults {
     const std::string domain = keys.choice("domain", "tau", {"tau", "full"});
     const bool constrain = keys.flag("constrain", true);
     HornerConfig c{common.in, common.out, keys.integer("guard", -1, 0, 20, true), common.skip};
-    // Fit every slot first: the datapath width is shared, so the guard is the largest any slot
-    // needs.
-    std::vector<HornerCoefficients> fits;
-    int guard = 0, required = 0, max_guard = 64;
-    for (const auto& m : slots) {
-      FitOptions o;
-      o.shininess = m.shininess;
-      o.degree = degree;
-      o.method = parse_fit_method(method);
-      o.domain = domain == "tau" ? FitDomain::kTau : FitDomain::kFull;
-      o.tau = std::clamp(m.always_skip ? 0.0 : m.tau, 0.0, 0.999);
-      o.constrain_one = constrain;
-      o.constrain_zero = constrain && domain == "tau";
-      const FitResult r = for_slot(m, [&] { return fit_power(o); });
-      HornerCoefficients hc{r.coeffs, domain == "tau", o.constrain_one, o.constrain_zero};
-      guard = std::max(guard, horner_preferred_guard(hc));
-      required = std::max(required, horner_required_guard(hc));
-      max_guard = std::min(max_guard, horner_max_guard(hc, common.out));
-      fits.push_back(std::move(hc));
-    }
-    if (c.guard < 0) c.guard = std::max(required, std::min(guard, max_guard));
+    HornerFitSpec spec;
+    spec.degree = degree;
+    spec.method = parse_fit_method(method);
+    spec.tau_domain = domain == "tau";
+    spec.constrain = constrain;
+    std::vector<HornerUnit> units = build_horner_slots(spec, c, slots);
     nlohmann::json config = common_config(common);
     config["degree"] = degree;
     config["method"] = method;
     config["domain"] = domain;
     config["constrain"] = on_off(constrain);
     config["guard"] = c.guard;
-    std::vector<HornerUnit> units;
-    units.reserve(slots.size());
-    for (std::size_t i = 0; i < slots.size(); ++i)
-      for_slot(slots[i], [&] { units.emplace_back(c, slots[i], fits[i]); });
     // u scaler stage, then one multiply-add stage per degree.
     const UnitTiming timing{degree + 1, 1, 0};
     return make_unit_set<Horner>(common, std::move(config), HornerSetup{c, domain == "tau"},

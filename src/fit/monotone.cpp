@@ -1,0 +1,316 @@
+#include "fit/monotone.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <stdexcept>
+
+#include "fit/linalg.h"
+
+namespace glint {
+
+namespace {
+
+using LVec = std::vector<long double>;
+
+long double binom(int n, int k) {
+  long double r = 1;
+  for (int i = 1; i <= k; ++i) r = r * static_cast<long double>(n - k + i) / i;
+  return r;
+}
+
+template <class T>
+std::vector<T> to_bernstein(const std::vector<T>& c) {
+  const int p = static_cast<int>(c.size()) - 1;
+  std::vector<T> b(c.size(), T(0));
+  for (int k = 0; k <= p; ++k) {
+    long double s = 0;
+    for (int j = 0; j <= k; ++j) s += binom(k, j) / binom(p, j) * static_cast<long double>(c[j]);
+    b[k] = static_cast<T>(s);
+  }
+  return b;
+}
+
+// Bernstein coefficients of P' (degree p - 1) and a bound of their rounding error.
+LVec derivative_bernstein(const LVec& c, long double* slack) {
+  if (c.size() < 2) {
+    *slack = 0;
+    return {0.0L};
+  }
+  LVec a(c.size() - 1);
+  long double mag = 0;
+  for (std::size_t j = 0; j < a.size(); ++j) {
+    a[j] = static_cast<long double>(j + 1) * c[j + 1];
+    mag += std::fabs(a[j]);
+  }
+  // Each coefficient is a sum of <= 10 terms with weights <= 1, each rounded a few times: 64
+  // roundings of the largest possible sum is a safe margin, and subdivision only averages.
+  *slack = 64 * LDBL_EPSILON * mag;
+  return to_bernstein(a);
+}
+
+// de Casteljau at the midpoint.
+void split(const LVec& b, LVec& left, LVec& right) {
+  LVec w = b;
+  const std::size_t q = b.size() - 1;
+  left.resize(b.size());
+  right.resize(b.size());
+  left[0] = w[0];
+  right[q] = w[q];
+  for (std::size_t r = 1; r <= q; ++r) {
+    for (std::size_t i = 0; i + r <= q; ++i) w[i] = 0.5L * (w[i] + w[i + 1]);
+    left[r] = w[0];
+    right[q - r] = w[q - r];
+  }
+}
+
+Monotonicity check_piece(const LVec& b, long double slack, int depth) {
+  const long double mn = *std::min_element(b.begin(), b.end());
+  if (mn >= slack) return Monotonicity::kProven;
+  // The end coefficients are P' at the ends of the piece.
+  if (b.front() < -slack || b.back() < -slack) return Monotonicity::kRefuted;
+  if (depth == 0) return Monotonicity::kUndecided;
+  LVec l, r;
+  split(b, l, r);
+  const Monotonicity a = check_piece(l, slack, depth - 1);
+  if (a == Monotonicity::kRefuted) return a;
+  const Monotonicity c = check_piece(r, slack, depth - 1);
+  if (c == Monotonicity::kRefuted || a == Monotonicity::kProven) return c;
+  return a;
+}
+
+void below_piece(const LVec& b, long double want, double lo, double hi, double min_width,
+                 std::vector<Interval>& out) {
+  if (*std::min_element(b.begin(), b.end()) >= want) return;
+  if (hi - lo <= min_width) {
+    if (!out.empty() && out.back().hi == lo) {
+      out.back().hi = hi;
+    } else {
+      out.push_back({lo, hi});
+    }
+    return;
+  }
+  LVec l, r;
+  split(b, l, r);
+  const double mid = 0.5 * (lo + hi);
+  below_piece(l, want, lo, mid, min_width, out);
+  below_piece(r, want, mid, hi, min_width, out);
+}
+
+// Solves min ||A x - y|| with x_j >= 0 for j >= free_cols (the first free_cols are unconstrained):
+// Lawson & Hanson's active-set algorithm (Solving Least Squares Problems, ch. 23), the passive
+// set's least squares by Householder QR.
+std::vector<double> nnls(const linalg::Matrix& a, const std::vector<double>& y, std::size_t free) {
+  const std::size_t n = a.cols;
+  std::vector<double> x(n, 0.0);
+  std::vector<bool> passive(n, false);
+  for (std::size_t j = 0; j < free; ++j) passive[j] = true;
+  auto solve_passive = [&] {
+    std::vector<std::size_t> cols;
+    for (std::size_t j = 0; j < n; ++j)
+      if (passive[j]) cols.push_back(j);
+    std::vector<double> s(n, 0.0);
+    if (cols.empty()) return s;
+    linalg::Matrix sub(a.rows, cols.size());
+    for (std::size_t i = 0; i < a.rows; ++i)
+      for (std::size_t k = 0; k < cols.size(); ++k) sub(i, k) = a(i, cols[k]);
+    const std::vector<double> z = linalg::least_squares(sub, y);
+    for (std::size_t k = 0; k < cols.size(); ++k) s[cols[k]] = z[k];
+    return s;
+  };
+  double norm = 0;
+  for (double v : a.data) norm = std::max(norm, std::abs(v));
+  const double tol = 1e-12 * norm * static_cast<double>(a.rows);
+  if (free > 0) x = solve_passive();
+  for (int outer = 0; outer < 3 * static_cast<int>(n) + 10; ++outer) {
+    std::vector<double> r = y;
+    for (std::size_t i = 0; i < a.rows; ++i)
+      for (std::size_t j = 0; j < n; ++j) r[i] -= a(i, j) * x[j];
+    std::size_t best = n;
+    double wmax = tol;
+    for (std::size_t j = free; j < n; ++j) {
+      if (passive[j]) continue;
+      double w = 0;
+      for (std::size_t i = 0; i < a.rows; ++i) w += a(i, j) * r[i];
+      if (w > wmax) {
+        wmax = w;
+        best = j;
+      }
+    }
+    if (best == n) break;
+    passive[best] = true;
+    for (int inner = 0; inner < 3 * static_cast<int>(n) + 10; ++inner) {
+      const std::vector<double> s = solve_passive();
+      bool feasible = true;
+      double alpha = 1.0;
+      for (std::size_t j = free; j < n; ++j) {
+        if (passive[j] && s[j] <= 0.0) {
+          feasible = false;
+          alpha = std::min(alpha, x[j] / (x[j] - s[j]));
+        }
+      }
+      if (feasible) {
+        x = s;
+        break;
+      }
+      for (std::size_t j = 0; j < n; ++j) x[j] += alpha * (s[j] - x[j]);
+      for (std::size_t j = free; j < n; ++j) {
+        if (passive[j] && x[j] <= 1e-15) {
+          passive[j] = false;
+          x[j] = 0.0;
+        }
+      }
+    }
+  }
+  return x;
+}
+
+}  // namespace
+
+std::vector<double> bernstein_from_monomial(const std::vector<double>& c) {
+  return to_bernstein(c);
+}
+
+std::vector<double> monomial_from_bernstein(const std::vector<double>& b) {
+  const int p = static_cast<int>(b.size()) - 1;
+  std::vector<double> c(b.size(), 0.0);
+  for (int i = 0; i <= p; ++i) {
+    long double s = 0;
+    for (int k = 0; k <= i; ++k) {
+      const long double t = binom(p, k) * binom(p - k, i - k) * static_cast<long double>(b[k]);
+      s += (i - k) % 2 == 0 ? t : -t;
+    }
+    c[i] = static_cast<double>(s);
+  }
+  return c;
+}
+
+Monotonicity check_monotone(const std::vector<long double>& c, int max_depth) {
+  long double slack = 0;
+  const LVec b = derivative_bernstein(c, &slack);
+  return check_piece(b, slack, max_depth);
+}
+
+Monotonicity check_monotone(const std::vector<double>& c, int max_depth) {
+  return check_monotone(LVec(c.begin(), c.end()), max_depth);
+}
+
+std::vector<Interval> slope_below(const std::vector<long double>& c, long double want,
+                                  double min_width) {
+  long double slack = 0;
+  const LVec b = derivative_bernstein(c, &slack);
+  std::vector<Interval> out;
+  below_piece(b, want + slack, 0.0, 1.0, min_width, out);
+  return out;
+}
+
+double slope_bound(const std::vector<double>& c) {
+  return slope_bound(LVec(c.begin(), c.end()));
+}
+
+double slope_bound(const std::vector<long double>& c) {
+  long double slack = 0;
+  const LVec b = derivative_bernstein(c, &slack);
+  long double m = 0;
+  for (long double x : b) m = std::max(m, std::fabs(x));
+  return static_cast<double>(m + slack);
+}
+
+std::vector<double> fit_monotone(const std::vector<double>& v, const std::vector<double>& y,
+                                 const MonotoneFitOptions& o) {
+  const int p = o.degree;
+  if (p < 1) throw std::invalid_argument("monotone fit: degree must be >= 1");
+  if (v.size() != y.size() || v.size() < static_cast<std::size_t>(p) + 1)
+    throw std::invalid_argument("monotone fit: too few samples");
+  if (o.zero && !o.one) throw std::invalid_argument("monotone fit: P(0) = 0 needs P(1) = 1");
+  if (!(o.min_step >= 0.0) || (o.one && o.min_step * p >= 1.0))
+    throw std::invalid_argument(fmt::format("monotone fit: step margin {} too large for degree {}",
+                                            o.min_step, p));
+  // Columns: b_0 as b0+ and b0- (absent when P(0) = 0), then d_1..d_p with basis
+  // T_j(v) = sum_{k >= j} B_{k,p}(v). The target absorbs the margin: d_j = delta + d'_j.
+  const std::size_t free = o.zero ? 0 : 2;
+  const std::size_t cols = free + static_cast<std::size_t>(p);
+  const std::size_t rows = v.size() + (o.one ? 1 : 0);
+  linalg::Matrix a(rows, cols);
+  std::vector<double> g(rows, 0.0);
+  std::vector<double> bern(static_cast<std::size_t>(p) + 1);
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const double s = v[i], r = 1.0 - s;
+    for (int k = 0; k <= p; ++k)
+      bern[k] = static_cast<double>(binom(p, k)) * std::pow(s, k) * std::pow(r, p - k);
+    double tail = 0;
+    double margin = 0;
+    for (int j = p; j >= 1; --j) {
+      tail += bern[j];
+      a(i, free + j - 1) = tail;
+      margin += o.min_step * tail;
+    }
+    if (!o.zero) {
+      a(i, 0) = 1.0;
+      a(i, 1) = -1.0;
+    }
+    g[i] = y[i] - margin;
+  }
+  // P(1) = b_0 + sum d_j = 1 as a heavily weighted row, made exact after the solve.
+  const double total = 1.0 - o.min_step * p;
+  const double heavy = 1e4 * std::sqrt(static_cast<double>(v.size()));
+  if (o.one) {
+    for (std::size_t j = 0; j < cols; ++j) a(rows - 1, j) = heavy * (j == 1 && !o.zero ? -1 : 1);
+    g[rows - 1] = heavy * total;
+  }
+
+  std::vector<double> w(v.size(), 1.0 / static_cast<double>(v.size()));
+  std::vector<double> best;
+  double best_err = INFINITY;
+  const int passes = o.minimax ? o.lawson_passes : 1;
+  for (int pass = 0; pass < passes; ++pass) {
+    linalg::Matrix aw = a;
+    std::vector<double> gw = g;
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const double s = std::sqrt(w[i] * static_cast<double>(v.size()));
+      for (std::size_t j = 0; j < cols; ++j) aw(i, j) *= s;
+      gw[i] *= s;
+    }
+    std::vector<double> x = nnls(aw, gw, free);
+    double b0 = o.zero ? 0.0 : x[0] - x[1];
+    double sum_d = 0;
+    for (int j = 0; j < p; ++j) sum_d += x[free + j];
+    if (o.one) {
+      if (o.zero) {
+        const double scale = sum_d > 0 ? total / sum_d : 0.0;
+        for (int j = 0; j < p; ++j) x[free + j] = sum_d > 0 ? x[free + j] * scale : total / p;
+      } else {
+        b0 = total - sum_d;
+      }
+    }
+    std::vector<double> b(static_cast<std::size_t>(p) + 1);
+    b[0] = b0;
+    for (int j = 1; j <= p; ++j) b[j] = b[j - 1] + o.min_step + x[free + j - 1];
+    // Errors on the samples, then Lawson's update w_i <- w_i |e_i| / sum.
+    double err = 0, wsum = 0;
+    std::vector<double> e(v.size());
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const double s = v[i], r = 1.0 - s;
+      double f = 0;
+      for (int k = 0; k <= p; ++k)
+        f += b[k] * static_cast<double>(binom(p, k)) * std::pow(s, k) * std::pow(r, p - k);
+      e[i] = std::abs(f - y[i]);
+      err = std::max(err, e[i]);
+    }
+    if (err < best_err) {
+      best_err = err;
+      best = b;
+    }
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      w[i] *= e[i];
+      wsum += w[i];
+    }
+    if (!(wsum > 0)) break;
+    for (double& wi : w) wi = std::max(wi / wsum, 1e-300);
+  }
+  return monomial_from_bernstein(best);
+}
+
+}  // namespace glint

@@ -1,0 +1,63 @@
+// Monotone polynomials on [0, 1]: an exact-in-spirit check, and a fit that is monotone by
+// construction.
+//
+// Check. In the Bernstein basis of degree q on [a, b], a polynomial lies between the smallest and
+// the largest of its coefficients (the basis is a partition of unity with non-negative terms), and
+// de Casteljau subdivision at the midpoint makes the coefficients converge to the values. So the
+// Bernstein coefficients of P' give lower bounds of P' on each piece of a subdivision: all >= 0
+// proves P non-decreasing there; an end coefficient (the value of P' at that end) < 0 refutes it.
+//
+// Fit. P(v) = sum_k b_k B_{k,p}(v) with b_0 <= b_1 <= ... <= b_p is non-decreasing on [0, 1]
+// (P' = p sum_k (b_{k+1} - b_k) B_{k,p-1}). Writing b_k = b_0 + d_1 + ... + d_k with d_j >= 0
+// makes the monotone polynomials a cone, and the fit a non-negative least squares problem
+// (Lawson-Hanson), with P(0) = b_0 = 0 and P(1) = b_p = 1 imposed exactly. Minimax in the cone by
+// Lawson's reweighting: each pass multiplies every sample's weight by its |error|, which drives
+// the weighted least-squares solution towards the discrete minimax one. A margin d_j >= delta
+// makes P' >= p delta everywhere, enough to survive the quantization of the coefficients.
+#pragma once
+
+#include <vector>
+
+namespace glint {
+
+// Bernstein coefficients on [0, 1] of the polynomial with monomial coefficients c (c[0] constant),
+// and back.
+std::vector<double> bernstein_from_monomial(const std::vector<double>& c);
+std::vector<double> monomial_from_bernstein(const std::vector<double>& b);
+
+enum class Monotonicity { kProven, kRefuted, kUndecided };
+
+// Is sum c_k v^k non-decreasing on [0, 1]? Computed in long double with subdivision down to
+// pieces of width 2^-max_depth; kUndecided where a piece can neither be proven nor refuted (a
+// derivative within rounding of 0), which callers treat as not proven.
+Monotonicity check_monotone(const std::vector<long double>& c, int max_depth = 24);
+Monotonicity check_monotone(const std::vector<double>& c, int max_depth = 24);
+
+// Pieces [lo, hi] of [0, 1] on which the subdivision could not show P' >= want, refined down to
+// width min_width; everywhere else P' >= want holds.
+struct Interval {
+  double lo = 0.0;
+  double hi = 0.0;
+};
+std::vector<Interval> slope_below(const std::vector<long double>& c, long double want,
+                                  double min_width);
+
+// An upper bound of |P'| on [0, 1]: the largest |Bernstein coefficient| of P'. Much tighter than
+// sum k |c_k| for high degrees, whose monomial coefficients cancel.
+double slope_bound(const std::vector<double>& c);
+double slope_bound(const std::vector<long double>& c);
+
+// A monotone polynomial fit of samples (v_i, y_i), v_i in [0, 1].
+struct MonotoneFitOptions {
+  int degree = 4;
+  bool zero = false;     // P(0) = 0
+  bool one = false;      // P(1) = 1
+  bool minimax = false;  // Lawson reweighting towards the minimax fit; else least squares
+  double min_step = 0.0;  // delta: every d_j >= delta (p delta <= 1 when one)
+  int lawson_passes = 40;
+};
+// Monomial coefficients in v of the fit. Throws std::invalid_argument on bad options.
+std::vector<double> fit_monotone(const std::vector<double>& v, const std::vector<double>& y,
+                                 const MonotoneFitOptions& options);
+
+}  // namespace glint

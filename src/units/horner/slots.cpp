@@ -1,0 +1,125 @@
+#include "units/horner/slots.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+#include <utility>
+
+#include "units/unit_set.h"
+
+namespace glint {
+
+namespace {
+
+// Remez search grid on the tau domain: t^n in u on [tau_q, 1] is close to an exponential in u
+// (rate ln(c_y / eps) <= ~14), smooth enough that 24 points per unknown locate every sign run of
+// the error; golden-section search then refines each extremum. The full domain keeps fit.h's
+// dense default (t^n on (0, 1] is a spike at 1 for large n).
+int remez_grid(const HornerFitSpec& spec) {
+  return spec.tau_domain ? 24 * (spec.degree + 2) + 1 : 0;
+}
+
+HornerCoefficients fit_slot(const HornerFitSpec& spec, double n, double tau, double min_step) {
+  FitOptions o;
+  o.shininess = n;
+  o.degree = spec.degree;
+  o.method = spec.method;
+  o.domain = spec.tau_domain ? FitDomain::kTau : FitDomain::kFull;
+  o.tau = tau;
+  o.constrain_one = spec.constrain;
+  o.constrain_zero = spec.constrain && spec.tau_domain;
+  o.monotone = true;
+  o.min_step = min_step;
+  o.remez_grid = remez_grid(spec);
+  o.error_grid = 0;  // the unit reports its errors itself
+  const FitResult r = fit_power(o);
+  return {r.coeffs, spec.tau_domain, o.constrain_one, o.constrain_zero};
+}
+
+// The step margin of a refit (monotone.h): every b_{k+1} - b_k >= delta gives P' >= p delta.
+// Quantizing the coefficients (½ LSB each, and the P(1) = 1 repair's sum of them in one
+// coefficient) moves P' by at most (p (p + 1) / 2 + p) 2^-(fh+1); the output proof needs
+// P_q' >= 2E / dmin (horner_monotone.cpp). Half as much again for margin.
+double step_margin(const HornerUnit& u, int degree) {
+  const double p = degree;
+  const double lsb = std::ldexp(1.0, -u.internal_frac());
+  const double step = std::ldexp(static_cast<double>(u.scaler().k_raw()),
+                                 -(u.config().in.frac_bits + u.scaler().k_frac()));
+  const double dmin = std::max(lsb, step - lsb);
+  const double e = (p - 1) * 0.5 * lsb;
+  const double quant = (p * (p + 1) / 2 + p) * 0.5 * lsb;
+  return 1.5 * (2 * e / dmin + quant) / p;
+}
+
+}  // namespace
+
+double horner_fit_tau(const MaterialParams& m, const QFormat& in, bool tau_domain) {
+  if (!tau_domain) return 0.0;
+  const std::int64_t root = root_threshold_raw(m, in);
+  return root >= in.raw_one() ? 0.0 : input_value(root, in);
+}
+
+std::vector<HornerUnit> build_horner_slots(const HornerFitSpec& spec, HornerConfig& cfg,
+                                           const std::vector<MaterialParams>& slots) {
+  // Slots with the same (n, tau_q) share one fit: lights x materials repeat them.
+  std::map<std::pair<double, double>, HornerCoefficients> cache;
+  std::vector<HornerCoefficients> fits;
+  fits.reserve(slots.size());
+  for (const MaterialParams& m : slots) {
+    const double tau = horner_fit_tau(m, cfg.in, spec.tau_domain);
+    const auto key = std::make_pair(m.shininess, tau);
+    auto it = cache.find(key);
+    if (it == cache.end())
+      it = cache.emplace(key, for_slot(m, [&] { return fit_slot(spec, m.shininess, tau, 0); }))
+               .first;
+    fits.push_back(it->second);
+  }
+  const bool auto_guard = cfg.guard < 0;
+  for (int attempt = 0;; ++attempt) {
+    HornerConfig c = cfg;
+    if (auto_guard) {
+      // The datapath width is shared: the guard is the largest any slot needs.
+      int preferred = 0, required = 0, max_guard = 64;
+      for (std::size_t i = 0; i < slots.size(); ++i) {
+        preferred = std::max(preferred, horner_preferred_guard(fits[i]));
+        required = std::max(required, horner_required_guard(fits[i]));
+        max_guard = std::min(max_guard, horner_max_guard(fits[i], slots[i], c.in, c.out));
+      }
+      c.guard = std::max(required, std::min(preferred, max_guard));
+    }
+    std::vector<HornerUnit> units;
+    units.reserve(slots.size());
+    bool regrow = false;
+    for (std::size_t i = 0; i < slots.size(); ++i) {
+      const MaterialParams& m = slots[i];
+      for_slot(m, [&] {
+        HornerUnit u(c, m, fits[i]);
+        if (!u.polynomial_monotone() || !u.output_monotone()) {
+          const double delta = step_margin(u, spec.degree);
+          if (delta * spec.degree >= 1.0)
+            throw std::invalid_argument(fmt::format(
+                "horner: key 'guard' = {}: too few guard bits for a monotone degree-{} output "
+                "(needs a step margin of {:.3g} per Bernstein coefficient)",
+                c.guard, spec.degree, delta));
+          fits[i] = fit_slot(spec, m.shininess, horner_fit_tau(m, c.in, spec.tau_domain), delta);
+          u = HornerUnit(c, m, fits[i]);
+          if (!u.polynomial_monotone() || !u.output_monotone())
+            throw std::invalid_argument(fmt::format(
+                "horner: key 'degree' = {}: no monotone fit found (step margin {:.3g})",
+                spec.degree, delta));
+          regrow = regrow || (auto_guard && horner_required_guard(fits[i]) > c.guard);
+        }
+        units.push_back(std::move(u));
+      });
+    }
+    if (!regrow || attempt >= 3) {
+      cfg = c;
+      return units;
+    }
+  }
+}
+
+}  // namespace glint

@@ -1,0 +1,33 @@
+// The horner unit's per-slot build: one fit per slot on the domain the hardware evaluates, the
+// shared guard, and the monotonicity repair (horner.cpp calls it; datapath.h has the budget).
+#pragma once
+
+#include <vector>
+
+#include "fit/fit.h"
+#include "units/common.h"
+#include "units/horner/datapath.h"
+
+namespace glint {
+
+struct HornerFitSpec {
+  int degree = 4;
+  FitMethod method = FitMethod::kMinimax;
+  bool tau_domain = true;
+  bool constrain = true;
+};
+
+// The lower end of a slot's fit domain: tau_q, the value of the u scaler's root code
+// (root_threshold_raw), so that the fitted polynomial's u is the hardware's; 0 on the full domain
+// and for slots whose root is at 1 (always skipped: u = 0 on every code).
+double horner_fit_tau(const MaterialParams& m, const QFormat& in, bool tau_domain);
+
+// Builds every slot's datapath at cfg.guard (< 0: auto, the largest guard any slot needs for a
+// faithful result, written back into cfg). Every datapath is monotone: its quantized polynomial
+// and its output on every input code (HornerUnit::polynomial_monotone, output_monotone); a slot
+// that fails either is refitted in the Bernstein cone with a step margin that makes both hold by
+// construction. Throws std::invalid_argument (naming the slot) when no such margin exists.
+std::vector<HornerUnit> build_horner_slots(const HornerFitSpec& spec, HornerConfig& cfg,
+                                           const std::vector<MaterialParams>& slots);
+
+}  // namespace glint
