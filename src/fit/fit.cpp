@@ -253,7 +253,8 @@ RemezOut remez(const Subspace& sub, const Target& target, int max_iterations, do
   auto g_at = [&](double v) { return target.y(v) - sub.a(v); };
   // Candidate grid, clustered at the ends where polynomial error extrema crowd (and where the
   // steep part of t^n sits).
-  const int grid = grid_points > 0 ? std::max(grid_points, 4 * (m + 2)) : std::max(4097, 256 * (m + 1));
+  const int grid =
+      grid_points > 0 ? std::max(grid_points, 4 * (m + 2)) : std::max(4097, 256 * (m + 1));
   std::vector<double> gv, gg;
   gv.reserve(grid);
   gg.reserve(grid);
@@ -449,7 +450,8 @@ void check_options(const FitOptions& o) {
   if (o.error_grid < 0 || o.error_grid == 1)
     throw std::invalid_argument("fit: error_grid must be 0 (none) or >= 2");
   if (o.remez_grid < 0) throw std::invalid_argument("fit: remez_grid must be >= 0");
-  if (o.monotone && o.degree < 1) throw std::invalid_argument("fit: a monotone fit needs degree >= 1");
+  if (o.monotone && o.degree < 1)
+    throw std::invalid_argument("fit: a monotone fit needs degree >= 1");
   if (!(o.min_step >= 0.0) || (o.constrain_one && o.min_step * o.degree >= 1.0))
     throw std::invalid_argument(fmt::format("fit: min_step {} is out of range", o.min_step));
   if (o.method == FitMethod::kMinimax && o.max_remez_iterations < 1) {

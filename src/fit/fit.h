@@ -93,7 +93,7 @@ struct FitResult {
   double t_at_max_error = 0.0;
   // Largest error of the gated unit below tau (truth t^n, output 0): tau^n; 0 for kFull.
   double skipped_error_bound = 0.0;
-  bool monotone = false;  // non-decreasing on the dense grid, up to Horner rounding
+  bool monotone = false;      // non-decreasing on the dense grid, up to Horner rounding
   bool monotone_fit = false;  // the Bernstein-cone fit replaced the method's own (see monotone)
 
   int iterations = 0;     // Remez exchanges or IRLS passes; 0 for plain least squares

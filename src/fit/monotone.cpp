@@ -66,20 +66,65 @@ void split(const LVec& b, LVec& left, LVec& right) {
   }
 }
 
-Monotonicity check_piece(const LVec& b, long double slack, int depth) {
-  const long double mn = *std::min_element(b.begin(), b.end());
-  if (mn >= slack) return Monotonicity::kProven;
-  // The end coefficients are P' at the ends of the piece.
-  if (b.front() < -slack || b.back() < -slack) return Monotonicity::kRefuted;
-  if (depth == 0) return Monotonicity::kUndecided;
-  LVec l, r;
-  split(b, l, r);
-  const Monotonicity a = check_piece(l, slack, depth - 1);
-  if (a == Monotonicity::kRefuted) return a;
-  const Monotonicity c = check_piece(r, slack, depth - 1);
-  if (c == Monotonicity::kRefuted || a == Monotonicity::kProven) return c;
-  return a;
-}
+// A piece of the subdivision: Bernstein coefficients of P and of P' on it, and its flags.
+struct Leaf {
+  bool rising = false;  // P' >= 0 proven
+  bool low = false;     // P <= 0 proven (clamped to 0)
+  bool high = false;    // P >= 1 proven (clamped to 1)
+};
+
+struct Walk {
+  long double slack_p = 0, slack_d = 0;
+  std::vector<Leaf> leaves;
+  bool refuted = false, undecided = false;
+
+  void visit(const LVec& bp, const LVec& bd, int depth) {
+    if (refuted) return;
+    Leaf f;
+    f.rising = *std::min_element(bd.begin(), bd.end()) >= slack_d;
+    if (f.rising) {  // P is largest at the right end and smallest at the left end
+      f.low = bp.back() <= slack_p;
+      f.high = bp.front() >= 1 - slack_p;
+    } else {
+      f.low = *std::max_element(bp.begin(), bp.end()) <= slack_p;
+      f.high = *std::min_element(bp.begin(), bp.end()) >= 1 - slack_p;
+    }
+    if (f.rising || f.low || f.high) {
+      leaves.push_back(f);
+      return;
+    }
+    // The end coefficients are the values at the ends: P falling where 0 < P < 1 is a step back
+    // of clamp(P).
+    const auto inside = [&](long double v) { return v > slack_p && v < 1 - slack_p; };
+    if ((bd.front() < -slack_d && inside(bp.front())) ||
+        (bd.back() < -slack_d && inside(bp.back()))) {
+      refuted = true;
+      return;
+    }
+    if (depth == 0) {
+      undecided = true;
+      leaves.push_back(Leaf{true, false, false});
+      return;
+    }
+    LVec pl, pr, dl, dr;
+    split(bp, pl, pr);
+    split(bd, dl, dr);
+    visit(pl, dl, depth - 1);
+    visit(pr, dr, depth - 1);
+  }
+
+  // clamp(P, 0, 1) is non-decreasing iff [0, 1] splits into a prefix where P <= 0, a middle where
+  // P rises, and a suffix where P >= 1 (each possibly empty).
+  Monotonicity verdict() const {
+    if (refuted) return Monotonicity::kRefuted;
+    std::size_t i = 0;
+    while (i < leaves.size() && leaves[i].low) ++i;
+    while (i < leaves.size() && leaves[i].rising) ++i;
+    while (i < leaves.size() && leaves[i].high) ++i;
+    if (i < leaves.size()) return Monotonicity::kRefuted;
+    return undecided ? Monotonicity::kUndecided : Monotonicity::kProven;
+  }
+};
 
 void below_piece(const LVec& b, long double want, double lo, double hi, double min_width,
                  std::vector<Interval>& out) {
@@ -97,6 +142,21 @@ void below_piece(const LVec& b, long double want, double lo, double hi, double m
   const double mid = 0.5 * (lo + hi);
   below_piece(l, want, lo, mid, min_width, out);
   below_piece(r, want, mid, hi, min_width, out);
+}
+
+// B_{k,p}(v), k = 0..p, by products (no pow: this runs for every sample of every pass).
+void bernstein_basis(int p, double v, double* out) {
+  double pw = 1.0;
+  for (int k = 0; k <= p; ++k) {
+    out[k] = pw;
+    pw *= v;
+  }
+  double qw = 1.0;
+  const double r = 1.0 - v;
+  for (int k = p; k >= 0; --k) {
+    out[k] *= qw * static_cast<double>(binom(p, k));
+    qw *= r;
+  }
 }
 
 // Solves min ||A x - y|| with x_j >= 0 for j >= free_cols (the first free_cols are unconstrained):
@@ -188,9 +248,13 @@ std::vector<double> monomial_from_bernstein(const std::vector<double>& b) {
 }
 
 Monotonicity check_monotone(const std::vector<long double>& c, int max_depth) {
-  long double slack = 0;
-  const LVec b = derivative_bernstein(c, &slack);
-  return check_piece(b, slack, max_depth);
+  Walk w;
+  const LVec bd = derivative_bernstein(c, &w.slack_d);
+  long double mag = 0;
+  for (long double x : c) mag += std::fabs(x);
+  w.slack_p = 64 * LDBL_EPSILON * mag;
+  w.visit(to_bernstein(c), bd, max_depth);
+  return w.verdict();
 }
 
 Monotonicity check_monotone(const std::vector<double>& c, int max_depth) {
@@ -226,8 +290,8 @@ std::vector<double> fit_monotone(const std::vector<double>& v, const std::vector
     throw std::invalid_argument("monotone fit: too few samples");
   if (o.zero && !o.one) throw std::invalid_argument("monotone fit: P(0) = 0 needs P(1) = 1");
   if (!(o.min_step >= 0.0) || (o.one && o.min_step * p >= 1.0))
-    throw std::invalid_argument(fmt::format("monotone fit: step margin {} too large for degree {}",
-                                            o.min_step, p));
+    throw std::invalid_argument(
+        fmt::format("monotone fit: step margin {} too large for degree {}", o.min_step, p));
   // Columns: b_0 as b0+ and b0- (absent when P(0) = 0), then d_1..d_p with basis
   // T_j(v) = sum_{k >= j} B_{k,p}(v). The target absorbs the margin: d_j = delta + d'_j.
   const std::size_t free = o.zero ? 0 : 2;
@@ -237,9 +301,7 @@ std::vector<double> fit_monotone(const std::vector<double>& v, const std::vector
   std::vector<double> g(rows, 0.0);
   std::vector<double> bern(static_cast<std::size_t>(p) + 1);
   for (std::size_t i = 0; i < v.size(); ++i) {
-    const double s = v[i], r = 1.0 - s;
-    for (int k = 0; k <= p; ++k)
-      bern[k] = static_cast<double>(binom(p, k)) * std::pow(s, k) * std::pow(r, p - k);
+    bernstein_basis(p, v[i], bern.data());
     double tail = 0;
     double margin = 0;
     for (int j = p; j >= 1; --j) {
@@ -292,10 +354,9 @@ std::vector<double> fit_monotone(const std::vector<double>& v, const std::vector
     double err = 0, wsum = 0;
     std::vector<double> e(v.size());
     for (std::size_t i = 0; i < v.size(); ++i) {
-      const double s = v[i], r = 1.0 - s;
+      bernstein_basis(p, v[i], bern.data());
       double f = 0;
-      for (int k = 0; k <= p; ++k)
-        f += b[k] * static_cast<double>(binom(p, k)) * std::pow(s, k) * std::pow(r, p - k);
+      for (int k = 0; k <= p; ++k) f += b[k] * bern[k];
       e[i] = std::abs(f - y[i]);
       err = std::max(err, e[i]);
     }

@@ -4,8 +4,10 @@
 // Check. In the Bernstein basis of degree q on [a, b], a polynomial lies between the smallest and
 // the largest of its coefficients (the basis is a partition of unity with non-negative terms), and
 // de Casteljau subdivision at the midpoint makes the coefficients converge to the values. So the
-// Bernstein coefficients of P' give lower bounds of P' on each piece of a subdivision: all >= 0
-// proves P non-decreasing there; an end coefficient (the value of P' at that end) < 0 refutes it.
+// Bernstein coefficients of P and P' on the pieces of a subdivision prove, piece by piece, P' >= 0,
+// P <= 0 or P >= 1; an end coefficient (a value) with P' < 0 where 0 < P < 1 refutes. What is
+// checked is clamp(P, 0, 1), the function every unit computes: a minimax fit pinned to P(0) = 0
+// below a target of eps/c_y dips below 0 next to u = 0, which the clamp hides.
 //
 // Fit. P(v) = sum_k b_k B_{k,p}(v) with b_0 <= b_1 <= ... <= b_p is non-decreasing on [0, 1]
 // (P' = p sum_k (b_{k+1} - b_k) B_{k,p-1}). Writing b_k = b_0 + d_1 + ... + d_k with d_j >= 0
@@ -27,9 +29,9 @@ std::vector<double> monomial_from_bernstein(const std::vector<double>& b);
 
 enum class Monotonicity { kProven, kRefuted, kUndecided };
 
-// Is sum c_k v^k non-decreasing on [0, 1]? Computed in long double with subdivision down to
-// pieces of width 2^-max_depth; kUndecided where a piece can neither be proven nor refuted (a
-// derivative within rounding of 0), which callers treat as not proven.
+// Is clamp(sum c_k v^k, 0, 1) non-decreasing on [0, 1]? Computed in long double with subdivision
+// down to pieces of width 2^-max_depth; kUndecided where a piece can neither be proven nor refuted
+// (a derivative within rounding of 0), which callers treat as not proven.
 Monotonicity check_monotone(const std::vector<long double>& c, int max_depth = 24);
 Monotonicity check_monotone(const std::vector<double>& c, int max_depth = 24);
 
@@ -50,9 +52,9 @@ double slope_bound(const std::vector<long double>& c);
 // A monotone polynomial fit of samples (v_i, y_i), v_i in [0, 1].
 struct MonotoneFitOptions {
   int degree = 4;
-  bool zero = false;     // P(0) = 0
-  bool one = false;      // P(1) = 1
-  bool minimax = false;  // Lawson reweighting towards the minimax fit; else least squares
+  bool zero = false;      // P(0) = 0
+  bool one = false;       // P(1) = 1
+  bool minimax = false;   // Lawson reweighting towards the minimax fit; else least squares
   double min_step = 0.0;  // delta: every d_j >= delta (p delta <= 1 when one)
   int lawson_passes = 40;
 };

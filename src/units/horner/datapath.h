@@ -49,8 +49,8 @@ struct HornerConfig {
   bool skip = true;
 };
 
-int horner_required_guard(const HornerCoefficients& coeffs);                 // faithful minimum
-int horner_preferred_guard(const HornerCoefficients& coeffs);                // + derivative term
+int horner_required_guard(const HornerCoefficients& coeffs);   // faithful minimum
+int horner_preferred_guard(const HornerCoefficients& coeffs);  // + derivative term
 // The largest guard whose registers fit 62 bits for this slot: the accumulator (coefficient
 // magnitude) and the u scaler (in + k + u bits, k = 1/(1 - tau_q) of the material).
 int horner_max_guard(const HornerCoefficients& coeffs, const MaterialParams& m, const QFormat& in,

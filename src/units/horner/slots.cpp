@@ -107,9 +107,9 @@ std::vector<HornerUnit> build_horner_slots(const HornerFitSpec& spec, HornerConf
           fits[i] = fit_slot(spec, m.shininess, horner_fit_tau(m, c.in, spec.tau_domain), delta);
           u = HornerUnit(c, m, fits[i]);
           if (!u.polynomial_monotone() || !u.output_monotone())
-            throw std::invalid_argument(fmt::format(
-                "horner: key 'degree' = {}: no monotone fit found (step margin {:.3g})",
-                spec.degree, delta));
+            throw std::invalid_argument(
+                fmt::format("horner: key 'degree' = {}: no monotone fit found (step margin {:.3g})",
+                            spec.degree, delta));
           regrow = regrow || (auto_guard && horner_required_guard(fits[i]) > c.guard);
         }
         units.push_back(std::move(u));
