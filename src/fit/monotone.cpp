@@ -292,9 +292,9 @@ std::vector<double> fit_monotone(const std::vector<double>& v, const std::vector
   if (!(o.min_step >= 0.0) || (o.one && o.min_step * p >= 1.0))
     throw std::invalid_argument(
         fmt::format("monotone fit: step margin {} too large for degree {}", o.min_step, p));
-  // Columns: b_0 as b0+ and b0- (absent when P(0) = 0), then d_1..d_p with basis
+  // Columns: b_0, of either sign (absent when P(0) = 0), then d_1..d_p with basis
   // T_j(v) = sum_{k >= j} B_{k,p}(v). The target absorbs the margin: d_j = delta + d'_j.
-  const std::size_t free = o.zero ? 0 : 2;
+  const std::size_t free = o.zero ? 0 : 1;
   const std::size_t cols = free + static_cast<std::size_t>(p);
   const std::size_t rows = v.size() + (o.one ? 1 : 0);
   linalg::Matrix a(rows, cols);
@@ -309,17 +309,14 @@ std::vector<double> fit_monotone(const std::vector<double>& v, const std::vector
       a(i, free + j - 1) = tail;
       margin += o.min_step * tail;
     }
-    if (!o.zero) {
-      a(i, 0) = 1.0;
-      a(i, 1) = -1.0;
-    }
+    if (!o.zero) a(i, 0) = 1.0;
     g[i] = y[i] - margin;
   }
   // P(1) = b_0 + sum d_j = 1 as a heavily weighted row, made exact after the solve.
   const double total = 1.0 - o.min_step * p;
   const double heavy = 1e4 * std::sqrt(static_cast<double>(v.size()));
   if (o.one) {
-    for (std::size_t j = 0; j < cols; ++j) a(rows - 1, j) = heavy * (j == 1 && !o.zero ? -1 : 1);
+    for (std::size_t j = 0; j < cols; ++j) a(rows - 1, j) = heavy;
     g[rows - 1] = heavy * total;
   }
 
@@ -336,7 +333,7 @@ std::vector<double> fit_monotone(const std::vector<double>& v, const std::vector
       gw[i] *= s;
     }
     std::vector<double> x = nnls(aw, gw, free);
-    double b0 = o.zero ? 0.0 : x[0] - x[1];
+    double b0 = o.zero ? 0.0 : x[0];
     double sum_d = 0;
     for (int j = 0; j < p; ++j) sum_d += x[free + j];
     if (o.one) {
