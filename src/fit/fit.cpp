@@ -11,6 +11,7 @@
 
 #include "fit/linalg.h"
 #include "fit/monotone.h"
+#include "fit/subspace.h"
 #include "reference/reference.h"
 
 namespace glint {
@@ -18,87 +19,6 @@ namespace glint {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-
-// The fit lives in v in [0, 1] for both domains (v = x = t for kFull, v = u for kTau), in the
-// constrained form f(v) = a(v) + w(v) q(v), with q = sum_j c_j T*_j(v) and T*_j(v) = T_j(2v - 1)
-// the shifted Chebyshev polynomials. Chebyshev rather than monomial columns keep the least
-// squares and Remez matrices near-orthogonal; w vanishes at the constrained points.
-struct Subspace {
-  bool zero = false;  // f(0) = 0
-  bool one = false;   // f(1) = 1
-  int m = 0;          // number of free coefficients c_j (degree + 1 - constraints)
-
-  double a(double v) const { return zero && one ? v : (one ? 1.0 : 0.0); }
-  double w(double v) const { return (zero ? v : 1.0) * (one ? 1.0 - v : 1.0); }
-
-  // phi_j(v) = w(v) T*_j(v), j < m.
-  void basis(double v, double* out) const {
-    if (m == 0) return;
-    const double s = 2.0 * v - 1.0;
-    const double wv = w(v);
-    double t0 = 1.0, t1 = s;
-    out[0] = wv;
-    for (int j = 1; j < m; ++j) {
-      out[j] = wv * t1;
-      const double t2 = 2.0 * s * t1 - t0;
-      t0 = t1;
-      t1 = t2;
-    }
-  }
-
-  // q(v) by Clenshaw's recurrence.
-  static double chebyshev(const std::vector<double>& c, double v) {
-    const double s = 2.0 * v - 1.0;
-    double b1 = 0.0, b2 = 0.0;
-    for (std::size_t j = c.size(); j-- > 1;) {
-      const double b0 = 2.0 * s * b1 - b2 + c[j];
-      b2 = b1;
-      b1 = b0;
-    }
-    return c.empty() ? 0.0 : s * b1 - b2 + c[0];
-  }
-
-  // Monomial coefficients in v of a + w q, padded to degree + 1 entries.
-  std::vector<double> monomial(const std::vector<double>& c, int degree) const {
-    const std::size_t len = static_cast<std::size_t>(degree) + 1;
-    std::vector<double> q(len, 0.0);
-    std::vector<double> prev{1.0}, cur{-1.0, 2.0};  // T*_0 = 1, T*_1 = 2v - 1
-    for (std::size_t j = 0; j < c.size(); ++j) {
-      const std::vector<double>& tj = j == 0 ? prev : cur;
-      for (std::size_t k = 0; k < tj.size() && k < len; ++k) q[k] += c[j] * tj[k];
-      if (j >= 1) {  // T*_{j+1} = 2(2v - 1) T*_j - T*_{j-1}
-        std::vector<double> next(cur.size() + 1, 0.0);
-        for (std::size_t k = 0; k < cur.size(); ++k) {
-          next[k + 1] += 4.0 * cur[k];
-          next[k] -= 2.0 * cur[k];
-        }
-        for (std::size_t k = 0; k < prev.size(); ++k) next[k] -= prev[k];
-        prev = std::move(cur);
-        cur = std::move(next);
-      }
-    }
-    std::vector<double> wpoly{1.0};
-    if (zero) wpoly = {0.0, 1.0};
-    if (one) {  // multiply by (1 - v)
-      std::vector<double> r(wpoly.size() + 1, 0.0);
-      for (std::size_t k = 0; k < wpoly.size(); ++k) {
-        r[k] += wpoly[k];
-        r[k + 1] -= wpoly[k];
-      }
-      wpoly = r;
-    }
-    std::vector<double> out(len, 0.0);
-    for (std::size_t i = 0; i < len; ++i) {
-      for (std::size_t k = 0; k < wpoly.size() && i + k < len; ++k) out[i + k] += q[i] * wpoly[k];
-    }
-    if (zero && one) {
-      out[1] += 1.0;
-    } else if (one) {
-      out[0] += 1.0;
-    }
-    return out;
-  }
-};
 
 // t^n seen from v, with t = t0 + (1 - t0) v. The two-sided formula makes both ends exact
 // (v = 0 gives t0, v = 1 gives 1), so f(1) = 1 constraints see a target of exactly 1.
@@ -452,8 +372,8 @@ void check_options(const FitOptions& o) {
   if (o.remez_grid < 0) throw std::invalid_argument("fit: remez_grid must be >= 0");
   if (o.monotone && o.degree < 1)
     throw std::invalid_argument("fit: a monotone fit needs degree >= 1");
-  if (!(o.min_step >= 0.0) || (o.constrain_one && o.min_step * o.degree >= 1.0))
-    throw std::invalid_argument(fmt::format("fit: min_step {} is out of range", o.min_step));
+  if (!(o.min_slope >= 0.0) || (o.constrain_one && o.min_slope >= 1.0))
+    throw std::invalid_argument(fmt::format("fit: min_slope {} is out of range", o.min_slope));
   if (o.method == FitMethod::kMinimax && o.max_remez_iterations < 1) {
     throw std::invalid_argument("fit: max_remez_iterations must be >= 1");
   }
@@ -505,10 +425,11 @@ void fold_one(std::vector<double>& coeffs, const Subspace& sub) {
 // robust on the uniform samples (robust weights would reject the highlight on noise-free t^n, see
 // fit.h, so both are plain least squares in the cone), minimax by Lawson's reweighting on a
 // Chebyshev-spaced set, dense where the error of a polynomial peaks.
-std::vector<double> monotone_fit(const FitOptions& o, const Subspace& sub, const Target& target) {
+std::vector<double> monotone_fit(const FitOptions& o, const Subspace& sub, const Target& target,
+                                 const std::vector<double>& start, bool* cone) {
   std::vector<double> v, y;
   if (o.method == FitMethod::kMinimax) {
-    const int count = std::max(200, 40 * (o.degree + 1));
+    const int count = std::max(128, 24 * (o.degree + 1));
     for (int i = 0; i < count; ++i) v.push_back(0.5 * (1.0 - std::cos(kPi * i / (count - 1))));
   } else {
     for (int i = 0; i < o.samples; ++i) {
@@ -522,8 +443,8 @@ std::vector<double> monotone_fit(const FitOptions& o, const Subspace& sub, const
   m.zero = sub.zero;
   m.one = sub.one;
   m.minimax = o.method == FitMethod::kMinimax;
-  m.min_step = o.min_step;
-  return fit_monotone(v, y, m);
+  m.min_slope = o.min_slope;
+  return fit_monotone(v, y, m, cone, &start);
 }
 
 }  // namespace
@@ -617,8 +538,8 @@ FitResult fit_power(const FitOptions& o) {
   }
   r.coeffs = sub.monomial(c, o.degree);
   fold_one(r.coeffs, sub);
-  if (o.monotone && (o.min_step > 0.0 || check_monotone(r.coeffs) != Monotonicity::kProven)) {
-    r.coeffs = monotone_fit(o, sub, target);
+  if (o.monotone && (o.min_slope > 0.0 || check_monotone(r.coeffs) != Monotonicity::kProven)) {
+    r.coeffs = monotone_fit(o, sub, target, r.coeffs, &r.monotone_cone);
     fold_one(r.coeffs, sub);
     r.monotone_fit = true;
     r.levelled_error = 0.0;

@@ -65,13 +65,13 @@ struct FitOptions {
   // target (t^n in u on [tau, 1]) needs far fewer.
   int remez_grid = 0;
   int error_grid = 20001;  // points of the dense grid the reported errors come from; 0: none
-  // Guarantee P non-decreasing in its variable on [0, 1] (monotone.h): the fit is kept if
-  // check_monotone() proves it monotone, else replaced by the monotone fit in the Bernstein cone
-  // (ls, robust: least squares; minimax: Lawson's reweighting) with the same constraints.
+  // Guarantee clamp(P, 0, 1) non-decreasing in its variable on [0, 1] (monotone.h): the fit is
+  // kept if check_monotone() proves it, else replaced by fit_monotone() with the same constraints
+  // (ls, robust: least squares under P' >= 0; minimax: Lawson's reweighting of it).
   bool monotone = false;
-  // With monotone: force the Bernstein fit with every step b_{k+1} - b_k >= min_step, so that
-  // P' >= degree * min_step everywhere (a margin against coefficient quantization).
-  double min_step = 0.0;
+  // With monotone: replace the fit by one with P' >= min_slope proven on all of [0, 1] (a margin
+  // against coefficient quantization; < 1 with constrain_one).
+  double min_slope = 0.0;
 };
 
 inline constexpr int kMaxFitDegree = 16;
@@ -93,8 +93,9 @@ struct FitResult {
   double t_at_max_error = 0.0;
   // Largest error of the gated unit below tau (truth t^n, output 0): tau^n; 0 for kFull.
   double skipped_error_bound = 0.0;
-  bool monotone = false;      // non-decreasing on the dense grid, up to Horner rounding
-  bool monotone_fit = false;  // the Bernstein-cone fit replaced the method's own (see monotone)
+  bool monotone = false;       // non-decreasing on the dense grid, up to Horner rounding
+  bool monotone_fit = false;   // fit_monotone() replaced the method's own fit (see monotone)
+  bool monotone_cone = false;  // ... and had to fall back to its Bernstein cone
 
   int iterations = 0;     // Remez exchanges or IRLS passes; 0 for plain least squares
   bool converged = true;  // Remez/IRLS met its tolerance

@@ -79,6 +79,26 @@ std::vector<double> QR::solve(const std::vector<double>& b) const {
   return x;
 }
 
+std::vector<double> QR::r_solve(std::vector<double> z) const {
+  const std::size_t n = qr_.cols;
+  if (z.size() != n) throw std::invalid_argument("QR::r_solve: size mismatch");
+  for (std::size_t j = n; j-- > 0;) {
+    for (std::size_t k = j + 1; k < n; ++k) z[j] -= qr_(j, k) * z[k];
+    z[j] /= diag_[j];
+  }
+  return z;
+}
+
+std::vector<double> QR::rt_solve(std::vector<double> g) const {
+  const std::size_t n = qr_.cols;
+  if (g.size() != n) throw std::invalid_argument("QR::rt_solve: size mismatch");
+  for (std::size_t j = 0; j < n; ++j) {
+    for (std::size_t k = 0; k < j; ++k) g[j] -= qr_(k, j) * g[k];
+    g[j] /= diag_[j];
+  }
+  return g;
+}
+
 std::vector<double> QR::leverages() const {
   const std::size_t m = qr_.rows;
   const std::size_t n = qr_.cols;

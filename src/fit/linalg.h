@@ -29,6 +29,10 @@ class QR {
   bool full_rank() const { return full_rank_; }
   // argmin ||A x - b||_2. Throws std::runtime_error if the matrix is rank deficient.
   std::vector<double> solve(const std::vector<double>& b) const;
+  // R^-1 z and R^-T g for the triangular factor (n-vectors): the pieces of Lawson & Hanson's
+  // reduction of inequality-constrained least squares to a least-distance problem.
+  std::vector<double> r_solve(std::vector<double> z) const;
+  std::vector<double> rt_solve(std::vector<double> g) const;
   // Diagonal of the hat matrix A (A'A)^-1 A' = squared row norms of the thin Q (the leverages).
   std::vector<double> leverages() const;
 

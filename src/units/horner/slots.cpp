@@ -22,7 +22,7 @@ int remez_grid(const HornerFitSpec& spec) {
   return spec.tau_domain ? 24 * (spec.degree + 2) + 1 : 0;
 }
 
-HornerCoefficients fit_slot(const HornerFitSpec& spec, double n, double tau, double min_step) {
+HornerCoefficients fit_slot(const HornerFitSpec& spec, double n, double tau, double min_slope) {
   FitOptions o;
   o.shininess = n;
   o.degree = spec.degree;
@@ -32,18 +32,18 @@ HornerCoefficients fit_slot(const HornerFitSpec& spec, double n, double tau, dou
   o.constrain_one = spec.constrain;
   o.constrain_zero = spec.constrain && spec.tau_domain;
   o.monotone = true;
-  o.min_step = min_step;
+  o.min_slope = min_slope;
   o.remez_grid = remez_grid(spec);
   o.error_grid = 0;  // the unit reports its errors itself
   const FitResult r = fit_power(o);
   return {r.coeffs, spec.tau_domain, o.constrain_one, o.constrain_zero};
 }
 
-// The step margin of a refit (monotone.h): every b_{k+1} - b_k >= delta gives P' >= p delta.
-// Quantizing the coefficients (½ LSB each, and the P(1) = 1 repair's sum of them in one
-// coefficient) moves P' by at most (p (p + 1) / 2 + p) 2^-(fh+1); the output proof needs
-// P_q' >= 2E / dmin (horner_monotone.cpp). Half as much again for margin.
-double step_margin(const HornerUnit& u, int degree) {
+// The slope margin of a refit (fit_monotone proves P' >= it on [0, 1]). Quantizing the
+// coefficients (½ LSB each, and the P(1) = 1 repair's sum of them in one coefficient) moves P' by
+// at most (p (p + 1) / 2 + p) 2^-(fh+1); the output proof needs P_q' >= 2E / dmin
+// (horner_monotone.cpp). Half as much again for margin.
+double slope_margin(const HornerUnit& u, int degree) {
   const double p = degree;
   const double lsb = std::ldexp(1.0, -u.internal_frac());
   const double step = std::ldexp(static_cast<double>(u.scaler().k_raw()),
@@ -51,7 +51,7 @@ double step_margin(const HornerUnit& u, int degree) {
   const double dmin = std::max(lsb, step - lsb);
   const double e = (p - 1) * 0.5 * lsb;
   const double quant = (p * (p + 1) / 2 + p) * 0.5 * lsb;
-  return 1.5 * (2 * e / dmin + quant) / p;
+  return 1.5 * (2 * e / dmin + quant);
 }
 
 }  // namespace
@@ -98,18 +98,18 @@ std::vector<HornerUnit> build_horner_slots(const HornerFitSpec& spec, HornerConf
       for_slot(m, [&] {
         HornerUnit u(c, m, fits[i]);
         if (!u.polynomial_monotone() || !u.output_monotone()) {
-          const double delta = step_margin(u, spec.degree);
-          if (delta * spec.degree >= 1.0)
+          const double slope = slope_margin(u, spec.degree);
+          if (slope >= 1.0)
             throw std::invalid_argument(fmt::format(
                 "horner: key 'guard' = {}: too few guard bits for a monotone degree-{} output "
-                "(needs a step margin of {:.3g} per Bernstein coefficient)",
-                c.guard, spec.degree, delta));
-          fits[i] = fit_slot(spec, m.shininess, horner_fit_tau(m, c.in, spec.tau_domain), delta);
+                "(needs a slope margin of {:.3g} > 1 = P(1) - P(0))",
+                c.guard, spec.degree, slope));
+          fits[i] = fit_slot(spec, m.shininess, horner_fit_tau(m, c.in, spec.tau_domain), slope);
           u = HornerUnit(c, m, fits[i]);
           if (!u.polynomial_monotone() || !u.output_monotone())
-            throw std::invalid_argument(
-                fmt::format("horner: key 'degree' = {}: no monotone fit found (step margin {:.3g})",
-                            spec.degree, delta));
+            throw std::invalid_argument(fmt::format(
+                "horner: key 'degree' = {}: no monotone fit found (slope margin {:.3g})",
+                spec.degree, slope));
           regrow = regrow || (auto_guard && horner_required_guard(fits[i]) > c.guard);
         }
         units.push_back(std::move(u));
