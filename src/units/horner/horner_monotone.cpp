@@ -6,7 +6,8 @@
 // k 2^-F - 2^-fh), so where P_q' >= 2E / dmin on [u_hw(t), u_hw(t+1)] the pre-rounding value y
 // grows, and the final rounding and the clamp keep the order. Bernstein bounds of P_q'
 // (fit/monotone.h) prove that on most of [0, 1]; the codes of the remaining pieces, and the top
-// codes where u clamps to 1 (dmin does not hold there), are checked one by one.
+// codes where u clamps to 1 (dmin does not hold there), are checked one by one, up to a budget
+// (false beyond it: not proven).
 #include <algorithm>
 #include <cmath>
 
@@ -23,9 +24,14 @@ bool HornerUnit::output_monotone() const {
   const std::int64_t root = scaler_.root_raw();
   const std::int64_t one = cfg_.in.raw_one();
   if (root >= one) return true;  // u = 0 on every code: a constant output
+  // At most 2^20 codes one by one (a few ms): wide input formats have far more codes per piece,
+  // and are proven by guard bits instead (the builder's repair).
+  std::int64_t budget = std::int64_t{1} << 20;
   const auto ordered = [&](std::int64_t lo, std::int64_t hi) {
     lo = std::max(lo, root);
     hi = std::min(hi, one);
+    budget -= hi - lo + 1;
+    if (budget < 0) return false;
     std::int64_t prev = lo > root ? eval(lo - 1) : 0;
     for (std::int64_t t = lo; t <= hi; ++t) {
       const std::int64_t y = eval(t);

@@ -78,42 +78,58 @@ std::vector<HornerUnit> build_horner_slots(const HornerFitSpec& spec, HornerConf
     fits.push_back(it->second);
   }
   const bool auto_guard = cfg.guard < 0;
+  int extra = 0;  // guard bits added because a slot's output could not be made monotone
   for (int attempt = 0;; ++attempt) {
     HornerConfig c = cfg;
+    int max_guard = 64;
     if (auto_guard) {
       // The datapath width is shared: the guard is the largest any slot needs.
-      int preferred = 0, required = 0, max_guard = 64;
+      int preferred = 0, required = 0;
       for (std::size_t i = 0; i < slots.size(); ++i) {
         preferred = std::max(preferred, horner_preferred_guard(fits[i]));
         required = std::max(required, horner_required_guard(fits[i]));
         max_guard = std::min(max_guard, horner_max_guard(fits[i], slots[i], c.in, c.out));
       }
-      c.guard = std::max(required, std::min(preferred, max_guard));
+      c.guard = std::max(required, std::min(preferred, max_guard)) + extra;
     }
     std::vector<HornerUnit> units;
     units.reserve(slots.size());
-    bool regrow = false;
-    for (std::size_t i = 0; i < slots.size(); ++i) {
+    bool regrow = false, widen = false;
+    for (std::size_t i = 0; i < slots.size() && !widen; ++i) {
       const MaterialParams& m = slots[i];
       for_slot(m, [&] {
         HornerUnit u(c, m, fits[i]);
-        if (!u.polynomial_monotone() || !u.output_monotone()) {
-          const double slope = slope_margin(u, spec.degree);
-          if (slope >= 1.0)
-            throw std::invalid_argument(fmt::format(
-                "horner: key 'guard' = {}: too few guard bits for a monotone degree-{} output "
-                "(needs a slope margin of {:.3g} > 1 = P(1) - P(0))",
-                c.guard, spec.degree, slope));
-          fits[i] = fit_slot(spec, m.shininess, horner_fit_tau(m, c.in, spec.tau_domain), slope);
-          u = HornerUnit(c, m, fits[i]);
-          if (!u.polynomial_monotone() || !u.output_monotone())
-            throw std::invalid_argument(fmt::format(
-                "horner: key 'degree' = {}: no monotone fit found (slope margin {:.3g})",
-                spec.degree, slope));
-          regrow = regrow || (auto_guard && horner_required_guard(fits[i]) > c.guard);
+        if (u.polynomial_monotone() && u.output_monotone()) {
+          units.push_back(std::move(u));
+          return;
         }
-        units.push_back(std::move(u));
+        const double slope = slope_margin(u, spec.degree);
+        if (slope < 1.0) {
+          HornerCoefficients refit =
+              fit_slot(spec, m.shininess, horner_fit_tau(m, c.in, spec.tau_domain), slope);
+          HornerUnit r(c, m, refit);
+          if (r.polynomial_monotone() && r.output_monotone()) {
+            fits[i] = std::move(refit);
+            regrow = regrow || (auto_guard && horner_required_guard(fits[i]) > c.guard);
+            units.push_back(std::move(r));
+            return;
+          }
+        }
+        // The inner roundings are too coarse against the output's step per input code (an
+        // input format finer than u, or a slope margin no fit can give): more guard bits.
+        if (auto_guard && c.guard < max_guard) {
+          widen = true;
+          return;
+        }
+        throw std::invalid_argument(fmt::format(
+            "horner: key 'guard' = {}: no monotone degree-{} output at {} guard bits with input "
+            "{} (a slope margin of {:.3g} would be needed)",
+            c.guard, spec.degree, c.guard, c.in.name(), slope));
       });
+    }
+    if (widen) {
+      ++extra;
+      continue;
     }
     if (!regrow || attempt >= 3) {
       cfg = c;
