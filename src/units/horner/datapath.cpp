@@ -111,6 +111,9 @@ HornerUnit::HornerUnit(const HornerConfig& cfg, const MaterialParams& m,
     ++acc_int_;
   // acc * u: acc_int + fh + (fh + 1) bits with the sign; int64 holds 63 of them.
   wide_ = acc_int_ + 2 * fh_ + 1 > 63;
+  half_ = fh_ > 0 ? std::int64_t{1} << (fh_ - 1) : 0;
+  c0_high_ =
+      shift_left(c_raw_[0], fh_) + (last_shift_ > 0 ? std::int64_t{1} << (last_shift_ - 1) : 0);
 }
 
 double HornerUnit::slope_bound() const {
