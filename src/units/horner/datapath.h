@@ -120,7 +120,8 @@ class HornerUnit {
     }
     std::int64_t q;
     if constexpr (Wide) {
-      const Wider y = static_cast<Wider>(acc) * u + (static_cast<Wider>(c_raw_[0]) << fh_);
+      const Wider y = static_cast<Wider>(acc) * u +
+                      static_cast<Wider>(c_raw_[0]) * (static_cast<Wider>(1) << fh_);
       q = static_cast<std::int64_t>((y + (static_cast<Wider>(1) << (last_shift_ - 1))) >>
                                     last_shift_);
     } else {
