@@ -494,6 +494,16 @@ TEST(MonotoneFit, FitPowerIsMonotoneWhenAsked) {
           EXPECT_NE(check_monotone(r.coeffs), Monotonicity::kRefuted)
               << "n=" << n << " p=" << p << " " << to_string(m) << " " << to_string(d);
           EXPECT_NEAR(r.value(1.0), 1.0, 1e-12);
+          if (p >= 2 && m == FitMethod::kMinimax) {
+            // A slope margin is proven on all of [0, 1] (the horner builder's repair).
+            o.min_slope = 0.05;
+            const FitResult s = fit_power(o);
+            EXPECT_TRUE(s.monotone_fit);
+            EXPECT_TRUE(
+                slope_below(std::vector<long double>(s.coeffs.begin(), s.coeffs.end()), 0.05, 1e-6)
+                    .empty())
+                << "n=" << n << " p=" << p << " " << to_string(d);
+          }
           replaced += r.monotone_fit;
           ++total;
         }

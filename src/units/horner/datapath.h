@@ -1,7 +1,10 @@
 // Horner pipeline for a fitted polynomial (Öztürk et al. 2006, eq.12), one multiply-add per stage.
 //
 // The polynomial is evaluated in the unit's variable: u = t on the full domain (Öztürk's fit), or
-// u = (t - tau) / (1 - tau) on [tau, 1] (our fits, u_scaler.h), with monomial coefficients in u.
+// u = (t - tau_q) / (1 - tau_q) on [tau_q, 1] (our fits, u_scaler.h), with monomial coefficients
+// in u. tau_q is the u scaler's root code, and the fit runs on exactly that domain (slots.h): the
+// fitted polynomial and the hardware share one variable (a fit on the float tau, or on a clamped
+// one, would be evaluated off its domain and can rise, fall to 0 and rise again).
 // Stages: acc = c_p; acc = round(acc u) + c_k for k = p-1 .. 1; the last stage forms acc u + c_0
 // exactly and rounds once to the output format; then clamp to [0, 1].
 //
