@@ -111,6 +111,7 @@ HornerUnit::HornerUnit(const HornerConfig& cfg, const MaterialParams& m,
     ++acc_int_;
   // acc * u: acc_int + fh + (fh + 1) bits with the sign; int64 holds 63 of them.
   wide_ = acc_int_ + 2 * fh_ + 1 > 63;
+  c_real_ = real_coefficients();
   half_ = fh_ > 0 ? std::int64_t{1} << (fh_ - 1) : 0;
   c0_high_ =
       shift_left(c_raw_[0], fh_) + (last_shift_ > 0 ? std::int64_t{1} << (last_shift_ - 1) : 0);
@@ -138,8 +139,7 @@ double HornerUnit::datapath_bound_ulps() const {
 double HornerUnit::model(std::int64_t t_raw) const {
   const long double u = scaler_.exact(t_raw);
   long double acc = 0;
-  for (std::size_t k = c_raw_.size(); k-- > 0;)
-    acc = acc * u + std::ldexp(static_cast<long double>(c_raw_[k]), -fh_);
+  for (std::size_t k = c_real_.size(); k-- > 0;) acc = acc * u + c_real_[k];
   return static_cast<double>(std::clamp(acc, 0.0L, 1.0L));
 }
 

@@ -140,6 +140,7 @@ class HornerUnit {
   double tau_ = 0;
   UScaler scaler_;
   std::vector<std::int64_t> c_raw_;
+  std::vector<long double> c_real_;  // c_raw 2^-fh, for model()
   QFormat coeff_fmt_;
   std::int64_t one_out_ = 0;
   int fh_ = 0, last_shift_ = 0, acc_int_ = 0;
