@@ -1,0 +1,391 @@
+// Property-based tests of the accuracy contract (issue 7 item 6), in the manner of FloPoCo's and
+// ac_math's random testing: RapidCheck generates materials, light sets and thresholds the way a
+// vector file states them (the slots come from make_slots(), exactly as the CLI builds them),
+// random accepted specs of every unit drawn from the ranges the catalogue advertises, and random
+// real t. For every generated case, on every code of the unit's input grid (all 2^16 of uq1.15,
+// all 2^(F+1) of uq1.F):
+//  - the output (comparator then datapath) is monotone non-decreasing in t;
+//  - f(1) = 1 exactly where promised (every unit except horner with constrain=off), and 0 for a
+//    slot that is always skipped;
+//  - every skipped code is imperceptible: the datapath's output there is <= eps_K / c_y;
+//  - the skip set lies inside Källberg's float test on real t: (code + 1/2) 2^-F <= tau;
+//  - |eval - model| <= datapath_bound_ulps on every computed code;
+//  - eval == the staged evaluation's result register == eval_batch (the simulator's paths);
+//  - |y(quantize(t)) - r(t)| <= slot_contract().bound.total() at every code, at both sides of
+//    every rounding boundary between codes, and at random real t in [-1, 1 + 1e-3];
+// and a refused spec throws std::invalid_argument naming the unit and the key or the material.
+//
+// Cases: GLINT_PROPERTY_CASES accepted cases per unit (default 2000); ctest's `properties_long.*`
+// (label long, only with `ctest -C long`) runs 100 000. RC_PARAMS="seed=..." replays a seed.
+// Shrunk failures are kept below as named regression tests (RegressionCases.*).
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <rapidcheck.h>
+#include <rapidcheck/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <initializer_list>
+#include <limits>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "eval/contract.h"
+#include "eval/evaluate.h"
+#include "io/vectors.h"
+#include "units/catalogue.h"
+
+namespace glint {
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// Running a property with this suite's case count.
+
+int property_cases() {
+  const char* env = std::getenv("GLINT_PROPERTY_CASES");
+  return env ? std::max(1, std::atoi(env)) : 2000;
+}
+
+// RC_GTEST_PROP with the case count above instead of RapidCheck's default 100 (max_success in
+// RC_PARAMS is replaced; its seed and the other parameters are kept).
+template <class Testable>
+void check_property(Testable&& testable) {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  rc::detail::TestMetadata metadata;
+  metadata.id = std::string(info->test_suite_name()) + "/" + info->name();
+  metadata.description = info->name();
+  rc::detail::TestParams params = rc::detail::configuration().testParams;
+  params.maxSuccess = property_cases();
+  const auto result = rc::detail::checkTestable(std::forward<Testable>(testable), metadata, params);
+  std::ostringstream ss;
+  rc::detail::printResultMessage(result, ss);
+  if (result.template is<rc::detail::SuccessResult>()) {
+    std::cout << ss.str() << std::endl;
+  } else {
+    FAIL() << ss.str();
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Generators.
+
+// An integer in [lo, hi), uniform whatever RapidCheck's current size (gen::inRange scales its
+// range by the size, which starts at 0: every early case would sit at lo); shrinks towards lo.
+int pick(int lo, int hi) {
+  return *rc::gen::resize(100, rc::gen::inRange(lo, hi));
+}
+template <class T>
+T element(std::initializer_list<T> items) {
+  return *(items.begin() + pick(0, static_cast<int>(items.size())));
+}
+
+// Log-uniform in [lo, hi] on a grid of 2^24 steps (an integer generator underneath, so a failure
+// shrinks towards lo).
+double log_uniform(double lo, double hi) {
+  constexpr int kSteps = 1 << 24;
+  const int k = pick(0, kSteps + 1);
+  return lo * std::pow(hi / lo, static_cast<double>(k) / kSteps);
+}
+double uniform(double lo, double hi) {
+  constexpr int kSteps = 1 << 24;
+  const int k = pick(0, kSteps + 1);
+  return lo + (hi - lo) * static_cast<double>(k) / kSteps;
+}
+bool one_in(int n) {
+  return pick(0, n) == 0;
+}
+
+// A vector file's header: eps in [1e-6, 1e-1], 1..1024 lights (white, or coloured: then the
+// slots are light x material), 1..3 materials of n in [0.3, 1e4] or Gaussian roughness in [1e-3,
+// 1] (narrower than one input step of uq1.20: acos(1 - 2^-20) = 1.4e-3), and specular colours
+// whose luminance ranges from a quarter of eps/K (always skipped) across eps/K up to 1.
+VectorHeader gen_header() {
+  VectorHeader h;
+  h.eps = log_uniform(1e-6, 1e-1);
+  h.lights = static_cast<int>(std::lround(log_uniform(1, 1024)));
+  if (one_in(4)) {
+    for (int l = 0; l < h.lights; ++l)
+      h.light_intensity.push_back({uniform(0, 1), uniform(0, 1), uniform(0, 1)});
+  } else {
+    h.light_intensity.assign(static_cast<std::size_t>(h.lights), {1.0, 1.0, 1.0});
+  }
+  const double eps_k = h.eps / h.lights;
+  const int materials = pick(1, 4);
+  for (int i = 0; i < materials; ++i) {
+    VectorMaterial m;
+    m.name = fmt::format("m{}", i);
+    m.lobe = element({Lobe::kPhong, Lobe::kBlinn, Lobe::kGaussian});
+    if (m.lobe == Lobe::kGaussian) {
+      m.roughness = log_uniform(1e-3, 1.0);
+      if (one_in(4)) m.shininess = log_uniform(0.3, 1e4);  // else 2/omega^2
+    } else {
+      m.shininess = log_uniform(0.3, 1e4);
+    }
+    const double scale = log_uniform(std::min(eps_k / 4, 0.5), 1.0);
+    std::array<double, 3> hue{uniform(0, 1), uniform(0, 1), uniform(0, 1)};
+    hue[static_cast<std::size_t>(pick(0, 3))] = 1.0;
+    for (auto& c : hue) c *= scale;
+    m.specular = hue;
+    h.materials.push_back(m);
+  }
+  validate(h);  // what the generator makes is a legal vector file header
+  return h;
+}
+
+std::string describe_header(const VectorHeader& h) {
+  std::string s = fmt::format("eps {} lights {}", h.eps, h.lights);
+  bool white = true;
+  for (const auto& i : h.light_intensity) white = white && i == std::array<double, 3>{1, 1, 1};
+  if (!white) s += " coloured";
+  for (const auto& m : h.materials)
+    s += fmt::format(" | {} {} n={} omega={} specular={},{},{}", m.name, to_string(m.lobe),
+                     m.shininess, m.roughness, m.specular[0], m.specular[1], m.specular[2]);
+  return s;
+}
+
+// At most this many slots per case: coloured lights make light x material slots (up to 3072
+// here), and every slot is checked on the whole input grid. A random subset of the slots
+// make_slots() gives is kept, each slot's parameters exactly as the CLI makes them. (Horner's
+// shared guard is the largest any built slot needs: over the subset, not the whole file.)
+constexpr std::size_t kMaxSlots = 4;
+
+SlotMap subset(const SlotMap& all) {
+  if (all.params.size() <= kMaxSlots) return all;
+  std::set<std::size_t> chosen;
+  const int hi = static_cast<int>(all.params.size());
+  while (chosen.size() < kMaxSlots) chosen.insert(static_cast<std::size_t>(pick(0, hi)));
+  SlotMap s;
+  s.per_light = all.per_light;
+  s.materials = all.materials;
+  for (std::size_t i : chosen) {
+    s.params.push_back(all.params[i]);
+    s.lobe.push_back(all.lobe[i]);
+    s.roughness.push_back(all.roughness[i]);
+    s.c_y.push_back(all.c_y[i]);
+  }
+  return s;
+}
+
+// uq1.F formats: mostly the default 16-bit uq1.15, otherwise F in 8..20.
+std::string gen_format() {
+  return fmt::format("uq1.{}", one_in(2) ? 15 : pick(8, 21));
+}
+
+// A spec of `unit` with each key present or left at its default at random, values drawn from
+// the ranges the catalogue and the datapath headers advertise.
+std::string gen_spec(const std::string& unit) {
+  std::vector<std::pair<std::string, std::string>> keys;
+  const auto maybe = [&](const std::string& key, const std::string& value) {
+    if (one_in(2)) keys.emplace_back(key, value);
+  };
+  const auto integer = [](int lo, int hi) { return std::to_string(pick(lo, hi + 1)); };
+  const auto n_format = [] { return fmt::format("uq{}.{}", pick(4, 17), pick(0, 9)); };
+  maybe("in", gen_format());
+  maybe("out", gen_format());
+  if (one_in(8)) keys.emplace_back("skip", "off");
+  if (unit == "pow") {
+    maybe("n", n_format());
+    maybe("log_bits", integer(1, 16));
+    maybe("log_frac", integer(4, 30));
+    maybe("y_frac", integer(4, 30));
+    maybe("exp_bits", integer(1, 16));
+    maybe("exp_frac", integer(4, 30));
+  } else if (unit == "schlick") {
+    maybe("n", n_format());
+    maybe("divider", element<std::string>({"pipelined", "iterative"}));
+  } else if (unit == "hast") {
+    maybe("d", integer(1, 16));
+    maybe("guard", one_in(3) ? std::string("auto") : integer(0, 20));
+  } else if (unit == "horner") {
+    maybe("degree", integer(1, 10));
+    maybe("method", element<std::string>({"ls", "robust", "minimax"}));
+    maybe("domain", element<std::string>({"tau", "full"}));
+    maybe("constrain", element<std::string>({"on", "off"}));
+    maybe("guard", one_in(3) ? std::string("auto") : integer(0, 20));
+  } else if (unit == "lut") {
+    maybe("bits", integer(1, 16));
+    maybe("table_frac", one_in(3) ? std::string("auto") : integer(0, 40));
+  }
+  // Every generated key is one the catalogue lists for the unit (the generator follows it).
+  const UnitInfo& info = unit_info(unit);
+  for (const auto& kv : keys) {
+    const bool listed = std::any_of(info.keys.begin(), info.keys.end(),
+                                    [&](const UnitKey& k) { return k.key == kv.first; });
+    if (!listed) throw std::logic_error("generator key not in the catalogue: " + kv.first);
+  }
+  std::string spec = unit;
+  char sep = ':';
+  for (const auto& [k, v] : keys) {
+    spec += fmt::format("{}{}={}", sep, k, v);
+    sep = ',';
+  }
+  return spec;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The checks.
+
+// A refusal names the unit, and the key it refuses or the material (or light) it cannot serve.
+void check_refusal(const std::string& unit, const UnitSpec& spec, const std::string& what) {
+  RC_LOG() << "refused: " << what << "\n";
+  const bool names_unit = what.find(unit) != std::string::npos;
+  bool names_key =
+      what.find("material '") != std::string::npos || what.find("light ") != std::string::npos;
+  for (const auto& kv : spec.keys)
+    names_key = names_key || what.find("'" + kv.first + "'") != std::string::npos;
+  if (!names_unit || !names_key)
+    RC_FAIL(fmt::format("refusal names neither the unit and a key nor the material: \"{}\"", what));
+}
+
+std::string hex(double v) {
+  return fmt::format("{:.17g}", v);
+}
+
+// Every property of one slot on the unit's whole input grid (see the file comment).
+void check_slot(const SpecularUnit& u, const SlotMap& slots, std::size_t s, bool promises_one) {
+  const MaterialParams& m = slots.params[s];
+  const QFormat in = u.in_format(), out = u.out_format();
+  const std::int64_t one = in.raw_one(), top = in.raw_max();
+  const double h = in.ulp(), ulp_out = out.ulp();
+  const std::int64_t tau_raw = u.tau_raw(s);
+  const SlotContract c = slot_contract(u, s, slots);
+  const double total = c.bound.total();
+  const double dp_ulps = u.datapath_bound_ulps(s);
+  RC_LOG() << "slot " << s << " " << m.name << ": n=" << m.shininess << " tau=" << m.tau
+           << " level=" << m.level << " c_y=" << slots.c_y[s] << " always_skip=" << m.always_skip
+           << " threshold_raw=" << tau_raw << " bound=" << total << " (input " << c.bound.input
+           << ", parameter " << c.bound.parameter << ", approximation " << c.bound.approximation
+           << ", datapath " << c.bound.datapath << ", skip " << c.bound.skip
+           << ") contract=" << to_string(c.kind) << "\n";
+
+  // The skip set inside the float test on real t: the real t that round to a skipped code all lie
+  // below (tau_raw + 1/2) h, which must not exceed tau. Never-skip materials (tau < 0) skip none.
+  if (u.comparator_enabled() && !m.always_skip) {
+    if (m.tau < 0) {
+      if (tau_raw != -1) RC_FAIL(fmt::format("never-skip slot has threshold {}", tau_raw));
+    } else if (tau_raw >= 0 && (static_cast<double>(tau_raw) + 0.5) * h > m.tau) {
+      RC_FAIL(fmt::format("threshold {} skips real t up to {} above tau {}", tau_raw,
+                          (static_cast<double>(tau_raw) + 0.5) * h, m.tau));
+    }
+  }
+
+  // The simulator's paths over the whole grid at once.
+  const std::size_t codes = static_cast<std::size_t>(top + 1);
+  std::vector<std::int64_t> t_raw(codes), batch(codes);
+  std::vector<std::uint8_t> batch_skip(codes);
+  for (std::size_t i = 0; i < codes; ++i) t_raw[i] = static_cast<std::int64_t>(i);
+  u.eval_batch(s, t_raw.data(), batch.data(), batch_skip.data(), codes);
+  std::vector<std::int64_t> staged(u.stages().size());
+  const std::size_t result = u.stages().result_index();
+
+  std::int64_t prev = 0;
+  std::vector<double> y(codes);  // the comparator-then-datapath output per code, as a real
+  for (std::int64_t code = 0; code <= top; ++code) {
+    const auto i = static_cast<std::size_t>(code);
+    const bool skipped = u.skip(s, code);
+    const std::int64_t e = u.eval(s, code);
+    const std::int64_t out_raw = skipped ? 0 : e;
+    y[i] = static_cast<double>(out_raw) * ulp_out;
+    if (batch[i] != out_raw || (batch_skip[i] != 0) != skipped)
+      RC_FAIL(fmt::format("code {}: eval_batch gives {} (skipped {}), eval {} (skipped {})", code,
+                          batch[i], batch_skip[i], out_raw, skipped));
+    u.eval_staged(s, code, staged.data());
+    if (staged[result] != e)
+      RC_FAIL(
+          fmt::format("code {}: staged result register {} != eval {}", code, staged[result], e));
+    if (out_raw < prev)
+      RC_FAIL(fmt::format("not monotone: code {} gives {}, code {} gave {} (t = {})", code, out_raw,
+                          code - 1, prev, static_cast<double>(code) * h));
+    prev = out_raw;
+    if (skipped) {
+      // Imperceptible: what the datapath would have given, times c_y, is at most eps_K.
+      if (static_cast<double>(e) * ulp_out > m.level)
+        RC_FAIL(fmt::format("skipped code {} would give {} > level eps_K/c_y = {}", code,
+                            static_cast<double>(e) * ulp_out, m.level));
+    } else {
+      // The datapath against the unit's own real-valued model. 1e-6 ulp covers the double
+      // evaluation of the model (test_mpfr_oracle: within 1e-13 of the exact value).
+      const double err_ulps = std::fabs(static_cast<double>(e) - u.model(s, code) / ulp_out);
+      if (err_ulps > dp_ulps + 1e-6)
+        RC_FAIL(fmt::format("code {}: |eval - model| = {} ulp > datapath_bound_ulps {}", code,
+                            err_ulps, dp_ulps));
+    }
+  }
+  if (promises_one) {
+    const std::int64_t want = (m.always_skip && u.comparator_enabled()) ? 0 : out.raw_one();
+    if (batch[static_cast<std::size_t>(one)] != want)
+      RC_FAIL(
+          fmt::format("f(1) = {} raw, promised {}", batch[static_cast<std::size_t>(one)], want));
+  }
+
+  // The total bound on real t. The tolerance (1e-12 relative) is the double measurement's own
+  // rounding: the contract measures with the same doubles (test_mpfr_oracle bounds them).
+  const auto check_t = [&](double t) {
+    const std::int64_t code = quantize_input(t, in);
+    const double r = reference_value(slots, s, t);
+    const double err = std::fabs(y[static_cast<std::size_t>(code)] - r);
+    if (err > total * (1 + 1e-12))
+      RC_FAIL(fmt::format("t = {} (code {}): |y - r(t)| = {} > bound {} (y {}, r {})", hex(t), code,
+                          err, total, y[static_cast<std::size_t>(code)], r));
+  };
+  for (std::int64_t code = 0; code <= one; ++code) {
+    const double t = static_cast<double>(code) * h;
+    check_t(t);
+    // Both sides of the rounding boundary above the code (the ends of its rounding cell).
+    const double edge = t + 0.5 * h;
+    check_t(std::nextafter(edge, -1.0));
+    check_t(std::nextafter(edge, 2.0));
+  }
+  for (int k = 0; k < 64; ++k) check_t(uniform(-1.0, kVectorTMax));
+  for (int k = 0; k < 8; ++k) check_t(uniform(1.0, kVectorTMax));
+  for (int k = 0; k < 8; ++k) check_t(-log_uniform(1e-9, 1.0));
+}
+
+// One accepted-or-refused case of `unit`: refused specs must name their reason (then the case is
+// discarded, so the case count is of accepted cases); accepted ones hold every slot property.
+void check_unit_case(const std::string& unit) {
+  const VectorHeader header = gen_header();
+  const SlotMap slots = subset(make_slots(header));
+  const std::string spec_text = gen_spec(unit);
+  RC_LOG() << "spec " << spec_text << "\nheader " << describe_header(header) << "\n";
+  const UnitSpec spec = parse_unit_spec(spec_text);
+  std::unique_ptr<SpecularUnit> u;
+  try {
+    u = make_unit(spec, slots.params);
+  } catch (const std::invalid_argument& e) {
+    check_refusal(unit, spec, e.what());
+    RC_TAG("refused");
+    RC_DISCARD("refused spec (its message checked)");
+  }
+  RC_TAG(u->in_format().name() == "uq1.15" ? "in=uq1.15" : "other input format");
+  const bool promises_one = !(unit == "horner" && u->describe()["config"]["constrain"] == "off");
+  for (std::size_t s = 0; s < slots.params.size(); ++s) check_slot(*u, slots, s, promises_one);
+}
+
+TEST(ContractProperties, pow) {
+  check_property([] { check_unit_case("pow"); });
+}
+TEST(ContractProperties, schlick) {
+  check_property([] { check_unit_case("schlick"); });
+}
+TEST(ContractProperties, hast) {
+  check_property([] { check_unit_case("hast"); });
+}
+TEST(ContractProperties, horner) {
+  check_property([] { check_unit_case("horner"); });
+}
+TEST(ContractProperties, lut) {
+  check_property([] { check_unit_case("lut"); });
+}
+
+// Every unit in the catalogue has its property above.
+TEST(ContractProperties, EveryUnitCovered) {
+  EXPECT_EQ(unit_names(), (std::vector<std::string>{"pow", "schlick", "hast", "horner", "lut"}));
+}
+
+}  // namespace
+}  // namespace glint
