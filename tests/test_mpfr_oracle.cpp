@@ -216,19 +216,21 @@ TEST_P(MpfrUnits, ModelsMatchTheOracle) {
       model_exact = [&, nq](std::int64_t c) { return c <= 0 ? Mp(0.0) : pow(input(c, in), nq); };
       float_exact = [&](double t) { return t <= 0 ? Mp(0.0) : pow(Mp(t), Mp(m.shininess)); };
     } else if (name == "schlick") {
-      const Mp nq(slot["n"].get<double>());
+      const Mp nq(slot["n_q"].get<double>());
+      const double n_prime = slot["n_prime"].get<double>();  // match=: Schlick's n' for this n
       const auto s_exact = [](const Mp& t, const Mp& n) { return t / (n - n * t + t); };
       model_exact = [&, nq, s_exact](std::int64_t c) {
         return c <= 0 ? Mp(0.0) : s_exact(input(c, in), nq);
       };
-      float_exact = [&, s_exact](double t) {
-        return t <= 0 ? Mp(0.0) : s_exact(Mp(t), Mp(m.shininess));
+      float_exact = [&, s_exact, n_prime](double t) {
+        return t <= 0 ? Mp(0.0) : s_exact(Mp(t), Mp(n_prime));
       };
     } else if (name == "hast") {
-      const double dd = cfg["d"].get<int>();
+      const double dd = slot["d"].get<int>();
       model_exact = [&, dd](std::int64_t c) { return pow(u_exact(c, in, slot), Mp(dd)); };
       const bool dead = slot["root_raw"].get<std::int64_t>() >= in.raw_one();
-      float_exact = [&, dd, dead, tau](double t) {
+      const double root = slot["root"].get<double>();  // Hast's tau: the exact root
+      float_exact = [&, dd, dead, tau = root](double t) {
         if (dead || t <= tau) return Mp(0.0);
         return pow((Mp(t) - Mp(tau)) / (Mp(1.0) - Mp(tau)), Mp(dd));
       };
@@ -239,8 +241,10 @@ TEST_P(MpfrUnits, ModelsMatchTheOracle) {
         cq.push_back(Mp::ldexp(static_cast<double>(c.get<std::int64_t>()), -fh));
       for (const auto& c : slot["coefficients"]) cf.push_back(Mp(c.get<double>()));
       const bool tau_domain = cfg["domain"] == "tau";
+      // The fit's domain is the u scaler's: [root code's value, 1].
+      const double fit_tau = input(slot["root_raw"].get<std::int64_t>(), in).to_double();
       model_exact = [&, cq](std::int64_t c) { return horner_exact(cq, u_exact(c, in, slot)); };
-      float_exact = [&, cf, tau_domain, tau](double t) {
+      float_exact = [&, cf, tau_domain, tau = fit_tau](double t) {
         if (!tau_domain) return horner_exact(cf, Mp(t));
         if (t <= tau) return Mp(0.0);
         return horner_exact(cf, (Mp(t) - Mp(tau)) / (Mp(1.0) - Mp(tau)));
@@ -266,7 +270,7 @@ TEST_P(MpfrUnits, ModelsMatchTheOracle) {
       const int tf = lc.table_frac;
       model_exact = [&, lut, interp, tf](std::int64_t c) {
         return interp(input(c, in), [&](std::int64_t j) {
-          return Mp::ldexp(static_cast<double>(lut->table()[static_cast<std::size_t>(j)]), -tf);
+          return Mp::ldexp(static_cast<double>(lut->entry(j)), -tf);
         });
       };
       float_exact = [&, interp, t0, segs](double t) {

@@ -34,7 +34,8 @@ HastUnit::HastUnit(const HastConfig& cfg, const MaterialParams& m, const HastSlo
   std::int64_t root_raw = 0;
   if (slot.from_material) {
     // The material's tau (Källberg) clamped into [0, 1), rounded as the float test's threshold.
-    tau_ = std::clamp(m.tau, 0.0, 1.0);
+    // An always-skipped material's root is 0 (root_threshold_raw), for Hast's f too.
+    tau_ = m.always_skip ? 0.0 : std::clamp(m.tau, 0.0, 1.0);
     root_raw = root_threshold_raw(m, cfg.in);
   } else {
     if (!(slot.root >= 0.0 && slot.root < 1.0))

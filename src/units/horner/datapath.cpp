@@ -129,10 +129,11 @@ std::vector<long double> HornerUnit::real_coefficients() const {
 }
 
 double HornerUnit::datapath_bound_ulps() const {
-  // p - 1 inner roundings scaled by u^k <= 1, u's rounding times |P'| <= slope_bound() (tau domain
-  // only: on the full domain u = t exactly), then the final ½ ulp; the clamp is 1-Lipschitz.
+  // p - 1 inner roundings scaled by u^k <= 1, u's rounding times |P'| <= slope_bound(), then the
+  // final ½ ulp; the clamp is 1-Lipschitz. On the full domain u = t is exact only while the input
+  // has no more fraction bits than u's register (fh): a wider input is rounded into it.
   double roundings = static_cast<double>(c_raw_.size()) - 2.0;
-  if (coeffs_.tau_domain) roundings += slope_bound();
+  if (coeffs_.tau_domain || cfg_.in.frac_bits > fh_) roundings += slope_bound();
   return 0.5 + roundings * std::ldexp(1.0, -(cfg_.guard + 1));
 }
 
