@@ -106,25 +106,11 @@ TEST(ExhaustiveUnits, HastNearOneTauStaysAccurate) {
   }
 }
 
-// True when the unit's real-valued model is non-decreasing over every input.
-bool model_monotone(const SpecularUnit& u) {
-  double prev = -1;
-  for (std::int64_t t = 0; t < kInputs; ++t) {
-    const double m = u.skip(0, t) ? 0.0 : u.model(0, t);
-    if (m < prev) return false;
-    prev = m;
-  }
-  return true;
-}
-
-TEST(ExhaustiveUnits, HornerFaithfulConstrainedAndMonotoneWhereTheFitIs) {
-  // A fitted polynomial need not be monotone (a minimax error equioscillates, and where t^n is
-  // flat near tau the wiggle can win): the datapath cannot fix that, but it must never add a
-  // non-monotone step of its own. So: on the tau domain (our fits), wherever the model is monotone,
-  // so is the datapath. Öztürk's full-domain fits are held to faithfulness only: near a stationary
-  // point of P the model rises by less than the inner rounding error per input LSB, so a 1-ulp step
-  // back is possible there whatever the guard bits (seen for robust fits, n = 20 and 50).
-  int monotone_models = 0, configs = 0;
+TEST(ExhaustiveUnits, HornerFaithfulConstrainedAndMonotone) {
+  // Every fit horner builds is monotone by construction (src/fit/monotone.h: the clamped
+  // polynomial is checked exactly and refitted under slope constraints where minimax is not), and
+  // the datapath adds no step back of its own: Öztürk's full-domain fits and ours on [tau, 1],
+  // least squares, robust and minimax, constrained or not.
   for (double n : {2.0, 10.0, 20.0, 50.0, 200.0}) {
     for (int p : {2, 3, 4, 5, 6}) {
       for (const char* method : {"ls", "minimax", "robust"}) {
@@ -138,20 +124,15 @@ TEST(ExhaustiveUnits, HornerFaithfulConstrainedAndMonotoneWhereTheFitIs) {
             const std::string what = spec + " n=" + std::to_string(n);
             EXPECT_LT(s.max_ulps, 1.0) << what;
             EXPECT_EQ(s.nonzero_skipped, 0) << what;
+            EXPECT_EQ(s.first_nonmonotone, -1) << what;
             if (std::string(constrain) == "on") {
               EXPECT_EQ(s.at_one, u->out_format().raw_one()) << what;
-            }
-            ++configs;
-            if (std::string(domain) == "tau" && model_monotone(*u)) {
-              ++monotone_models;
-              EXPECT_EQ(s.first_nonmonotone, -1) << what;
             }
           }
         }
       }
     }
   }
-  EXPECT_GT(monotone_models, configs / 8) << monotone_models << " of " << configs;
 }
 
 TEST(ExhaustiveUnits, HornerDefaultMonotone) {
