@@ -78,13 +78,14 @@ void KeyReader::fail(const std::string& key, const std::string& value,
 }
 
 std::vector<UnitKey> common_keys() {
-  return {{"in", "input format of t (clamped to [0, 1], rounded to nearest)", kDefaultIn.name()},
-          {"out", "output format of the highlight", kDefaultOut.name()},
-          {"skip",
-           "tau comparator on|off: skips t where the unit's own output is <= eps_K/c_y, never above "
-           "Källberg's tau (eq.5, §3)",
-           "on"},
-          {"buffer", "merge-buffer entries (timing; auto: latency + 3, full throughput)", "auto"}};
+  return {
+      {"in", "input format of t (clamped to [0, 1], rounded to nearest)", kDefaultIn.name()},
+      {"out", "output format of the highlight", kDefaultOut.name()},
+      {"skip",
+       "tau comparator on|off: skips t where the unit's own output is <= eps_K/c_y, never above "
+       "Källberg's tau (eq.5, §3)",
+       "on"},
+      {"buffer", "merge-buffer entries (timing; auto: latency + 3, full throughput)", "auto"}};
 }
 
 CommonKeys read_common_keys(const KeyReader& keys) {
