@@ -93,7 +93,8 @@ SlotContract slot_contract(const SpecularUnit& unit, std::size_t slot, const Slo
   // The codes the comparator keeps: all of them up to kExactInputBits, else evenly spaced ones.
   const std::int64_t first = std::max<std::int64_t>(top + 1, 0);
   const std::int64_t count = one - first + 1;
-  const std::int64_t limit = std::int64_t{1} << kExactInputBits;
+  // A uq1.F input has 2^F + 1 codes in [0, 1] (1.0 included): up to F = kExactInputBits, all.
+  const std::int64_t limit = (std::int64_t{1} << kExactInputBits) + 1;
   const std::int64_t step = count > limit ? (count + limit - 1) / limit : 1;
   c.exact = step == 1;
   const auto cell_bottom = [&](std::int64_t code) {

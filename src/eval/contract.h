@@ -45,8 +45,9 @@ struct ErrorParts {
 enum class ContractKind : std::uint8_t { kCorrectlyRounded, kFaithful, kBound, kNone };
 const char* to_string(ContractKind kind);  // "correctly_rounded", "faithful", "bound", "none"
 
-// Inputs up to this many bits are measured at every code; wider ones at 2^20 evenly spaced codes
-// (SlotContract::exact = false: the parts are then estimates, not bounds).
+// Inputs with up to this many fraction bits (2^20 + 1 codes in [0, 1]) are measured at every code;
+// finer ones at ~2^20 evenly spaced codes (SlotContract::exact = false: the parts are then
+// estimates, not bounds).
 inline constexpr int kExactInputBits = 20;
 
 struct SlotContract {
