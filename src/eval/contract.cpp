@@ -116,11 +116,9 @@ SlotContract slot_contract(const SpecularUnit& unit, std::size_t slot, const Slo
   c.datapath_ulps = unit.datapath_bound_ulps(slot);
   c.bound.datapath = c.datapath_ulps * unit.out_format().ulp();
 
-  if (!(c.datapath_ulps <= 0.5)) {
-    c.kind = c.datapath_ulps < 1.0 ? ContractKind::kFaithful : ContractKind::kBound;
-  } else {
-    c.kind = ContractKind::kCorrectlyRounded;
-  }
+  c.kind = c.datapath_ulps <= 0.5  ? ContractKind::kCorrectlyRounded
+           : c.datapath_ulps < 1.0 ? ContractKind::kFaithful
+                                   : ContractKind::kBound;
   switch (c.kind) {
     case ContractKind::kCorrectlyRounded:
       c.reason = "datapath correctly rounded against the unit's model";

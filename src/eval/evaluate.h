@@ -83,8 +83,7 @@ struct UnitStats {
   // Observed parts (contract.h): input, parameter, approximation and datapath on computed
   // requests, skip (the lobe's value) on skipped ones.
   PartStats input, parameter, approximation, datapath, skip;
-  double max_ulps = 0;  // fixed result vs the unit's own real model, in output ulps
-  double t_at_max_ulps = 0;
+  double out_ulp = 1;  // the output format's ulp: the datapath part in ulps is datapath / out_ulp
   int display_bits = 8;
   std::uint64_t mismatch = 0;  // the display code of the result differs from the reference's
   // The contracts of the slots the stream used, always-skipped ones included (reported apart).
@@ -94,6 +93,8 @@ struct UnitStats {
   ErrorParts bound() const;
   double weighted_bound() const;  // over every slot, always-skipped ones included
   ContractKind contract() const;
+  // The datapath part in output ulps (fixed result vs the unit's own real model).
+  double max_ulps() const { return datapath.max_abs / out_ulp; }
   nlohmann::json errors_json() const;  // the "errors" object of eval and sim reports
   nlohmann::json to_json() const;
 };

@@ -103,6 +103,19 @@ std::vector<double> nnls(const linalg::Matrix& a, const std::vector<double>& y, 
   return x;
 }
 
+// Lawson's step towards minimax: w_i <- w_i |e_i| / sum_j w_j |e_j|. Returns the largest new weight
+// (0 when every weighted error is 0, which leaves nothing to reweight: the fit is exact).
+double lawson_update(std::vector<double>& w, const std::vector<double>& err) {
+  double wsum = 0, wmax = 0;
+  for (std::size_t i = 0; i < w.size(); ++i) {
+    w[i] *= err[i];
+    wsum += w[i];
+  }
+  if (!(wsum > 0)) return 0.0;
+  for (double& wi : w) wmax = std::max(wmax, wi /= wsum);
+  return wmax;
+}
+
 }  // namespace
 
 std::vector<double> fit_monotone_cone(const std::vector<double>& v, const std::vector<double>& y,
@@ -172,7 +185,7 @@ std::vector<double> fit_monotone_cone(const std::vector<double>& v, const std::v
     b[0] = b0;
     for (int j = 1; j <= p; ++j) b[j] = b[j - 1] + step + x[free + j - 1];
     // Errors on the samples, then Lawson's update w_i <- w_i |e_i| / sum.
-    double err = 0, wsum = 0;
+    double err = 0;
     std::vector<double> e(v.size());
     for (std::size_t i = 0; i < v.size(); ++i) {
       bernstein_basis(p, v[i], bern.data());
@@ -185,12 +198,8 @@ std::vector<double> fit_monotone_cone(const std::vector<double>& v, const std::v
       best_err = err;
       best = b;
     }
-    for (std::size_t i = 0; i < v.size(); ++i) {
-      w[i] *= e[i];
-      wsum += w[i];
-    }
-    if (!(wsum > 0)) break;
-    for (double& wi : w) wi = std::max(wi / wsum, 1e-300);
+    if (!(lawson_update(w, e) > 0)) break;
+    for (double& wi : w) wi = std::max(wi, 1e-300);
   }
   return monomial_from_bernstein(best);
 }
@@ -295,7 +304,7 @@ std::vector<double> fit_lsi(const std::vector<double>& v, const std::vector<doub
     }
     std::vector<double> c;
     if (!lsi(ew, fw, g, h, &c)) break;
-    double err = 0, wsum = 0, wmax = 0;
+    double err = 0;
     std::vector<double> d(v.size());
     for (std::size_t i = 0; i < v.size(); ++i) {
       d[i] = std::abs(sub.a(v[i]) + sub.w(v[i]) * Subspace::chebyshev(c, v[i]) - y[i]);
@@ -305,12 +314,8 @@ std::vector<double> fit_lsi(const std::vector<double>& v, const std::vector<doub
       best_err = err;
       best = c;
     }
-    for (std::size_t i = 0; i < v.size(); ++i) {
-      w[i] *= d[i];
-      wsum += w[i];
-    }
-    if (!(wsum > 0)) break;
-    for (double& wi : w) wmax = std::max(wmax, wi /= wsum);
+    const double wmax = lawson_update(w, d);
+    if (!(wmax > 0)) break;
     // A floor keeps every sample in the design (full rank) without pulling the fit.
     for (double& wi : w) wi = std::max(wi, 1e-9 * wmax);
   }
