@@ -157,11 +157,25 @@ struct EvalRecord {
 // 3 decomposes them (errors.parts, bounds per slot, display and weighted errors, contract).
 inline constexpr int kEvalReportVersion = 3;
 
+// The results of one batch of rows through every unit of an Evaluator: unit u's result for row i
+// at raw[u * rows + i] (0 when skipped), its skip flag at skipped[u * rows + i], and the float
+// reference of row i at reference[i].
+struct BatchResults {
+  std::size_t rows = 0;
+  std::vector<double> reference;
+  std::vector<std::int64_t> raw;
+  std::vector<std::uint8_t> skipped;
+};
+
 class Evaluator {
  public:
   Evaluator(const VectorHeader& header, const std::vector<UnitSpec>& specs, int display_bits = 8);
 
   void add(const VectorRow& row, const std::function<void(const EvalRecord&)>& dump = {});
+  // The same as add() on each row in turn, the units spread over up to `threads` threads: each
+  // unit's lane still sees the rows in order, so statistics, digests and results are identical
+  // for any thread count.
+  void add_batch(const VectorRow* rows, std::size_t count, BatchResults& out, int threads = 1);
   std::vector<UnitStats> stats() const;
   const std::string& label(std::size_t unit) const { return lanes_[unit].stats().name; }
   const std::vector<std::unique_ptr<SpecularUnit>>& units() const { return units_; }
