@@ -19,7 +19,8 @@ struct Image8 {
   std::vector<std::uint8_t> pixels;  // RGB, row-major, top row first: 3 * width * height bytes
 
   Image8() = default;
-  Image8(int w, int h, Rgb8 fill = {0, 0, 0});
+  Image8(int w, int h, Rgb8 fill = {0, 0, 0});  // a negative size throws std::invalid_argument
+  // Both throw std::out_of_range outside the image (drawing functions clip instead).
   Rgb8 at(int x, int y) const;
   void set(int x, int y, Rgb8 c);
 };
@@ -31,26 +32,53 @@ std::uint8_t srgb8(double linear);
 // Writes a PNG (8-bit RGB, no time or text chunks, fixed compression) atomically: the file
 // appears complete or not at all. Throws OutputError when the file cannot be written.
 void write_png(const std::string& path, const Image8& image);
-// The PNG bytes themselves (for tests and in-memory use).
+// The PNG bytes themselves (for tests and in-memory use). An image without pixels (0 wide or
+// high), which PNG cannot hold, throws std::invalid_argument, from write_png too.
 std::vector<std::uint8_t> encode_png(const Image8& image);
 
 // A perceptually ordered colour map for errors (0 = black-ish, 1 = brightest); value clamped.
+// It is matplotlib's "inferno" (CC0): near-black, purple, red, orange, pale yellow, luminance
+// rising throughout. NaN gives kHeatNan.
 Rgb8 heat_colour(double value01);
+// The colour of a NaN error: cyan, a hue inferno never takes (it passes through magenta-like
+// purples, so magenta would not stand out).
+inline constexpr Rgb8 kHeatNan{0, 255, 255};
 
 // Draws text with its top-left corner at (x, y), `height` pixels tall (a bundled-with-Debian font
 // rendered by stb_truetype); clipped to the image. Returns the width drawn.
+// The font is DejaVu Sans (/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf, Debian package
+// fonts-dejavu-core), or the TrueType file named by the environment variable GLINT_FONT; it is
+// read once, on first use, and a missing or unreadable font throws std::runtime_error naming the
+// file and the package. `height` spans the font's ascent to descent; text is UTF-8, anti-aliased
+// and blended over the pixels beneath in `colour`; control characters, invalid UTF-8 bytes and
+// characters the font lacks are drawn as '?'. The returned width is the text's advance (the same
+// as text_width), however much of it was clipped. A height <= 0 throws std::invalid_argument.
 int draw_text(Image8& image, int x, int y, std::string_view text, Rgb8 colour, int height = 14);
 int text_width(std::string_view text, int height = 14);
+// `text` if it fits in max_width pixels, else its longest prefix (whole characters) followed by
+// an ellipsis that fits; empty if not even the ellipsis fits.
+std::string fit_text(std::string_view text, int max_width, int height = 14);
 
 // An error heat map: each pixel's error in LSBs mapped by heat_colour over [0, scale_max] (values
 // above clamp), pixels with no error colour, and a colour bar with tick labels ("0", ...,
 // "N LSB") and a title drawn to the right of the image. error_lsb has width * height entries.
+// Layout: the map is the image's top-left width x height pixels (pixel (x, y) is
+// heat_colour(|error| / scale_max), kHeatNan for NaN; signed errors show by magnitude); to its
+// right, on a dark background, the title (word-wrapped) above a vertical bar, scale_max at the top
+// and 0 at the bottom, with 3 to 5 labels: 0, round steps and scale_max itself ("1 LSB"), plus a
+// "NaN" key when a NaN is present. The bar is at least 64 pixels tall, so a small map (64x48)
+// gives an image taller than the map. Throws std::invalid_argument on a size that does not match
+// error_lsb, or a scale_max that is not positive and finite.
 Image8 heatmap_with_scale(const std::vector<double>& error_lsb, int width, int height,
                           double scale_max, const std::string& title);
 
 // A contact sheet: the images in a grid of `columns`, each with its label drawn above it, on a
 // dark background. Images of different sizes are placed in cells of the largest size.
-Image8 contact_sheet(const std::vector<std::pair<std::string, const Image8*>>& tiles,
-                     int columns);
+// Each cell is as wide as the widest image and as tall as a 14-pixel label, 4 pixels and the
+// tallest image; images are centred across their cell under the label, and a label wider than
+// the cell ends in an ellipsis. Cells are 8 pixels apart and from the edges. With fewer tiles than
+// columns there are as many columns as tiles. Throws std::invalid_argument for no tiles, columns
+// < 1 or a null image.
+Image8 contact_sheet(const std::vector<std::pair<std::string, const Image8*>>& tiles, int columns);
 
 }  // namespace glint

@@ -1,11 +1,14 @@
 // A program that uses glint as a pure library (glint::core / glint-core.pc): it builds a Hast unit
-// for one material and checks a few results against the accuracy contract. No SystemC: it starts
-// from its own main().
+// for one material and checks a few results against the accuracy contract, then encodes a small
+// image as PNG (the image layer needs libstb at link time: the package must say so). No SystemC:
+// it starts from its own main().
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <memory>
+#include <vector>
 
+#include "image/image.h"
 #include "units/catalogue.h"
 #include "units/common.h"
 
@@ -30,6 +33,12 @@ int main() {
                 good ? "ok" : "WRONG");
     ok = ok && good;
   }
+  glint::Image8 image(2, 1);
+  image.set(1, 0, {glint::srgb8(0.5), 0, 0});
+  const std::vector<std::uint8_t> png = glint::encode_png(image);
+  const bool png_good = png.size() > 8 && png[1] == 'P' && png[2] == 'N' && png[3] == 'G';
+  std::printf("  png %s\n", png_good ? "ok" : "WRONG");
+  ok = ok && png_good;
   std::printf("glint consumer: %s\n", ok ? "ok" : "FAILED");
   return ok ? 0 : 1;
 }

@@ -1,0 +1,216 @@
+// Text through stb_truetype (libstb-dev) and DejaVu Sans (fonts-dejavu-core): a Debian font and
+// rasteriser rather than a bitmap font compiled in, so labels are anti-aliased at any height and
+// nothing is vendored. Glyphs are placed at fractional pen positions (subpixel shifts) with the
+// font's kerning, all in float arithmetic that does not depend on the machine's state, so the same
+// text gives the same pixels on every run.
+#include <stb_truetype.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "image/image.h"
+
+namespace glint {
+
+namespace {
+
+constexpr const char* kDefaultFont = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+
+class Font {
+ public:
+  Font() {
+    const char* env = std::getenv("GLINT_FONT");
+    path_ = env && *env ? env : kDefaultFont;
+    errno = 0;
+    std::ifstream in(path_, std::ios::binary);
+    if (in) data_.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    if (!in || data_.empty()) {
+      const int err = errno;
+      throw std::runtime_error("cannot read the font '" + path_ + "'" +
+                               (err != 0 ? std::string(": ") + std::strerror(err) : "") +
+                               " (DejaVu Sans comes with the Debian package fonts-dejavu-core; "
+                               "GLINT_FONT=FILE.ttf names another TrueType font)");
+    }
+    const int offset = stbtt_GetFontOffsetForIndex(data_.data(), 0);
+    if (offset < 0 || !stbtt_InitFont(&info_, data_.data(), offset)) {
+      throw std::runtime_error("the font '" + path_ +
+                               "' is not a TrueType font stb_truetype can read (DejaVu Sans comes "
+                               "with the Debian package fonts-dejavu-core)");
+    }
+    int descent = 0, line_gap = 0;
+    stbtt_GetFontVMetrics(&info_, &ascent_, &descent, &line_gap);
+    question_ = stbtt_FindGlyphIndex(&info_, '?');
+  }
+  Font(const Font&) = delete;
+  Font& operator=(const Font&) = delete;
+
+  const stbtt_fontinfo& info() const { return info_; }
+  int ascent() const { return ascent_; }
+
+  // The glyph drawn for a code point: '?' for control characters and for what the font lacks.
+  int glyph(char32_t cp) const {
+    if (cp < 0x20 || (cp >= 0x7f && cp < 0xa0)) return question_;
+    const int g = stbtt_FindGlyphIndex(&info_, static_cast<int>(cp));
+    return g != 0 ? g : question_;
+  }
+
+ private:
+  std::string path_;
+  std::vector<unsigned char> data_;  // stbtt_fontinfo points into it: never reallocated
+  stbtt_fontinfo info_{};
+  int ascent_ = 0;
+  int question_ = 0;
+};
+
+// Loaded on first use; a static local is initialised once even with threads, and a failed load
+// (exception) is tried again on the next call.
+const Font& font() {
+  static const Font instance;
+  return instance;
+}
+
+// UTF-8 to code points, so that labels may use the font's other characters (e.g. "±", "×"); a
+// byte that does not start a valid sequence is one '?', so any string can be drawn.
+std::vector<char32_t> decode_utf8(std::string_view s) {
+  std::vector<char32_t> out;
+  out.reserve(s.size());
+  std::size_t i = 0;
+  while (i < s.size()) {
+    const auto b = static_cast<unsigned char>(s[i]);
+    int len = 0;
+    char32_t cp = 0, min = 0;
+    if (b < 0x80) {
+      len = 1, cp = b;
+    } else if ((b & 0xe0) == 0xc0) {
+      len = 2, cp = b & 0x1f, min = 0x80;
+    } else if ((b & 0xf0) == 0xe0) {
+      len = 3, cp = b & 0x0f, min = 0x800;
+    } else if ((b & 0xf8) == 0xf0) {
+      len = 4, cp = b & 0x07, min = 0x10000;
+    }
+    bool valid = len > 0 && i + static_cast<std::size_t>(len) <= s.size();
+    for (int k = 1; valid && k < len; ++k) {
+      const auto c = static_cast<unsigned char>(s[i + static_cast<std::size_t>(k)]);
+      valid = (c & 0xc0) == 0x80;
+      cp = (cp << 6) | (c & 0x3f);
+    }
+    valid = valid && cp >= min && cp <= 0x10ffff && !(cp >= 0xd800 && cp <= 0xdfff);
+    if (valid) {
+      out.push_back(cp);
+      i += static_cast<std::size_t>(len);
+    } else {
+      out.push_back('?');
+      ++i;
+    }
+  }
+  return out;
+}
+
+struct Layout {
+  float scale = 0;
+  int baseline = 0;
+  std::vector<int> glyphs;
+  std::vector<float> pen;  // x of each glyph's origin
+  float end = 0;           // pen after the last glyph
+  int width() const { return static_cast<int>(std::ceil(end)); }
+};
+
+Layout layout(std::string_view text, int height) {
+  if (height <= 0) {
+    throw std::invalid_argument("text height must be positive, not " + std::to_string(height));
+  }
+  const Font& f = font();
+  Layout l;
+  // Pixel height = ascent - descent, so a line of `height` pixels holds every glyph of the font.
+  l.scale = stbtt_ScaleForPixelHeight(&f.info(), static_cast<float>(height));
+  l.baseline = static_cast<int>(std::floor(static_cast<float>(f.ascent()) * l.scale + 0.5f));
+  for (const char32_t cp : decode_utf8(text)) l.glyphs.push_back(f.glyph(cp));
+  float x = 0;
+  for (std::size_t i = 0; i < l.glyphs.size(); ++i) {
+    if (i > 0) {
+      x += l.scale *
+           static_cast<float>(stbtt_GetGlyphKernAdvance(&f.info(), l.glyphs[i - 1], l.glyphs[i]));
+    }
+    l.pen.push_back(x);
+    int advance = 0, bearing = 0;
+    stbtt_GetGlyphHMetrics(&f.info(), l.glyphs[i], &advance, &bearing);
+    x += l.scale * static_cast<float>(advance);
+  }
+  l.end = x;
+  return l;
+}
+
+std::uint8_t blend(std::uint8_t under, std::uint8_t over, unsigned coverage) {
+  // Straight alpha in the stored (sRGB) values, as text is usually blended; integer and rounded.
+  return static_cast<std::uint8_t>((under * (255u - coverage) + over * coverage + 127u) / 255u);
+}
+
+}  // namespace
+
+int text_width(std::string_view text, int height) {
+  return layout(text, height).width();
+}
+
+int draw_text(Image8& image, int x, int y, std::string_view text, Rgb8 colour, int height) {
+  const Layout l = layout(text, height);
+  const stbtt_fontinfo& info = font().info();
+  std::vector<unsigned char> bitmap;
+  for (std::size_t i = 0; i < l.glyphs.size(); ++i) {
+    const float whole = std::floor(l.pen[i]);
+    const float shift = l.pen[i] - whole;
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    stbtt_GetGlyphBitmapBoxSubpixel(&info, l.glyphs[i], l.scale, l.scale, shift, 0.0f, &x0, &y0,
+                                    &x1, &y1);
+    const int w = x1 - x0, h = y1 - y0;
+    if (w <= 0 || h <= 0) continue;  // a space
+    const int left = x + static_cast<int>(whole) + x0, top = y + l.baseline + y0;
+    if (left >= image.width || top >= image.height || left + w <= 0 || top + h <= 0) continue;
+    bitmap.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0);
+    stbtt_MakeGlyphBitmapSubpixel(&info, bitmap.data(), w, h, w, l.scale, l.scale, shift, 0.0f,
+                                  l.glyphs[i]);
+    for (int r = 0; r < h; ++r) {
+      const int py = top + r;
+      if (py < 0 || py >= image.height) continue;
+      for (int c = 0; c < w; ++c) {
+        const int px = left + c;
+        const unsigned a = bitmap[static_cast<std::size_t>(r) * static_cast<std::size_t>(w) +
+                                  static_cast<std::size_t>(c)];
+        if (px < 0 || px >= image.width || a == 0) continue;
+        std::uint8_t* p =
+            &image
+                 .pixels[3 * (static_cast<std::size_t>(py) * static_cast<std::size_t>(image.width) +
+                              static_cast<std::size_t>(px))];
+        for (int k = 0; k < 3; ++k) p[k] = blend(p[k], colour[k], a);
+      }
+    }
+  }
+  return l.width();
+}
+
+std::string fit_text(std::string_view text, int max_width, int height) {
+  if (text_width(text, height) <= max_width) return std::string(text);
+  // U+2026 when the font has it (DejaVu does); three dots otherwise.
+  const std::string ellipsis =
+      stbtt_FindGlyphIndex(&font().info(), 0x2026) != 0 ? "\xe2\x80\xa6" : "...";
+  std::size_t cut = text.size();
+  while (cut > 0) {
+    // Step back one code point: over continuation bytes (10xxxxxx) to the byte starting it.
+    do {
+      --cut;
+    } while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xc0) == 0x80);
+    std::string candidate(text.substr(0, cut));
+    while (!candidate.empty() && candidate.back() == ' ') candidate.pop_back();
+    candidate += ellipsis;
+    if (text_width(candidate, height) <= max_width) return candidate;
+  }
+  return text_width(ellipsis, height) <= max_width ? ellipsis : std::string();
+}
+
+}  // namespace glint
