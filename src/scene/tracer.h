@@ -22,10 +22,10 @@ struct SurfaceSample {
 
 // One light at one surface sample: the cosines a specular unit is fed.
 struct LightSample {
-  Vec3 to_light;         // unit vector from the surface to the light
-  double n_dot_l = 0;    // <= 0: the surface faces away from the light (no request is made)
-  double t_phong = 0;    // r . v, r the mirror direction of to_light about the normal
-  double t_blinn = 0;    // n . h, h = normalize(to_light + view)
+  Vec3 to_light;       // unit vector from the surface to the light
+  double n_dot_l = 0;  // <= 0: the surface faces away from the light (no request is made)
+  double t_phong = 0;  // r . v, r the mirror direction of to_light about the normal
+  double t_blinn = 0;  // n . h, h = normalize(to_light + view)
 };
 
 class SceneTracer {
