@@ -22,6 +22,11 @@ namespace glint {
 inline constexpr int kSceneFormatVersion = 1;
 inline constexpr int kSceneMaxResolution = 16384;  // per axis
 inline constexpr std::size_t kSceneMaxTriangles = 20'000'000;
+// A scene's shading requests form one vector file: its lights and materials fit one header.
+inline constexpr std::size_t kSceneMaxLights = kVectorMaxLights;
+inline constexpr std::size_t kSceneMaxMaterials = kVectorMaxMaterials;
+inline constexpr std::size_t kSceneMaxObjects = 65536;  // entries of "objects"
+inline constexpr std::size_t kSceneMaxPlanes = 64;      // planes are not in the BVH
 
 struct SceneCamera {
   Vec3 position, look_at, up{0, 1, 0};
@@ -71,8 +76,8 @@ struct Plane {
 };
 
 struct Scene {
-  std::string file;  // the path it was loaded from (for messages and reports)
-  std::string name;  // "name" in the file, else the file's stem
+  std::string file;   // the path it was loaded from (for messages and reports)
+  std::string name;   // "name" in the file, else the file's stem
   double eps = 1e-3;  // perceptibility threshold (Källberg), > 0
   Rgb ambient{0, 0, 0};
   Rgb background{0, 0, 0};

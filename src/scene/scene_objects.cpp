@@ -1,0 +1,130 @@
+#include "scene/scene_objects.h"
+
+#include <filesystem>
+
+#include "io/input_error.h"
+#include "scene/bezier.h"
+#include "scene/obj_mesh.h"
+#include "scene/transform.h"
+
+namespace fs = std::filesystem;
+
+namespace glint {
+
+namespace {
+
+using scene_json::Node;
+
+class ObjectReader {
+ public:
+  explicit ObjectReader(Scene& scene) : scene_(scene) {}
+
+  void read(const Node& node) {
+    if (!node.is_object()) node.fail("must be an object with a \"type\"");
+    const Node type = node.at("type");
+    const std::string kind = type.string();
+    if (kind == "mesh") {
+      node.expect_object({"type", "name", "file", "material", "scale", "rotate", "translate"});
+      add_mesh(node, read_mesh(node));
+    } else if (kind == "bezier") {
+      node.expect_object(
+          {"type", "name", "file", "subdivisions", "material", "scale", "rotate", "translate"});
+      add_mesh(node, read_bezier(node));
+    } else if (kind == "sphere") {
+      node.expect_object({"type", "center", "radius", "material"});
+      scene_.spheres.push_back(
+          {node.at("center").vec3(), node.at("radius").positive(), material(node)});
+    } else if (kind == "plane") {
+      node.expect_object({"type", "point", "normal", "material"});
+      if (scene_.planes.size() == kSceneMaxPlanes) {
+        node.fail("more than " + std::to_string(kSceneMaxPlanes) + " planes");
+      }
+      const Node normal = node.at("normal");
+      const Vec3 n = normal.vec3();
+      if (!(length(n) > 0)) normal.fail("must not be the zero vector");
+      scene_.planes.push_back({node.at("point").vec3(), normalize(n), material(node)});
+    } else {
+      type.fail("unknown object type " + quote_input(kind) + " (mesh, bezier, sphere or plane)");
+    }
+  }
+
+ private:
+  std::uint32_t material(const Node& node) const {
+    const Node ref = node.at("material");
+    const std::string name = ref.string();
+    for (std::size_t i = 0; i < scene_.materials.size(); ++i) {
+      if (scene_.materials[i].name == name) return static_cast<std::uint32_t>(i);
+    }
+    ref.fail("unknown material " + quote_input(name) + " (not in \"materials\")");
+  }
+
+  // The file named by node.file, relative to the scene's folder; it must exist.
+  std::string file(const Node& node) const {
+    const Node field = node.at("file");
+    const fs::path p = fs::path(scene_.file).parent_path() / field.string();
+    std::error_code ec;
+    if (!fs::is_regular_file(p, ec)) field.fail("cannot open " + quote_input(p.string(), 200));
+    return p.string();
+  }
+
+  std::size_t triangles_left() const { return kSceneMaxTriangles - triangles_; }
+
+  Mesh read_mesh(const Node& node) const {
+    const std::string path = file(node);
+    Mesh mesh = load_obj_mesh(path, triangles_left());
+    mesh.name = fs::path(path).stem().string();
+    return mesh;
+  }
+
+  Mesh read_bezier(const Node& node) const {
+    const std::string path = file(node);
+    const auto patches = read_bezier_patches(path);
+    const Node sub = node.at("subdivisions");
+    const auto s = static_cast<std::size_t>(sub.integer(1, kSceneMaxBezierSubdivisions));
+    const std::size_t triangles = patches.size() * s * s * 2;
+    if (triangles > triangles_left()) {
+      sub.fail(std::to_string(triangles) + " triangles: the scene's triangles would exceed " +
+               std::to_string(kSceneMaxTriangles));
+    }
+    Mesh mesh = tessellate_bezier(patches, static_cast<int>(s), path);
+    mesh.name = fs::path(path).stem().string();
+    return mesh;
+  }
+
+  void add_mesh(const Node& node, Mesh mesh) {
+    if (const auto name = node.find("name")) mesh.name = name->string();
+    mesh.material = material(node);
+    apply(read_transform(node), mesh);
+    triangles_ += mesh.faces.size();
+    scene_.meshes.push_back(std::move(mesh));
+  }
+
+  static Transform read_transform(const Node& node) {
+    Transform t;
+    if (const auto scale = node.find("scale")) {
+      if (scale->is_number()) {
+        const double s = scale->positive();
+        t.scale = {s, s, s};
+      } else {
+        t.scale = scale->vec3();
+        for (std::size_t i = 0; i < 3; ++i) (*scale)[i].positive();
+      }
+    }
+    if (const auto rotate = node.find("rotate")) t.rotate_degrees = rotate->vec3();
+    if (const auto translate = node.find("translate")) t.translate = translate->vec3();
+    return t;
+  }
+
+  Scene& scene_;
+  std::size_t triangles_ = 0;
+};
+
+}  // namespace
+
+void read_objects(const Node& objects, Scene& scene) {
+  const std::size_t n = objects.array_size(1, kSceneMaxObjects, "objects");
+  ObjectReader reader(scene);
+  for (std::size_t i = 0; i < n; ++i) reader.read(objects[i]);
+}
+
+}  // namespace glint
