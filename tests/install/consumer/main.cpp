@@ -1,7 +1,7 @@
 // A program that uses glint as a pure library (glint::core / glint-core.pc): it builds a Hast unit
-// for one material and checks a few results against the accuracy contract, then encodes a small
-// image as PNG (the image layer needs libstb at link time: the package must say so). No SystemC:
-// it starts from its own main().
+// for one material and checks a few results against the accuracy contract, encodes a small image
+// as PNG (the image layer needs libstb at link time) and calls the scene loader (which links
+// tinyobjloader): the package must bring both along. No SystemC: it starts from its own main().
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "image/image.h"
+#include "io/input_error.h"
+#include "scene/scene.h"
 #include "units/catalogue.h"
 #include "units/common.h"
 
@@ -39,6 +41,14 @@ int main() {
   const bool png_good = png.size() > 8 && png[1] == 'P' && png[2] == 'N' && png[3] == 'G';
   std::printf("  png %s\n", png_good ? "ok" : "WRONG");
   ok = ok && png_good;
+  bool scene_ok = false;
+  try {
+    glint::load_scene("no-such-scene.json");
+  } catch (const glint::InputError& e) {
+    scene_ok = e.field() == "file";
+  }
+  std::printf("  load_scene of a missing file: %s\n", scene_ok ? "ok" : "WRONG");
+  ok = ok && scene_ok;
   std::printf("glint consumer: %s\n", ok ? "ok" : "FAILED");
   return ok ? 0 : 1;
 }
