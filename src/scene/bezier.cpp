@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <stdexcept>
 #include <string_view>
 
 #include "io/input_error.h"
@@ -132,6 +133,10 @@ PatchPoint evaluate(const BezierPatch& patch, double u, double v) {
 Mesh tessellate_bezier(const std::vector<BezierPatch>& patches, int subdivisions,
                        const std::string& path) {
   const auto s = static_cast<std::size_t>(subdivisions);
+  // Vertex indices are 32-bit; a scene's triangle limit keeps loaded patches far below this.
+  if (subdivisions < 1 || patches.size() * (s + 1) * (s + 1) > 0xffffffffu) {
+    throw std::invalid_argument("tessellate_bezier: subdivisions out of range");
+  }
   Mesh mesh;
   mesh.positions.reserve(patches.size() * (s + 1) * (s + 1));
   mesh.normals.reserve(mesh.positions.capacity());

@@ -27,7 +27,8 @@ std::vector<BezierPatch> read_bezier_patches(const std::string& path);
 // keeps its zero-area triangle: the count is always patches * subdivisions^2 * 2). Normals are
 // dP/dv x dP/du normalised (outwards on the teapot); where a derivative vanishes (the lid's and
 // bottom's poles) they are taken slightly inside the patch. Windings follow the normals. Throws
-// InputError (naming `path`) for a patch that is degenerate everywhere.
+// InputError (naming `path`) for a patch that is degenerate everywhere, std::invalid_argument
+// unless subdivisions >= 1 and the vertices fit 32-bit indices.
 Mesh tessellate_bezier(const std::vector<BezierPatch>& patches, int subdivisions,
                        const std::string& path);
 

@@ -111,8 +111,9 @@ struct SceneTracer::Impl {
     const Vec3 d = normalize(forward + right * sx + up * sy);
 
     Hit best;
+    double nearest = Aabb::kInf;  // best.t once something is hit: the traversal prunes with it
     const auto n_tri = static_cast<std::uint32_t>(triangles.size());
-    bvh->traverse(eye, safe_inverse(d), best.t, [&](std::uint32_t prim, double& t_max) {
+    bvh->traverse(eye, safe_inverse(d), nearest, [&](std::uint32_t prim, double& t_max) {
       if (prim < n_tri) {
         Hit h;
         if (hit_triangle(triangles[prim], eye, d, t_max, h)) {
