@@ -32,5 +32,6 @@ void add_eval_command(CLI::App& app, int& status);
 void add_units_command(CLI::App& app, int& status);
 void add_sim_command(CLI::App& app, int& status);
 void add_regress_command(CLI::App& app, int& status);
+void add_render_command(CLI::App& app, int& status);
 
 }  // namespace glint::cli

@@ -47,6 +47,7 @@ int main(int argc, char** argv) {
   glint::cli::add_units_command(app, status);
   glint::cli::add_sim_command(app, status);
   glint::cli::add_regress_command(app, status);
+  glint::cli::add_render_command(app, status);
   if (!check_subcommand(app, argc, argv)) return glint::cli::kExitBadInput;
   try {
     app.parse(argc, argv);

@@ -1,0 +1,112 @@
+// glint render: a scene ray-cast once, its shading requests streamed in memory through the float
+// reference and every unit, and the images an architect judges a highlight unit by: the reference
+// and each unit's image, the specular term alone, an error heat map per unit in 8-bit LSBs,
+// Källberg & Larsson's skip mask, and a labelled contact sheet; plus image-level error and skip
+// statistics. Memory is bounded by the image (the requests of one tile of rows at a time), and
+// every byte is independent of the thread count.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "cost/cost_model.h"
+#include "eval/evaluate.h"
+#include "image/image.h"
+#include "scene/scene.h"
+
+namespace glint {
+
+inline constexpr int kRenderReportVersion = 1;
+
+// The header of a scene's shading requests: the lights, and only the materials objects use (units
+// are elaborated for what the scene shows, not for what its file defines). header_of, if given,
+// receives each scene material's index in the header (-1: unused).
+VectorHeader scene_request_header(const Scene& scene,
+                                  std::vector<std::int32_t>* header_of = nullptr);
+
+struct RenderOptions {
+  std::vector<UnitSpec> units;  // empty: every unit at its defaults
+  int threads = 1;
+  int tile_rows = 16;     // rows ray-cast and evaluated together (memory: one tile's requests)
+  bool progress = false;  // a progress line on stderr
+  // Receives every tile's requests in raster order (pixel, then light), e.g. for a vector file.
+  std::function<void(const VectorRow* rows, std::size_t count)> on_requests;
+};
+
+// Error of one image against the reference, on the final 8-bit sRGB pixels (every channel).
+struct ImageError {
+  double max_lsb = 0;
+  double mean_lsb = 0;  // mean |difference| over every channel of every pixel
+  double psnr_db = std::numeric_limits<double>::infinity();  // 10 log10(255^2 / MSE); inf if equal
+  double differing_fraction = 0;                             // pixels with any channel different
+  // The highlight's extent: pixels whose specular luminance reaches a tenth of the material's peak
+  // under the scene's lights, and its ratio to the reference's (Schlick's "broader frontiers",
+  // Hast's d).
+  std::uint64_t highlight_pixels = 0;
+  double highlight_ratio = 1;
+  // Its bright core: pixels whose specular luminance reaches half the material's peak under the
+  // scene's lights (the half-maximum extent, the size the eye reads as the highlight).
+  std::uint64_t core_pixels = 0;
+  double core_ratio = 1;
+
+  nlohmann::json to_json() const;
+};
+
+// Where the requests of one (material, light) pair went, by Källberg & Larsson's criteria.
+struct SkipCounts {
+  std::uint64_t facing_away = 0;  // n.l <= 0: the light is behind the surface, no request made
+  std::uint64_t zero = 0;         // t <= 0: skipped by the standard test
+  std::uint64_t tau = 0;          // 0 < t <= tau: skipped only by the threshold
+  std::uint64_t computed = 0;     // t > tau
+
+  std::uint64_t total() const { return facing_away + zero + tau + computed; }
+  void add(const SkipCounts& o);
+  nlohmann::json to_json() const;
+};
+
+struct UnitRender {
+  std::string label, spec;
+  Image8 image, specular, heatmap;
+  ImageError error;
+  UnitStats stats;  // request-level accuracy (the eval report's)
+  UnitCost cost;
+  std::uint64_t skipped = 0;   // requests the unit's own comparator skipped
+  std::uint64_t computed = 0;  // requests it computed
+};
+
+struct RenderResult {
+  std::string scene_name;
+  int width = 0, height = 0;
+  std::uint64_t requests = 0;
+  Image8 reference, reference_specular, skip_mask;
+  // The reference with Källberg's skip alone (every request at t <= tau gives 0): the image cost
+  // of the threshold itself, which eps keeps within 1 LSB.
+  Image8 skip_only;
+  ImageError skip_only_error;
+  std::vector<std::string> materials;          // every scene material (the index of skips)
+  std::vector<std::string> lights;             // every light's name
+  std::vector<std::string> used_materials;     // those objects use: the ones units are built for
+  std::vector<std::vector<SkipCounts>> skips;  // [light][scene material]
+  std::vector<UnitRender> units;
+  std::vector<std::string> lobes;  // lobes present in the scene's visible materials
+  nlohmann::json slots;            // the slots the units were elaborated for
+  double heatmap_scale = 1;        // LSBs at the top of every heat map's colour bar
+  Image8 contact_sheet;
+
+  SkipCounts skip_total() const;
+  nlohmann::json to_json() const;  // the render report (report.json)
+};
+
+RenderResult render_scene(const Scene& scene, const RenderOptions& options);
+
+// The file names write_render uses, in contact-sheet order.
+std::vector<std::string> render_file_names(const RenderResult& result);
+// Writes every image as PNG and report.json into `dir` (created if missing). Every file is written
+// to a temporary beside it and renamed only when all were written.
+void write_render(const RenderResult& result, const std::string& dir);
+
+}  // namespace glint

@@ -1,0 +1,154 @@
+#include <fmt/format.h>
+
+#include <cmath>
+#include <filesystem>
+#include <memory>
+
+#include "io/atomic_file.h"
+#include "render/render.h"
+
+namespace glint {
+namespace {
+
+// JSON has no infinity: an image equal to the reference has no finite PSNR (null).
+nlohmann::json finite_or_null(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nullptr;
+}
+
+double fraction(std::uint64_t part, std::uint64_t whole) {
+  return whole ? static_cast<double>(part) / static_cast<double>(whole) : 0.0;
+}
+
+}  // namespace
+
+nlohmann::json ImageError::to_json() const {
+  return {{"max_lsb", max_lsb},
+          {"mean_lsb", mean_lsb},
+          {"psnr_db", finite_or_null(psnr_db)},
+          {"differing_fraction", differing_fraction},
+          {"highlight_pixels", highlight_pixels},
+          {"highlight_ratio", finite_or_null(highlight_ratio)},
+          {"core_pixels", core_pixels},
+          {"core_ratio", finite_or_null(core_ratio)}};
+}
+
+void SkipCounts::add(const SkipCounts& o) {
+  facing_away += o.facing_away;
+  zero += o.zero;
+  tau += o.tau;
+  computed += o.computed;
+}
+
+nlohmann::json SkipCounts::to_json() const {
+  const std::uint64_t n = total();
+  return {{"lit_pairs", n},
+          {"facing_away", facing_away},
+          {"t_le_0", zero},
+          {"tau_only", tau},
+          {"computed", computed},
+          {"skipped_fraction_t_le_0", fraction(facing_away + zero, n)},
+          {"skipped_fraction_tau", fraction(facing_away + zero + tau, n)}};
+}
+
+SkipCounts RenderResult::skip_total() const {
+  SkipCounts t;
+  for (const auto& per_light : skips)
+    for (const SkipCounts& c : per_light) t.add(c);
+  return t;
+}
+
+std::vector<std::string> render_file_names(const RenderResult& r) {
+  std::vector<std::string> names{"reference.png", "reference_specular.png", "skip_mask.png",
+                                 "skip_only.png"};
+  for (const UnitRender& u : r.units) {
+    names.push_back(u.label + ".png");
+    names.push_back(u.label + "_specular.png");
+    names.push_back(u.label + "_error.png");
+  }
+  names.push_back("contact_sheet.png");
+  names.push_back("report.json");
+  return names;
+}
+
+nlohmann::json RenderResult::to_json() const {
+  const SkipCounts total = skip_total();
+  nlohmann::json per_pair = nlohmann::json::array();
+  for (std::size_t l = 0; l < skips.size(); ++l)
+    for (std::size_t m = 0; m < skips[l].size(); ++m) {
+      if (skips[l][m].total() == 0) continue;
+      nlohmann::json j = skips[l][m].to_json();
+      j["light"] = lights[l];
+      j["material"] = materials[m];
+      per_pair.push_back(std::move(j));
+    }
+  nlohmann::json units_json = nlohmann::json::array();
+  for (const UnitRender& u : units) {
+    // Operations saved against the standard test (skip only t <= 0, Källberg & Larsson §1): the
+    // requests with t > 0 that the unit's own comparator skipped, times its per-request work.
+    const auto beyond =
+        static_cast<std::int64_t>(u.skipped) - static_cast<std::int64_t>(total.zero);
+    nlohmann::json saved = nlohmann::json::object(), executed = nlohmann::json::object();
+    for (const auto& [kind, n] : u.cost.ops_per_computed) {
+      saved[kind] = n * static_cast<double>(beyond);
+      executed[kind] = n * static_cast<double>(u.computed);
+    }
+    units_json.push_back({{"unit", u.label},
+                          {"spec", u.spec},
+                          {"image_error", u.error.to_json()},
+                          {"requests", u.stats.vectors},
+                          {"skipped", u.skipped},
+                          {"skipped_beyond_t_le_0", beyond},
+                          {"operations", executed},
+                          {"operations_saved", saved},
+                          {"area_ge", u.cost.area_ge},
+                          {"critical_path", u.cost.critical_path},
+                          {"errors", u.stats.errors_json()},
+                          {"description", u.stats.description}});
+  }
+  return {{"glint_render_report", kRenderReportVersion},
+          {"scene", scene_name},
+          {"resolution", {width, height}},
+          {"requests", requests},
+          {"lobes", lobes},
+          {"lights", lights},
+          {"materials", used_materials},
+          {"slots", slots},
+          {"skip", {{"total", total.to_json()}, {"per_light_material", per_pair}}},
+          {"skip_only_image_error", skip_only_error.to_json()},
+          {"heatmap_scale_lsb", heatmap_scale},
+          {"units", units_json},
+          {"files", render_file_names(*this)}};
+}
+
+void write_render(const RenderResult& r, const std::string& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw OutputError(fmt::format("{}: cannot create the folder: {}", dir, ec.message()));
+  std::vector<std::pair<std::string, const Image8*>> images{
+      {"reference.png", &r.reference},
+      {"reference_specular.png", &r.reference_specular},
+      {"skip_mask.png", &r.skip_mask},
+      {"skip_only.png", &r.skip_only}};
+  for (const UnitRender& u : r.units) {
+    images.emplace_back(u.label + ".png", &u.image);
+    images.emplace_back(u.label + "_specular.png", &u.specular);
+    images.emplace_back(u.label + "_error.png", &u.heatmap);
+  }
+  images.emplace_back("contact_sheet.png", &r.contact_sheet);
+  // Every file is written to its temporary first and renamed only when all are complete, so a
+  // failure (disk full, a bad folder) leaves the folder's previous files as they were.
+  std::vector<std::unique_ptr<AtomicOutputFile>> files;
+  for (const auto& [name, image] : images) {
+    files.push_back(
+        std::make_unique<AtomicOutputFile>((std::filesystem::path(dir) / name).string()));
+    const std::vector<std::uint8_t> png = encode_png(*image);
+    files.back()->stream().write(reinterpret_cast<const char*>(png.data()),
+                                 static_cast<std::streamsize>(png.size()));
+  }
+  files.push_back(
+      std::make_unique<AtomicOutputFile>((std::filesystem::path(dir) / "report.json").string()));
+  files.back()->stream() << r.to_json().dump(2) << '\n';
+  for (auto& f : files) f->commit();
+}
+
+}  // namespace glint
