@@ -621,6 +621,79 @@ struct BadRow {
   const char* field;
 };
 
+// --slots N: a chip of fixed capacity. A stream needing more slots is refused naming the option
+// and both counts (multi_light.vec: 3 lights each changing each of 3 materials' c_y, 9 slots);
+// N is checked before any input is read; a larger chip has more area and the same results.
+TEST_F(CliTest, SlotsOptionModelsAFixedChip) {
+  const std::string vec = quote(kTraces + "/multi_light.vec");
+  for (const char* cmd : {"eval", "sim"}) {
+    SCOPED_TRACE(cmd);
+    const CliRun small = glint(std::string(cmd) + " " + vec + " --slots 8");
+    EXPECT_EQ(small.status, 2) << small.err;
+    EXPECT_NE(small.err.find("--slots 8"), std::string::npos) << small.err;
+    EXPECT_NE(small.err.find("needs 9"), std::string::npos) << small.err;
+    EXPECT_TRUE(small.out.empty()) << small.out;
+    for (const char* bad : {"0", "1048577", "-1", "x", "2.5"}) {
+      const CliRun r = glint(std::string(cmd) + " " + vec + " --slots " + bad);
+      EXPECT_EQ(r.status, 2) << bad;
+      EXPECT_NE(r.err.find("--slots"), std::string::npos) << bad << ": " << r.err;
+    }
+  }
+  const json fitted = glint_json("sim " + vec + " --json");
+  const json nine = glint_json("sim " + vec + " --json --slots 9");
+  const json big = glint_json("sim " + vec + " --json --slots 64");
+  EXPECT_EQ(fitted.at("slot_capacity"), 9);
+  EXPECT_EQ(fitted.at("datapath_groups"), 3);
+  EXPECT_EQ(big.at("slot_capacity"), 64);
+  ASSERT_EQ(big.at("units").size(), kAllUnits.size());
+  for (std::size_t i = 0; i < kAllUnits.size(); ++i) {
+    SCOPED_TRACE(kAllUnits[i]);
+    const json &f = fitted.at("units")[i], &n = nine.at("units")[i], &b = big.at("units")[i];
+    EXPECT_EQ(f.at("digest"), b.at("digest"));  // capacity sizes tables, not results
+    EXPECT_LE(f.at("area").at("ge").get<double>(), n.at("area").at("ge").get<double>());
+    EXPECT_LT(n.at("area").at("ge").get<double>(), b.at("area").at("ge").get<double>());
+    EXPECT_EQ(b.at("elaboration").at("capacity"), 64);
+    EXPECT_EQ(b.at("elaboration").at("sized_to"), "capacity");
+    EXPECT_EQ(f.at("elaboration").at("sized_to"), "stream");
+  }
+}
+
+// The eval report says, per unit, what the scene elaborated: slots, groups, the slots each group
+// serves and why each slot exists; the text output summarises it in one line per unit.
+TEST_F(CliTest, EvalReportsTheElaboration) {
+  const std::string vec = quote(kTraces + "/multi_light.vec");
+  const json e = glint_json("eval " + vec + " --json");
+  EXPECT_EQ(e.at("slots"), 9);
+  EXPECT_EQ(e.at("datapath_groups"), 3);
+  for (const auto& u : e.at("units")) {
+    const json& el = u.at("description").at("elaboration");
+    EXPECT_EQ(el.at("slots"), 9);
+    EXPECT_EQ(el.at("datapath_groups"), 3);
+    std::size_t served = 0;
+    for (const auto& g : el.at("groups")) served += g.at("slots").size();
+    EXPECT_EQ(served, 9u);
+    for (const auto& s : el.at("slot_list")) {
+      EXPECT_EQ(s.at("lights").size(), 1u);
+      EXPECT_TRUE(s.contains("c_y"));
+      EXPECT_TRUE(s.contains("why"));
+    }
+    long long entries = 0;
+    for (const auto& t : el.at("tables"))
+      entries += t.at("entries").get<long long>() * t.at("banks").get<long long>();
+    EXPECT_EQ(el.at("table_entries"), entries);
+  }
+  const CliRun text = glint("eval " + vec);
+  ASSERT_EQ(text.status, 0) << text.err;
+  EXPECT_NE(text.out.find("9 slots (lights change some materials' tau), 3 datapath groups"),
+            std::string::npos)
+      << text.out;
+  for (const auto& name : kAllUnits)
+    EXPECT_NE(text.out.find("  " + name + ": 9 slots (sized to the stream), 3 datapath groups"),
+              std::string::npos)
+        << name << "\n"
+        << text.out;
+}
+
 TEST_F(CliTest, EvalBadRowsNameFileAndLine) {
   const BadRow cases[] = {
       {"non-numeric t", "abc white", "'t'"},
@@ -840,10 +913,11 @@ TEST_F(CliTest, ReportsCarrySchemaVersions) {
   const json s = glint_json("sim " + quote(kPhongBasic) + " --json --report r.json");
   ASSERT_TRUE(e.is_object());
   ASSERT_TRUE(s.is_object());
-  // eval 3 / sim 2: errors decomposed into parts with bounds (README); eval 2 nested v1's keys.
-  EXPECT_EQ(e.at("glint_eval_report"), 3);
-  EXPECT_EQ(s.at("glint_sim_report"), 2);
-  EXPECT_EQ(json::parse(read_text(dir_ / "r.json")).at("glint_sim_report"), 2);
+  // eval 4 / sim 3: the scene's elaboration (README); eval 3 / sim 2 decomposed the errors into
+  // parts with bounds; eval 2 nested v1's keys.
+  EXPECT_EQ(e.at("glint_eval_report"), 4);
+  EXPECT_EQ(s.at("glint_sim_report"), 3);
+  EXPECT_EQ(json::parse(read_text(dir_ / "r.json")).at("glint_sim_report"), 3);
   for (const json* report : {&e, &s}) {
     for (const auto& u : report->at("units")) {
       for (const char* old : {"error_vs_reference", "datapath_error_ulps", "model_error",
@@ -865,10 +939,14 @@ TEST_F(CliTest, EvalAndSimUseTheSameKeys) {
     const json s = glint_json("sim " + vec + " --json");
     ASSERT_TRUE(e.is_object());
     ASSERT_TRUE(s.is_object());
-    for (const char* k : {"rows", "slots", "per_light_slots"}) EXPECT_EQ(e.at(k), s.at(k)) << k;
+    for (const char* k : {"rows", "slots", "per_light_slots", "datapath_groups", "slot_capacity"})
+      EXPECT_EQ(e.at(k), s.at(k)) << k;
     ASSERT_EQ(e.at("units").size(), kAllUnits.size());
     ASSERT_EQ(s.at("units").size(), kAllUnits.size());
     for (std::size_t i = 0; i < kAllUnits.size(); ++i) {
+      // The elaboration is the unit's own (describe()): sim reports it beside the config.
+      EXPECT_EQ(e.at("units")[i].at("description").at("elaboration"),
+                s.at("units")[i].at("elaboration"));
       std::map<std::string, json> fe, fs;
       flatten(e.at("units")[i], "", fe);
       flatten(s.at("units")[i], "", fs);

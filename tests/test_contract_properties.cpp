@@ -28,6 +28,7 @@
 #include <cstdlib>
 #include <initializer_list>
 #include <limits>
+#include <map>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -147,10 +148,12 @@ std::string describe_header(const VectorHeader& h) {
   return s;
 }
 
-// At most this many slots per case: coloured lights make light x material slots (up to 3072
-// here), and every slot is checked on the whole input grid. A random subset of the slots
-// make_slots() gives is kept, each slot's parameters exactly as the CLI makes them. (Horner's
-// shared guard is the largest any built slot needs: over the subset, not the whole file.)
+// At most this many slots per case: coloured lights give a material a slot per distinct c_y (up
+// to 3072 here), and every slot is checked on the whole input grid. A random subset of the slots
+// make_slots() gives is kept, each slot's parameters exactly as the CLI makes them, and each served
+// by its material's datapath group, built from the group's params as the CLI builds it (shared by
+// the kept slots of one material). (Horner's shared guard is the largest any built group needs:
+// over the subset's groups, not the whole file's.)
 constexpr std::size_t kMaxSlots = 4;
 
 SlotMap subset(const SlotMap& all) {
@@ -161,11 +164,17 @@ SlotMap subset(const SlotMap& all) {
   SlotMap s;
   s.per_light = all.per_light;
   s.materials = all.materials;
+  std::map<std::uint32_t, std::uint32_t> regroup;  // the full map's group -> the subset's
   for (std::size_t i : chosen) {
     s.params.push_back(all.params[i]);
     s.lobe.push_back(all.lobe[i]);
     s.roughness.push_back(all.roughness[i]);
     s.c_y.push_back(all.c_y[i]);
+    s.origin.push_back(all.origin[i]);
+    const auto [it, fresh] =
+        regroup.emplace(all.group[i], static_cast<std::uint32_t>(s.groups.size()));
+    if (fresh) s.groups.push_back(all.groups[all.group[i]]);
+    s.group.push_back(it->second);
   }
   return s;
 }
@@ -371,7 +380,7 @@ void check_unit_case(const std::string& unit) {
   const UnitSpec spec = parse_unit_spec(spec_text);
   std::unique_ptr<SpecularUnit> u;
   try {
-    u = make_unit(spec, slots.params);
+    u = make_unit(spec, slots);
   } catch (const std::invalid_argument& e) {
     check_refusal(unit, spec, e.what());
     RC_TAG("refused");
@@ -431,14 +440,13 @@ VectorHeader one_material(double eps, Lobe lobe, double n, std::array<double, 3>
 TEST(RegressionCases, HastSkipOffAlwaysSkippedMaterialGivesZeroAtOne) {
   const SlotMap slots = make_slots(one_material(1e-6, Lobe::kPhong, 0.3, {2.5e-7, 0, 0}));
   ASSERT_TRUE(slots.params[0].always_skip);
-  const auto u = make_unit(parse_unit_spec("hast:in=uq1.8,out=uq1.8,skip=off,d=1"), slots.params);
+  const auto u = make_unit(parse_unit_spec("hast:in=uq1.8,out=uq1.8,skip=off,d=1"), slots);
   EXPECT_EQ(u->eval_with_skip(0, u->in_format().raw_one()), u->out_format().raw_one());
 }
 TEST(RegressionCases, HornerSkipOffAlwaysSkippedMaterialGivesZeroAtOne) {
   const SlotMap slots = make_slots(one_material(1e-6, Lobe::kPhong, 0.3, {2.5e-7, 0, 0}));
   const auto u = make_unit(
-      parse_unit_spec("horner:in=uq1.15,out=uq1.8,skip=off,degree=1,method=ls,domain=tau"),
-      slots.params);
+      parse_unit_spec("horner:in=uq1.15,out=uq1.8,skip=off,degree=1,method=ls,domain=tau"), slots);
   EXPECT_EQ(u->eval_with_skip(0, u->in_format().raw_one()), u->out_format().raw_one());
 }
 
@@ -464,7 +472,7 @@ TEST(RegressionCases, HornerFullDomainFitOfLowShininessNotMonotone) {
   const SlotMap slots = make_slots(h);
   const auto u = make_unit(parse_unit_spec("horner:in=uq1.8,out=uq1.9,skip=off,degree=2,method=ls,"
                                            "domain=full,constrain=on"),
-                           slots.params);
+                           slots);
   // Slot 1, the Gaussian material's, steps back from 171 to 166 at code 1.
   for (std::size_t s = 0; s < slots.params.size(); ++s) {
     for (std::int64_t c = 1; c <= u->in_format().raw_max(); ++c)
@@ -482,8 +490,7 @@ TEST(RegressionCases, HornerFullDomainSkipsAPerceptibleOutput) {
   const SlotMap slots = make_slots(one_material(1e-6, Lobe::kPhong, 4.039463786052832,
                                                 {0.022039981081057602, 0.0007242517524803346, 0}));
   const auto u = make_unit(
-      parse_unit_spec("horner:in=uq1.15,out=uq1.12,method=robust,domain=full,constrain=on"),
-      slots.params);
+      parse_unit_spec("horner:in=uq1.15,out=uq1.12,method=robust,domain=full,constrain=on"), slots);
   const double level = slots.params[0].level;
   for (std::int64_t c = 0; c <= u->tau_raw(0); ++c)
     EXPECT_LE(std::ldexp(static_cast<double>(u->eval(0, c)), -12), level) << "skipped code " << c;
@@ -498,7 +505,7 @@ TEST(RegressionCases, HornerFullDomainInputWiderThanChainBreaksTheBudget) {
   const SlotMap slots = make_slots(one_material(1e-6, Lobe::kPhong, 0.3, {2.5e-7, 0, 0}));
   const auto u = make_unit(parse_unit_spec("horner:in=uq1.16,out=uq1.15,skip=off,degree=1,"
                                            "method=ls,domain=full,constrain=on,guard=0"),
-                           slots.params);
+                           slots);
   const double ulp = u->out_format().ulp();
   double worst = 0;
   std::int64_t at = -1;
@@ -519,7 +526,7 @@ TEST(RegressionCases, HornerFullDomainTotalBoundFailsOffTheGrid) {
                    {0.0006879454873745698, 0.0001308486060465273, 0.0002238208818150863}));
   const auto u = make_unit(parse_unit_spec("horner:in=uq1.15,out=uq1.8,skip=off,degree=1,"
                                            "domain=full,constrain=on,guard=auto"),
-                           slots.params);
+                           slots);
   const SlotContract c = slot_contract(*u, 0, slots);
   const double t = 0.56980895996093761;
   const std::int64_t code = quantize_input(t, u->in_format());
@@ -545,7 +552,7 @@ TEST(RegressionCases, HornerUq1p20InputIsSweptOnEveryCode) {
   const SlotMap slots = make_slots(h);
   const auto u = make_unit(parse_unit_spec("horner:in=uq1.20,out=uq1.8,skip=off,degree=1,"
                                            "method=ls,domain=tau,constrain=on"),
-                           slots.params);
+                           slots);
   const SlotContract c = slot_contract(*u, 0, slots);
   EXPECT_TRUE(c.exact);
   const double t = 0.99993848800659169;

@@ -10,6 +10,7 @@
 #include "reference/reference.h"
 #include "units/catalogue.h"
 #include "units/lane_cost.h"
+#include "units/slot_plan.h"
 
 namespace glint {
 namespace {
@@ -19,11 +20,15 @@ MaterialParams material(double n, double eps = 1e-3) {
   return MaterialParams{n, t.never_skip ? -1.0 : t.tau, t.always_skip};
 }
 
+// capacity > 0: a chip of that many slots (--slots), whose n register is the key's whole format.
 std::unique_ptr<SpecularUnit> build(const std::string& spec,
-                                    const std::vector<double>& shininess = {50}) {
+                                    const std::vector<double>& shininess = {50},
+                                    std::size_t capacity = 0) {
   std::vector<MaterialParams> slots;
   for (double n : shininess) slots.push_back(material(n));
-  return make_unit(parse_unit_spec(spec), slots);
+  SlotPlan plan = SlotPlan::per_slot(slots);
+  plan.capacity = capacity;
+  return make_unit(parse_unit_spec(spec), plan);
 }
 
 UnitCost cost(const std::string& spec, const std::vector<double>& shininess = {50},
@@ -210,19 +215,32 @@ TEST(CostModel, LutTableScalesWithSlots) {
 }
 
 TEST(CostModel, SchlickDividerWidths) {
-  const UnitCost c = cost("schlick");
-  const auto div = find(c, "divider");
+  // A chip of fixed capacity holds any n of the key's format: uq14.4, 18 bits.
+  const UnitCost fixed = unit_cost(*build("schlick", {50}, 1));
+  const auto div = find(fixed, "divider");
   ASSERT_EQ(div.size(), 1u);
   EXPECT_EQ(div[0]->width_a, 15 + 2);   // quotient bits: out.frac_bits + 2
   EXPECT_EQ(div[0]->width_b, 18 + 15);  // D: n register (uq14.4) + input fraction bits
-  const auto mul = find(c, "multiplier");
+  const auto mul = find(fixed, "multiplier");
   ASSERT_EQ(mul.size(), 1u);
   EXPECT_EQ(mul[0]->width_a, 18);
   EXPECT_EQ(mul[0]->width_b, 16);
   // A wider n register widens the multiplier and the divider.
-  const UnitCost wide_n = cost("schlick:n=uq16.6");
+  const UnitCost wide_n = unit_cost(*build("schlick:n=uq16.6", {50}, 1));
   EXPECT_EQ(find(wide_n, "divider")[0]->width_b, 22 + 15);
-  EXPECT_GT(wide_n.area_ge, c.area_ge);
+  EXPECT_GT(wide_n.area_ge, fixed.area_ge);
+
+  // Sized to the scene, the register holds n = 50 (110010b, exact in uq14.4) in 6 bits: uq6.0, so
+  // D = n (1 - t) + t has 6 + 15 bits.
+  const UnitCost c = cost("schlick");
+  EXPECT_EQ(find(c, "divider")[0]->width_b, 6 + 15);
+  EXPECT_EQ(find(c, "multiplier")[0]->width_a, 6);
+  EXPECT_EQ(find(c, "table", "n table")[0]->width_b, 6);
+  // The key's format still decides where the scene's n is not exact in it: 50.03 is 50.0 in
+  // uq14.4 (6 bits) but 50.03125 (110010.00001b, uq6.5) in uq16.6.
+  EXPECT_EQ(find(cost("schlick", {50.03}), "divider")[0]->width_b, 6 + 15);
+  EXPECT_EQ(find(cost("schlick:n=uq16.6", {50.03}), "divider")[0]->width_b, 11 + 15);
+  EXPECT_GT(cost("schlick:n=uq16.6", {50.03}).area_ge, cost("schlick", {50.03}).area_ge);
 }
 
 TEST(CostModel, IterativeDividerIsSmallerWithSameSteps) {
@@ -242,7 +260,7 @@ TEST(CostModel, IterativeDividerIsSmallerWithSameSteps) {
 
 TEST(CostModel, PipelinedSchlickCriticalPathIsOneDividerRow) {
   const UnitCost c = cost("schlick");
-  const double row = divider_row_delay(33);
+  const double row = divider_row_delay(find(c, "divider")[0]->width_b);
   const double reg = cost_constants().reg_delay;
   for (int s = 2; s <= 18; ++s) EXPECT_EQ(stage(c, "stage " + std::to_string(s)).delay, row + reg);
   EXPECT_LT(c.critical_path, 17 * row);  // never the whole divider in one stage

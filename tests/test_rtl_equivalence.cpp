@@ -68,7 +68,7 @@ void check_equivalence(const SlotMap& slots, const std::vector<VectorRow>& rows,
   std::vector<std::unique_ptr<SpecularUnit>> owned;
   std::vector<const SpecularUnit*> units;
   for (const std::string& s : specs) {
-    owned.push_back(make_unit(parse_unit_spec(s), slots.params));
+    owned.push_back(make_unit(parse_unit_spec(s), slots));
     units.push_back(owned.back().get());
   }
   std::vector<std::vector<Observed>> seen(units.size());
@@ -246,8 +246,8 @@ TEST(RtlEquivalenceEdge, EmptyAndSingleRowStreams) {
   const SlotMap slots = make_slots(s.header);
   const std::vector<VectorRow> none;
   std::vector<std::unique_ptr<SpecularUnit>> owned;
-  owned.push_back(make_unit(parse_unit_spec("hast"), slots.params));
-  owned.push_back(make_unit(parse_unit_spec("lut"), slots.params));
+  owned.push_back(make_unit(parse_unit_spec("hast"), slots));
+  owned.push_back(make_unit(parse_unit_spec("lut"), slots));
   // Lane 0 gets no rows, lane 1 the single row.
   int opened = 0;
   std::vector<LaneOutput> out;

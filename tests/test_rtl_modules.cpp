@@ -82,7 +82,7 @@ std::vector<VectorRow> rows_of(const std::vector<double>& ts) {
 
 TEST(RtlModules, VectorSourceAdvancesOnlyOnHandshake) {
   const SlotMap slots = make_slots(two_materials());
-  const auto unit = make_unit(parse_unit_spec("hast"), slots.params);
+  const auto unit = make_unit(parse_unit_spec("hast"), slots);
   const std::vector<VectorRow> rows = rows_of({0.5, -0.3, 0.99, 1.0005, 0.75});
   MemoryRowStream stream(rows);
   RowRing ring(8);
@@ -134,7 +134,7 @@ TEST(RtlModules, VectorSourceAdvancesOnlyOnHandshake) {
 void check_pipeline(const std::string& spec, const std::vector<std::uint64_t>& starts,
                     std::uint64_t cycles) {
   const SlotMap slots = make_slots(two_materials());
-  const auto unit = make_unit(parse_unit_spec(spec), slots.params);
+  const auto unit = make_unit(parse_unit_spec(spec), slots);
   const int L = unit->timing().latency, II = unit->timing().ii;
   sc_core::sc_clock clk("clk", clock_period(), 0.5, clock_first_edge(), true);
   sc_core::sc_signal<bool> in_valid("in_valid", false);
@@ -217,7 +217,7 @@ TEST(RtlModules, StageLayoutsNameEveryRegister) {
   std::vector<std::unique_ptr<ComputePipeline>> pipes;
   int k = 0;
   for (const Case& c : cases) {
-    units.push_back(make_unit(parse_unit_spec(c.spec), slots.params));
+    units.push_back(make_unit(parse_unit_spec(c.spec), slots));
     pipes.push_back(std::make_unique<ComputePipeline>(("p" + std::to_string(k++)).c_str(),
                                                       *units.back(), false));
     std::vector<std::string> names;
@@ -227,7 +227,7 @@ TEST(RtlModules, StageLayoutsNameEveryRegister) {
   }
   // The divider kind must agree with the unit's II: an iterative divider stage (one request for q
   // cycles) in a unit whose II is 1 is refused.
-  const auto pipelined = make_unit(parse_unit_spec("schlick"), slots.params);
+  const auto pipelined = make_unit(parse_unit_spec("schlick"), slots);
   std::vector<Stage> iterative = {{"in", 0, 0, {}},
                                   {"mac", 1, 1, {}},
                                   {"div", 2, 18, {}},
@@ -241,7 +241,7 @@ TEST(RtlModules, StageLayoutsNameEveryRegister) {
 // it is ready, a credit per issue, a returned credit usable at the next edge.
 TEST(RtlModules, TauComparatorBypassCreditsAndIIGate) {
   const SlotMap slots = make_slots(two_materials());
-  const auto unit = make_unit(parse_unit_spec("hast:buffer=2"), slots.params);
+  const auto unit = make_unit(parse_unit_spec("hast:buffer=2"), slots);
   const std::int64_t tau0 = unit->tau_raw(0);
   ASSERT_GT(tau0, 100);
   sc_core::sc_clock clk("clk", clock_period(), 0.5, clock_first_edge(), true);
@@ -379,7 +379,7 @@ TEST(RtlModules, ResultMergeOrderFlowThroughBackpressure) {
 // Sink: ready at edge c is SinkReady::ready(c); a valid head waits while it is low.
 TEST(RtlModules, ScoreboardHonoursSinkReady) {
   const SlotMap slots = make_slots(two_materials());
-  const auto unit = make_unit(parse_unit_spec("lut"), slots.params);
+  const auto unit = make_unit(parse_unit_spec("lut"), slots);
   const SinkReady sink{0.4, 11};
   RowRing ring(4);
   SimControl control;

@@ -54,7 +54,7 @@ TEST(RtlStageTrace, EveryStageShowsItsRegistersCycleByCycle) {
   std::vector<std::unique_ptr<SpecularUnit>> owned;
   std::vector<const SpecularUnit*> units;
   for (const std::string& sp : specs) {
-    owned.push_back(make_unit(parse_unit_spec(sp), slots.params));
+    owned.push_back(make_unit(parse_unit_spec(sp), slots));
     units.push_back(owned.back().get());
   }
   ClockedOptions options;

@@ -86,7 +86,7 @@ struct TracedRun {
   TracedRun(const Stream& s, const SlotMap& slots, const std::vector<std::string>& specs,
             const ClockedOptions& options) {
     for (const std::string& sp : specs) {
-      owned.push_back(make_unit(parse_unit_spec(sp), slots.params));
+      owned.push_back(make_unit(parse_unit_spec(sp), slots));
       units.push_back(owned.back().get());
     }
     timing.resize(units.size());
@@ -432,7 +432,7 @@ TEST(RtlVcd, WindowTracesFromFirstPresentedToLastRetired) {
   TempDir dir;
   const Stream s = make_stream(400, false);
   const SlotMap slots = make_slots(s.header);
-  const auto unit = make_unit(parse_unit_spec("schlick:divider=iterative,buffer=4"), slots.params);
+  const auto unit = make_unit(parse_unit_spec("schlick:divider=iterative,buffer=4"), slots);
   ClockedOptions options;
   options.vcd_path = dir.file("w.vcd");
   options.vcd_first = 100;
@@ -469,7 +469,7 @@ TEST(RtlVcd, WindowBeyondTheStreamStillWritesTheFinalState) {
   TempDir dir;
   const Stream s = make_stream(30, false);
   const SlotMap slots = make_slots(s.header);
-  const auto unit = make_unit(parse_unit_spec("lut"), slots.params);
+  const auto unit = make_unit(parse_unit_spec("lut"), slots);
   ClockedOptions options;
   options.vcd_path = dir.file("late.vcd");
   options.vcd_first = 1000;
@@ -697,7 +697,7 @@ void expect_failed_run_leaves_nothing(const std::string& file) {
   TempDir dir;
   const Stream s = make_stream(100, false);
   const SlotMap slots = make_slots(s.header);
-  const auto unit = make_unit(parse_unit_spec("hast"), slots.params);
+  const auto unit = make_unit(parse_unit_spec("hast"), slots);
   ClockedOptions options;
   options.vcd_path = dir.file(file);
   EXPECT_THROW(run_clocked({unit.get()}, slots,
@@ -724,7 +724,7 @@ TEST(RtlVcd, FstWithoutVcd2fstIsAnOutputError) {
   TempDir dir;
   const Stream s = make_stream(20, false);
   const SlotMap slots = make_slots(s.header);
-  const auto unit = make_unit(parse_unit_spec("lut"), slots.params);
+  const auto unit = make_unit(parse_unit_spec("lut"), slots);
   auto open = [&] { return std::make_unique<MemoryRowStream>(s.rows); };
   ClockedOptions fst;
   fst.vcd_path = dir.file("x.fst");
@@ -753,7 +753,7 @@ TEST(RtlVcd, FstWithoutVcd2fstIsAnOutputError) {
 TEST(RtlVcd, UnwritablePathAndSecondRunAreRejected) {
   const Stream s = make_stream(20, false);
   const SlotMap slots = make_slots(s.header);
-  const auto unit = make_unit(parse_unit_spec("lut"), slots.params);
+  const auto unit = make_unit(parse_unit_spec("lut"), slots);
   auto open = [&] { return std::make_unique<MemoryRowStream>(s.rows); };
   ClockedOptions bad;
   bad.vcd_path = "/nonexistent-dir/x.vcd";

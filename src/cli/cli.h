@@ -23,6 +23,11 @@ void print_json(const nlohmann::json& j);
 // --display-bits N: the display depth errors are counted in (LSBs of an N-bit output), 1..16.
 void add_display_bits_option(CLI::App* sub, int& bits);
 
+// --slots N: a chip of fixed capacity N (1..kMaxSlotCapacity); 0 (absent): sized to the stream.
+void add_slots_option(CLI::App* sub, std::size_t& slots);
+// make_slots' refusal of a stream that needs more slots than --slots N, rethrown naming the option.
+[[noreturn]] void refuse_slots(std::size_t slots, const std::exception& e);
+
 // Parses "r,g,b" into three doubles; throws std::invalid_argument naming the option.
 std::array<double, 3> parse_rgb(const std::string& text, const std::string& option);
 

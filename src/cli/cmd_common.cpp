@@ -8,6 +8,7 @@
 #include "cli/cli.h"
 #include "io/atomic_file.h"
 #include "io/input_error.h"
+#include "units/slot_plan.h"
 
 namespace glint::cli {
 
@@ -38,6 +39,28 @@ void add_display_bits_option(CLI::App* sub, int& bits) {
                   "Display depth for errors in LSBs (lsb, bound_lsb, mismatch): 1..16")
       ->check(CLI::Range(1, 16))
       ->default_val(8);
+}
+
+void add_slots_option(CLI::App* sub, std::size_t& slots) {
+  sub->add_option_function<std::string>(
+         "--slots",
+         [&slots](const std::string& text) {
+           std::size_t v = 0;
+           const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+           if (text.empty() || ec != std::errc() || end != text.data() + text.size() || v < 1 ||
+               v > kMaxSlotCapacity)
+             throw CLI::ValidationError("--slots", fmt::format("'{}' is not a slot count in 1..{}",
+                                                               text, kMaxSlotCapacity));
+           slots = v;
+         },
+         fmt::format("A chip of fixed capacity: N comparator thresholds and N per-material "
+                     "entries (1..{}; default: sized to the stream)",
+                     kMaxSlotCapacity))
+      ->type_name("N");
+}
+
+void refuse_slots(std::size_t slots, const std::exception& e) {
+  throw std::invalid_argument(fmt::format("--slots {}: {}", slots, e.what()));
 }
 
 std::array<double, 3> parse_rgb(const std::string& text, const std::string& option) {

@@ -20,6 +20,7 @@ struct EvalOptions {
   std::vector<std::string> units;
   std::string dump;
   int display_bits = 8;
+  std::size_t slots = 0;  // --slots N; 0: sized to the stream
   bool json = false;
 };
 
@@ -28,7 +29,13 @@ int run_eval(const EvalOptions& o) {
   for (const auto& s : o.units.empty() ? unit_names() : o.units)
     specs.push_back(parse_unit_spec(s));
   VectorReader reader(o.vectors);
-  Evaluator ev(reader.header(), specs, o.display_bits);
+  std::unique_ptr<Evaluator> evaluator;
+  try {
+    evaluator = std::make_unique<Evaluator>(reader.header(), specs, o.display_bits, o.slots);
+  } catch (const SlotCapacityError& e) {
+    refuse_slots(o.slots, e);  // the stream needs more than the chip holds
+  }
+  Evaluator& ev = *evaluator;
 
   std::unique_ptr<AtomicOutputFile> dump;
   if (!o.dump.empty()) {
@@ -66,10 +73,17 @@ int run_eval(const EvalOptions& o) {
     j["rows"] = reader.rows_read();
     print_json(j);
   } else {
-    std::cout << fmt::format("{}: {} vectors, {} slots{}\n", o.vectors, reader.rows_read(),
-                             ev.slots().params.size(),
-                             ev.slots().per_light ? " (light x material)" : "")
-              << format_eval_table(ev.stats()) << format_parts_table(ev.stats());
+    const SlotMap& slots = ev.slots();
+    std::cout << fmt::format("{}: {} vectors, {} slots{}, {} datapath groups{}\n", o.vectors,
+                             reader.rows_read(), slots.params.size(),
+                             slots.per_light ? " (lights change some materials' tau)" : "",
+                             slots.groups.size(),
+                             slots.capacity > 0
+                                 ? fmt::format(", a chip of {} slots", slots.capacity)
+                                 : std::string())
+              << format_eval_table(ev.stats()) << format_parts_table(ev.stats())
+              << "elaboration (what the scene built):\n"
+              << format_elaboration(ev.stats());
     for (const auto& s : ev.stats()) std::cout << fmt::format("  {}: {}\n", s.name, s.spec);
   }
   return kExitOk;
@@ -85,6 +99,7 @@ void add_eval_command(CLI::App& app, int& status) {
   sub->add_option("--unit", o->units, "Unit SPEC NAME[:key=value,...] (repeatable; default all)");
   sub->add_option("--dump", o->dump, "Per-vector CSV (written atomically)");
   add_display_bits_option(sub, o->display_bits);
+  add_slots_option(sub, o->slots);
   sub->add_flag("--json", o->json, "Print one JSON document on stdout");
   sub->callback([o, &status] { status = guarded([&] { return run_eval(*o); }); });
 }

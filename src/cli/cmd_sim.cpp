@@ -34,6 +34,7 @@ struct SimOptions {
   std::uint64_t seed = 1;
   std::size_t batch = 4096;
   int display_bits = 8;
+  std::size_t slots = 0;  // --slots N; 0: sized to the stream
   bool json = false;
 };
 
@@ -121,11 +122,15 @@ struct SimLanes {
 };
 
 void make_lanes(const VectorHeader& header, const std::vector<UnitSpec>& specs, int display_bits,
-                SimLanes& lanes) {
-  lanes.slots = make_slots(header);
+                std::size_t slot_capacity, SimLanes& lanes) {
+  try {
+    lanes.slots = make_slots(header, slot_capacity);
+  } catch (const SlotCapacityError& e) {
+    refuse_slots(slot_capacity, e);  // the stream needs more than the chip holds
+  }
   lanes.colour = stream_is_coloured(header);
   for (const auto& s : specs) {
-    lanes.owned.push_back(make_unit(s, lanes.slots.params));
+    lanes.owned.push_back(make_unit(s, lanes.slots));
     lanes.units.push_back(lanes.owned.back().get());
   }
   lanes.acc.reserve(lanes.units.size());
@@ -222,11 +227,15 @@ nlohmann::json build_report(const SimOptions& o, bool clocked, const SimLanes& l
                            {"sink_ready", o.sink_ready},
                            {"seed", o.seed},
                            {"slots", lanes.slots.params.size()},
-                           {"per_light_slots", lanes.slots.per_light}};
+                           {"per_light_slots", lanes.slots.per_light},
+                           {"datapath_groups", lanes.slots.groups.size()},
+                           {"slot_capacity", lanes.slots.capacity > 0 ? lanes.slots.capacity
+                                                                      : lanes.slots.params.size()}};
   nlohmann::json list = nlohmann::json::array();
   for (std::size_t i = 0; i < lanes.units.size(); ++i) {
     list.push_back(unit_sim_report(*lanes.units[i], run.timing[i], lanes.acc[i].stats(),
-                                   lanes.acc[i].digest(), lanes.colour));
+                                   lanes.acc[i].digest(), lanes.colour,
+                                   static_cast<int>(lanes.slots.colour_entries())));
   }
   report["units"] = list;
   return report;
@@ -254,7 +263,7 @@ int run_sim(const SimOptions& o) {
   const SimPlan plan = check_sim_options(o);
   VectorReader reader(o.vectors);
   SimLanes lanes;
-  make_lanes(reader.header(), plan.specs, o.display_bits, lanes);
+  make_lanes(reader.header(), plan.specs, o.display_bits, o.slots, lanes);
   std::unique_ptr<SimDump> dump;
   if (!o.dump.empty()) dump = std::make_unique<SimDump>(o.dump, reader.header(), lanes);
   const bool progress = isatty(STDERR_FILENO);
@@ -298,6 +307,7 @@ void add_sim_command(CLI::App& app, int& status) {
       ->check(CLI::Range(1, 1 << 24))
       ->capture_default_str();
   add_display_bits_option(sub, o->display_bits);
+  add_slots_option(sub, o->slots);
   sub->add_flag("--json", o->json, "Print the report as one JSON document on stdout");
   sub->callback([o, &status] { status = guarded([&] { return run_sim(*o); }); });
 }

@@ -144,17 +144,33 @@ class CostBuilder {
   std::map<std::string, double> computed_, request_;
 };
 
-// What every part of a lane shares: the unit's formats, whether it skips, its slots and timing.
+// What every part of a lane shares: the unit's formats, whether it skips, its slots, datapath
+// groups and timing.
 struct LaneShape {
   QFormat in, out;
   bool skip = true;
-  int slots = 1, slot_bits = 0, latency = 1, buffer = 1;
+  // Comparator thresholds (entries of the tau table) and datapath groups (entries of every
+  // per-material table: n, span, k, coefficients, t^n tables), each the stream's count or, for a
+  // chip of fixed capacity, that capacity.
+  int slots = 1, groups = 1;
+  // The group id the pipeline carries to the per-material tables.
+  int group_bits = 0;
+  // Slots share datapath groups (or a fixed-capacity chip, which may have to): each tau entry
+  // names its group (otherwise the slot id is the group id).
+  bool slot_to_group = false;
+  // A chip of fixed capacity (--slots): registers hold what any scene may need.
+  bool fixed = false;
+  // RGB entries of the colour stage and the id the merge buffer carries to it.
+  int colours = 1, colour_bits = 0;
+  int latency = 1, buffer = 1;
 };
 
-// Comparator stage: tau (or hast/horner's root) per slot, the compare, and the register that
-// carries t, the skip flag, the slot id and (carry_root) the root to the u scaler.
+// Comparator stage: tau per slot (for hast/horner also the root per datapath group), the compare,
+// and the register that carries t, the skip flag, the group id and (carry_root) the root to the u
+// scaler.
 void comparator_stage(CostBuilder& b, const LaneShape& L, bool carry_root);
-// The in-order merge buffer (its entries carry the slot id when the colour stage follows).
+// The in-order merge buffer (its entries carry the colour id when the colour stage follows: the
+// entry is reserved at issue, so the id is written there, not carried through the unit).
 void merge_buffer(CostBuilder& b, const LaneShape& L, bool colour);
 // The RGB multiply after the merge buffer (coloured streams).
 void colour_stage(CostBuilder& b, const LaneShape& L);

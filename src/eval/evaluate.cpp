@@ -3,8 +3,13 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <set>
+#include <stdexcept>
+#include <tuple>
 
 namespace glint {
 namespace {
@@ -13,42 +18,158 @@ Rgb rgb(const std::array<double, 3>& a) {
   return Rgb{a[0], a[1], a[2]};
 }
 
+// "light 2", "lights 0-3, 7", or for scattered sets "lights 0, 2, 4, 6, 8, 10, ... (512 lights)".
+std::string light_list(const std::vector<int>& lights) {
+  constexpr int kMaxRuns = 6;  // names stay readable with 1024 lights
+  std::string out;
+  int runs = 0;
+  for (std::size_t i = 0; i < lights.size();) {
+    std::size_t j = i;
+    while (j + 1 < lights.size() && lights[j + 1] == lights[j] + 1) ++j;
+    if (runs == kMaxRuns) {
+      out += fmt::format(", ... ({} lights)", lights.size());
+      break;
+    }
+    if (!out.empty()) out += ", ";
+    out += j == i ? std::to_string(lights[i])
+                  : fmt::format("{}{}{}", lights[i], j == i + 1 ? ", " : "-", lights[j]);
+    ++runs;
+    i = j + 1;
+  }
+  return (lights.size() > 1 ? "lights " : "light ") + out;
+}
+
+// Källberg's threshold for one material at one c_y (eq.5 for power lobes, eq.9 for Gaussian ones),
+// with eps_K = eps / K over the K lights (§2).
+MaterialParams slot_params(const VectorHeader& header, const VectorMaterial& m, double cy) {
+  MaterialParams p;
+  TauResult tau;
+  if (m.lobe == Lobe::kGaussian) {
+    // The t^n units approximate the Gaussian lobe through its equivalent exponent 2/omega^2
+    // unless the file gives a shininess of its own.
+    p.shininess = m.shininess > 0 ? m.shininess : gaussian_equivalent_shininess(m.roughness);
+    tau = tau_gaussian(m.roughness, header.eps, cy, header.lights);
+  } else {
+    p.shininess = m.shininess;
+    tau = tau_power(m.shininess, header.eps, cy, header.lights);
+  }
+  p.always_skip = tau.always_skip;
+  p.tau = tau.never_skip ? -1.0 : tau.tau;
+  p.level = cy > 0 ? tau.eps / cy : 1.0;
+  return p;
+}
+
 }  // namespace
 
-SlotMap make_slots(const VectorHeader& header) {
+SlotMap make_slots(const VectorHeader& header, std::size_t capacity) {
   SlotMap map;
-  map.materials = header.materials.size();
-  for (int l = 0; l < header.lights; ++l) {
-    const auto i = header.intensity(l);
-    if (i[0] != 1.0 || i[1] != 1.0 || i[2] != 1.0) map.per_light = true;
-  }
-  const int light_slots = map.per_light ? header.lights : 1;
-  for (int l = 0; l < light_slots; ++l) {
-    for (const VectorMaterial& m : header.materials) {
-      const double cy =
-          map.per_light ? c_y(rgb(header.intensity(l)), rgb(m.specular)) : c_y(rgb(m.specular));
-      const Lobe lobe = m.lobe;
-      MaterialParams p;
-      TauResult tau;
-      if (lobe == Lobe::kGaussian) {
-        // The t^n units approximate the Gaussian lobe through its equivalent exponent 2/omega^2
-        // unless the file gives a shininess of its own.
-        p.shininess = m.shininess > 0 ? m.shininess : gaussian_equivalent_shininess(m.roughness);
-        tau = tau_gaussian(m.roughness, header.eps, cy, header.lights);
+  const std::size_t materials = header.materials.size();
+  const auto lights = static_cast<std::size_t>(header.lights);
+  map.materials = materials;
+  map.capacity = capacity;
+
+  // Slots in order of first use, light by light (light 0's materials first): with every light
+  // white this is one slot per material in material order, and with every light changing every
+  // material's c_y it is light x material, as before slots were shared.
+  struct MaterialSlots {
+    std::vector<double> c_y;          // distinct c_y, one per slot of the material
+    std::vector<std::uint32_t> slot;  // their slots
+    std::set<std::array<double, 3>> colours;
+  };
+  std::vector<MaterialSlots> per_material(materials);
+  std::vector<std::uint32_t> slot_of(lights * materials);
+  for (std::size_t l = 0; l < lights; ++l) {
+    const auto i = header.intensity(static_cast<int>(l));
+    for (std::size_t mi = 0; mi < materials; ++mi) {
+      const VectorMaterial& m = header.materials[mi];
+      MaterialSlots& ms = per_material[mi];
+      ms.colours.insert({i[0] * m.specular[0], i[1] * m.specular[1], i[2] * m.specular[2]});
+      // A white light's product is the specular colour itself: its c_y is eq.6's exactly.
+      const double cy = c_y(rgb(i), rgb(m.specular));
+      const auto it = std::find(ms.c_y.begin(), ms.c_y.end(), cy);
+      std::uint32_t slot;
+      if (it != ms.c_y.end()) {
+        slot = ms.slot[static_cast<std::size_t>(it - ms.c_y.begin())];
+        map.origin[slot].lights.push_back(static_cast<int>(l));
       } else {
-        p.shininess = m.shininess;
-        tau = tau_power(m.shininess, header.eps, cy, header.lights);
+        slot = static_cast<std::uint32_t>(map.params.size());
+        ms.c_y.push_back(cy);
+        ms.slot.push_back(slot);
+        map.params.push_back(slot_params(header, m, cy));
+        map.lobe.push_back(m.lobe);
+        map.roughness.push_back(m.roughness);
+        map.c_y.push_back(cy);
+        map.origin.push_back(SlotOrigin{mi, {static_cast<int>(l)}, cy, false});
       }
-      p.always_skip = tau.always_skip;
-      p.tau = tau.never_skip ? -1.0 : tau.tau;
-      p.level = cy > 0 ? tau.eps / cy : 1.0;
-      p.name = map.per_light ? fmt::format("light {} x material '{}'", l, m.name)
-                             : fmt::format("material '{}'", m.name);
-      map.params.push_back(p);
-      map.lobe.push_back(lobe);
-      map.roughness.push_back(m.roughness);
-      map.c_y.push_back(cy);
+      slot_of[l * materials + mi] = slot;
     }
+  }
+  for (const MaterialSlots& ms : per_material) map.colours += ms.colours.size();
+
+  // Names: a material's only slot is the material; several slots say which lights give each.
+  for (std::size_t s = 0; s < map.params.size(); ++s) {
+    SlotOrigin& o = map.origin[s];
+    const std::string& name = header.materials[o.material].name;
+    o.own_tau = per_material[o.material].slot.size() > 1;
+    map.per_light = map.per_light || o.own_tau;
+    map.params[s].name = o.own_tau ? fmt::format("material '{}' under {} (c_y {:.3g}: its own tau)",
+                                                 name, light_list(o.lights), o.c_y)
+                                   : fmt::format("material '{}'", name);
+  }
+  if (map.per_light) {
+    map.slot_of = std::move(slot_of);
+    map.light_stride = materials;
+  } else {
+    map.slot_of.assign(slot_of.begin(), slot_of.begin() + static_cast<long>(materials));
+  }
+
+  // Datapath groups: a material's slots share one datapath, built from the params of its slot of
+  // the largest c_y. tau (eq.5, eq.9) and the level eps_K / c_y fall as c_y grows, so that slot
+  // has the smallest of both: its datapath covers every input any of the material's comparators
+  // lets through (lut's table span, hast's root, horner's fit domain all start at it). Materials
+  // whose datapaths would be identical (the same n and threshold) share one too.
+  std::map<std::tuple<double, double, double, bool>, std::uint32_t> by_params;
+  std::vector<std::uint32_t> group_of_material(materials);
+  std::vector<std::vector<std::size_t>> group_materials;
+  for (std::size_t mi = 0; mi < materials; ++mi) {
+    const MaterialSlots& ms = per_material[mi];
+    std::size_t best = 0;
+    for (std::size_t k = 1; k < ms.c_y.size(); ++k)
+      if (ms.c_y[k] > ms.c_y[best]) best = k;
+    const MaterialParams& p = map.params[ms.slot[best]];
+    const auto key = std::make_tuple(p.shininess, p.tau, p.level, p.always_skip);
+    const auto [it, fresh] = by_params.emplace(key, static_cast<std::uint32_t>(map.groups.size()));
+    if (fresh) {
+      map.groups.push_back(p);
+      group_materials.emplace_back();
+    }
+    group_of_material[mi] = it->second;
+    group_materials[it->second].push_back(mi);
+  }
+  for (std::size_t g = 0; g < map.groups.size(); ++g) {
+    const auto& ms = group_materials[g];
+    map.groups[g].name = ms.size() == 1
+                             ? fmt::format("material '{}'", header.materials[ms[0]].name)
+                             : fmt::format("material '{}' (and {} more with the same datapath)",
+                                           header.materials[ms[0]].name, ms.size() - 1);
+  }
+  map.group.resize(map.params.size());
+  for (std::size_t s = 0; s < map.params.size(); ++s)
+    map.group[s] = group_of_material[map.origin[s].material];
+
+  if (capacity > 0) {
+    if (capacity > kMaxSlotCapacity)
+      throw SlotCapacityError(
+          fmt::format("slot capacity {}: at most {}", capacity, kMaxSlotCapacity));
+    if (map.params.size() > capacity)
+      throw SlotCapacityError(fmt::format(
+          "a chip of {} slots cannot hold this stream: it needs {} (one per material and c_y: {} "
+          "materials under {} lights)",
+          capacity, map.params.size(), materials, lights));
+    if (map.colours > capacity)
+      throw SlotCapacityError(
+          fmt::format("a chip of {} slots cannot hold this stream's {} light x specular colours",
+                      capacity, map.colours));
   }
   return map;
 }
@@ -244,9 +365,9 @@ void LaneAccumulator::add_scalar(std::size_t slot, const RowReference& ref, std:
 }
 
 Evaluator::Evaluator(const VectorHeader& header, const std::vector<UnitSpec>& specs,
-                     int display_bits)
-    : slots_(make_slots(header)), display_bits_(display_bits) {
-  for (const UnitSpec& spec : specs) units_.push_back(make_unit(spec, slots_.params));
+                     int display_bits, std::size_t slot_capacity)
+    : slots_(make_slots(header, slot_capacity)), display_bits_(display_bits) {
+  for (const UnitSpec& spec : specs) units_.push_back(make_unit(spec, slots_));
   std::vector<std::string> names;
   for (const auto& u : units_) names.push_back(u->name());
   const auto labels = unit_labels(names);
@@ -288,6 +409,8 @@ nlohmann::json Evaluator::to_json() const {
   return {{"glint_eval_report", kEvalReportVersion},
           {"slots", slots_.params.size()},
           {"per_light_slots", slots_.per_light},
+          {"datapath_groups", slots_.groups.size()},
+          {"slot_capacity", slots_.capacity > 0 ? slots_.capacity : slots_.params.size()},
           {"units", units}};
 }
 
@@ -317,6 +440,32 @@ std::string format_eval_table(const std::vector<UnitStats>& stats) {
         s.total.t_at_max, s.total.rms(), lsb_cell(s.total.max_abs * lsb),
         lsb_cell(s.bound().total() * lsb), lsb_cell(s.weighted.max_abs * lsb), s.max_ulps(),
         s.vectors ? 100.0 * s.mismatch / s.vectors : 0.0, to_string(s.contract()));
+  }
+  return out;
+}
+
+std::string format_elaboration(const std::vector<UnitStats>& stats) {
+  std::string out;
+  for (const auto& s : stats) {
+    const auto it = s.description.find("elaboration");
+    if (it == s.description.end()) continue;
+    const nlohmann::json& e = *it;
+    std::string n;
+    if (const auto nr = e.find("n_register"); nr != e.end()) {
+      n = fmt::format(
+          ", n register {} ({})", (*nr)["built"].get<std::string>(),
+          (*nr)["exact"].get<bool>()
+              ? "exact"
+              : fmt::format("quantized: |n_q - n| up to {:.3g} at {}",
+                            (*nr)["max_abs_error"].get<double>(), (*nr)["at"].get<std::string>()));
+    }
+    const std::string sized = e["sized_to"] == "stream"
+                                  ? std::string("sized to the stream")
+                                  : fmt::format("a chip of {}", e["capacity"].get<std::size_t>());
+    out +=
+        fmt::format("  {}: {} slots ({}), {} datapath groups, {} table entries{}\n", s.name,
+                    e["slots"].get<std::size_t>(), sized, e["datapath_groups"].get<std::size_t>(),
+                    e["table_entries"].get<long long>(), n);
   }
   return out;
 }

@@ -7,6 +7,7 @@
 #include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -14,27 +15,45 @@
 #include "io/vectors.h"
 #include "reference/reference.h"
 #include "units/catalogue.h"
+#include "units/slot_plan.h"
 
 namespace glint {
 
-// How the stream's materials (and lights) map to unit slots.
-struct SlotMap {
-  std::vector<MaterialParams> params;  // one per slot
-  std::vector<Lobe> lobe;              // lobe of each slot's material
-  std::vector<double> roughness;       // gaussian omega (0 otherwise)
-  std::vector<double> c_y;             // luminance behind each slot's tau (its pixel weight)
-  bool per_light = false;              // slots are light x material (coloured lights)
+// How the stream's (light, material) pairs map to unit slots and datapath groups (units/
+// slot_plan.h): one slot per distinct (material, c_y), c_y = luminance(light x specular)
+// (Källberg & Larsson eq.3; eq.6 for white lights), so lights that leave a material's c_y unchanged
+// share its slot; one datapath group per material (materials whose datapaths would be identical
+// share one), built for the smallest tau of its slots.
+struct SlotMap : SlotPlan {
+  std::vector<Lobe> lobe;         // lobe of each slot's material
+  std::vector<double> roughness;  // gaussian omega (0 otherwise)
+  std::vector<double> c_y;        // luminance behind each slot's tau (its pixel weight)
+  bool per_light = false;         // some light changes some material's c_y: it has several slots
   std::size_t materials = 0;
+  // Distinct light x specular colours per material: the colour stage's RGB entries.
+  std::size_t colours = 0;
+  // The slot of (light, material) is slot_of[light * light_stride + material]; light_stride is 0
+  // when every light gives each material the same slot.
+  std::vector<std::uint32_t> slot_of;
+  std::size_t light_stride = 0;
 
   std::size_t slot(const VectorRow& row) const {
-    return per_light ? static_cast<std::size_t>(row.light) * materials + row.material
-                     : row.material;
+    return slot_of[light_stride * row.light + row.material];
   }
+  // Entries of the colour stage's table: the stream's colours, or a fixed chip's capacity.
+  std::size_t colour_entries() const { return capacity > 0 ? capacity : colours; }
 };
 
-// Per material (Källberg eq.6) when every light is white, else per light x material (eq.3);
-// eps is divided by the light count (Källberg §2, eps_n = eps/n).
-SlotMap make_slots(const VectorHeader& header);
+// A stream that needs more slots (or colours) than a chip of fixed capacity holds.
+class SlotCapacityError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+// The slots of a stream (above); eps is divided by the light count (Källberg §2, eps_n = eps/n).
+// capacity > 0: a chip of that many slots (--slots), which must hold the stream's slots and
+// colours (SlotCapacityError otherwise, with the counts); 0: sized to the stream.
+SlotMap make_slots(const VectorHeader& header, std::size_t capacity = 0);
 
 // The float reference the units are judged against: max(0,t)^n for Phong and Blinn (eq.1-2, the
 // scalar lobe; colour is a separate multiply), exp(-(acos t / omega)^2) for Gaussian lobes (eq.7),
@@ -154,8 +173,9 @@ struct EvalRecord {
 // Schema version of the `glint eval` JSON report (key "glint_eval_report", schema in README.md).
 // Version 1 is the unversioned layout before eval took `glint sim`'s key names (error_vs_reference,
 // datapath_error_ulps, top-level mismatch_8bit_fraction and error_bound); 2 nests them in "errors";
-// 3 decomposes them (errors.parts, bounds per slot, display and weighted errors, contract).
-inline constexpr int kEvalReportVersion = 3;
+// 3 decomposes them (errors.parts, bounds per slot, display and weighted errors, contract); 4 adds
+// the scene's elaboration (datapath_groups, slot_capacity, description.elaboration).
+inline constexpr int kEvalReportVersion = 4;
 
 // The results of one batch of rows through every unit of an Evaluator: unit u's result for row i
 // at raw[u * rows + i] (0 when skipped), its skip flag at skipped[u * rows + i], and the float
@@ -169,7 +189,9 @@ struct BatchResults {
 
 class Evaluator {
  public:
-  Evaluator(const VectorHeader& header, const std::vector<UnitSpec>& specs, int display_bits = 8);
+  // slot_capacity: a chip of that many slots (make_slots); 0: sized to the stream.
+  Evaluator(const VectorHeader& header, const std::vector<UnitSpec>& specs, int display_bits = 8,
+            std::size_t slot_capacity = 0);
 
   void add(const VectorRow& row, const std::function<void(const EvalRecord&)>& dump = {});
   // The same as add() on each row in turn, the units spread over up to `threads` threads: each
@@ -189,6 +211,10 @@ class Evaluator {
   std::vector<LaneAccumulator> lanes_;
   int display_bits_ = 8;
 };
+
+// One line per unit of what the scene elaborated (slots, datapath groups, table entries, n
+// register), printed by `glint eval` after its tables.
+std::string format_elaboration(const std::vector<UnitStats>& stats);
 
 // The summary table printed by `glint eval`, and the table of error parts printed after it.
 std::string format_eval_table(const std::vector<UnitStats>& stats);

@@ -9,8 +9,8 @@
 namespace glint {
 
 nlohmann::json unit_sim_report(const SpecularUnit& unit, const TimingStats& t, const UnitStats& s,
-                               std::uint64_t digest, bool colour) {
-  const UnitCost cost = unit_cost(unit, colour);
+                               std::uint64_t digest, bool colour, int colour_entries) {
+  const UnitCost cost = unit_cost(unit, colour, colour_entries);
   nlohmann::json ops = nlohmann::json::object();
   for (const auto& [kind, n] : cost.ops_per_computed)
     ops[kind] = ops.value(kind, 0.0) + n * static_cast<double>(t.computed);
@@ -22,6 +22,7 @@ nlohmann::json unit_sim_report(const SpecularUnit& unit, const TimingStats& t, c
       {"spec", unit.canonical_spec()},
       {"config", description["config"]},
       {"timing", description["timing"]},
+      {"elaboration", description["elaboration"]},
       {"colour_multiply", colour},
       {"vectors", s.vectors},
       {"skipped", s.skipped},
@@ -111,9 +112,11 @@ std::vector<std::string> diff_sim_reports(const nlohmann::json& golden, const nl
         fmt::format("units: {} in the new report, {} in the golden", fu.size(), gu.size()));
     return out;
   }
-  // Float statistics (errors, area, critical path, throughput/latency means) get the tolerance;
+  // Float statistics (errors, area, critical path, throughput/latency means, the elaboration's tau
+  // and c_y) get the tolerance;
   // everything else is bit-accurate or an integer count and must match exactly.
-  static const char* kTolerant[] = {"errors", "area", "critical_path", "throughput", "latency"};
+  static const char* kTolerant[] = {"errors",     "area",    "critical_path",
+                                    "throughput", "latency", "elaboration"};
   for (std::size_t i = 0; i < gu.size(); ++i) {
     const std::string name = gu[i].value("unit", std::to_string(i));
     for (auto it = gu[i].begin(); it != gu[i].end(); ++it) {

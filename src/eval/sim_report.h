@@ -12,11 +12,15 @@
 
 namespace glint {
 
-inline constexpr int kSimReportVersion = 2;  // 2: errors decomposed (README)
+// 2: errors decomposed; 3: the scene's elaboration (datapath_groups, slot_capacity, per unit
+// "elaboration") (README).
+inline constexpr int kSimReportVersion = 3;
 
-// One unit's report: config, counts, timing, operations, area and critical path, errors.
+// One unit's report: config, elaboration, counts, timing, operations, area and critical path,
+// errors. colour_entries: the colour stage's RGB entries (SlotMap::colour_entries).
 nlohmann::json unit_sim_report(const SpecularUnit& unit, const TimingStats& timing,
-                               const UnitStats& stats, std::uint64_t digest, bool colour);
+                               const UnitStats& stats, std::uint64_t digest, bool colour,
+                               int colour_entries = 0);
 
 // The table printed on stdout.
 std::string format_sim_table(const nlohmann::json& report);

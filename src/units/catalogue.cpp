@@ -105,11 +105,16 @@ const UnitInfo& unit_info(std::string_view name) {
 
 std::unique_ptr<SpecularUnit> make_unit(const UnitSpec& spec,
                                         const std::vector<MaterialParams>& slots) {
+  return make_unit(spec, SlotPlan::per_slot(slots));
+}
+
+std::unique_ptr<SpecularUnit> make_unit(const UnitSpec& spec, const SlotPlan& plan) {
+  check_slot_plan(plan);
   const UnitInfo& info = unit_info(spec.name);
   const UnitDescription& d = description(spec.name);
   try {
     const KeyReader keys(spec, info.keys);
-    return d.build(keys, slots);
+    return d.build(keys, plan);
   } catch (const std::invalid_argument& e) {
     // Datapath constructors name themselves ("hast: ..."); key errors do not.
     const std::string what = e.what();

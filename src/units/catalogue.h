@@ -27,7 +27,10 @@ std::vector<std::string> unit_names();
 // kind appears more than once (e.g. hast and hast:d=3).
 std::vector<std::string> unit_labels(const std::vector<std::string>& names);
 
-// Builds a unit. Throws std::invalid_argument for unknown names, keys or bad values.
+// Builds a unit for a scene's slots (units/slot_plan.h: a threshold per slot, a datapath per
+// group). Throws std::invalid_argument for unknown names, keys, bad values or an inconsistent plan.
+std::unique_ptr<SpecularUnit> make_unit(const UnitSpec& spec, const SlotPlan& plan);
+// The same with one datapath group per slot (SlotPlan::per_slot): nothing shared.
 std::unique_ptr<SpecularUnit> make_unit(const UnitSpec& spec,
                                         const std::vector<MaterialParams>& slots);
 

@@ -6,13 +6,22 @@
 
 namespace glint {
 
-UnitCost unit_cost(const SpecularUnit& unit, bool colour_multiply) {
+UnitCost unit_cost(const SpecularUnit& unit, bool colour_multiply, int colour_entries) {
   LaneShape lane;
   lane.in = unit.in_format();
   lane.out = unit.out_format();
   lane.skip = unit.comparator_enabled();
-  lane.slots = static_cast<int>(unit.slots());
-  lane.slot_bits = clog2(std::max(lane.slots, 1));
+  // Sized to the stream: a threshold per slot, a per-material entry per datapath group. A chip of
+  // fixed capacity N: N of each (any N slots may be N materials).
+  lane.fixed = unit.slot_capacity() > 0;
+  lane.slots = static_cast<int>(lane.fixed ? unit.slot_capacity() : unit.slots());
+  lane.groups = static_cast<int>(lane.fixed ? unit.slot_capacity() : unit.datapath_groups());
+  lane.slots = std::max(lane.slots, 1);
+  lane.groups = std::max(lane.groups, 1);
+  lane.group_bits = clog2(lane.groups);
+  lane.slot_to_group = lane.fixed || unit.datapath_groups() < unit.slots();
+  lane.colours = colour_entries > 0 ? colour_entries : lane.slots;
+  lane.colour_bits = clog2(lane.colours);
   lane.latency = unit.timing().latency;
   lane.buffer = unit.timing().buffer_depth;
   CostBuilder b;

@@ -8,6 +8,8 @@
 
 namespace glint {
 
-UnitCost unit_cost(const SpecularUnit& unit, bool colour_multiply = false);
+// colour_entries: RGB entries of the colour stage (the stream's distinct light x specular colours;
+// 0: one per threshold entry).
+UnitCost unit_cost(const SpecularUnit& unit, bool colour_multiply = false, int colour_entries = 0);
 
 }  // namespace glint

@@ -7,8 +7,8 @@
 
 namespace glint {
 
-// u = (t - root) k clamped to [0, 1] at fh fraction bits: the k table (per slot, k_width bits), a
-// subtractor, a multiplier and the clamp. Returns the stage path.
+// u = (t - root) k clamped to [0, 1] at fh fraction bits: the k table (per datapath group, k_width
+// bits), a subtractor, a multiplier and the clamp. Returns the stage path.
 std::vector<Seg> u_scaler_cost(CostBuilder& b, const LaneShape& L, int k_width, int fh);
 
 }  // namespace glint

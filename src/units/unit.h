@@ -1,6 +1,7 @@
 // What a built unit offers the rest of glint, whatever its kind: the runtime interface over the
-// per-slot datapaths (units/unit_set.h implements it once for every kind), and the description
-// each unit registers in the catalogue (units/catalogue.h): its name, keys and how to build it.
+// datapaths its slots share (units/unit_set.h implements it once for every kind), and the
+// description each unit registers in the catalogue (units/catalogue.h): its name, keys and how to
+// build it.
 //
 // A unit's knowledge lives in its own folder, src/units/<unit>/: datapath.h (the bit-accurate
 // datapath, one behaviour for eval and the staged evaluation), datapath.cpp (construction, real
@@ -19,6 +20,7 @@
 
 #include "timing/timing.h"
 #include "units/common.h"
+#include "units/slot_plan.h"
 #include "units/stages.h"
 
 namespace glint {
@@ -42,7 +44,8 @@ struct UnitInfo {
   std::vector<UnitKey> keys;  // common keys first, then the unit's own
 };
 
-// One unit built for a set of slots (materials or light x material pairs).
+// One unit built for a scene's slots (units/slot_plan.h): a comparator threshold per slot, in front
+// of datapaths built once per group of slots (a material's, whatever its lights) and shared.
 class SpecularUnit {
  public:
   virtual ~SpecularUnit() = default;
@@ -53,6 +56,13 @@ class SpecularUnit {
   virtual QFormat in_format() const = 0;
   virtual QFormat out_format() const = 0;
   virtual std::size_t slots() const = 0;
+  // A chip of fixed capacity (SlotPlan::capacity, --slots N): N entries in the threshold table and
+  // in every per-material table. 0: sized to the stream (slots() thresholds, datapath_groups()
+  // per-material entries).
+  virtual std::size_t slot_capacity() const = 0;
+  // The datapath instances (tables, coefficients, n register contents) and which one a slot reads.
+  virtual std::size_t datapath_groups() const = 0;
+  virtual std::size_t datapath_of(std::size_t slot) const = 0;
 
   // Comparator threshold of a slot in the input format (-1: never skips): the unit's own
   // (unit_threshold_raw in units/common.h), so every skipped output is imperceptible.
@@ -75,7 +85,8 @@ class SpecularUnit {
   // The unit's error budget against its own real-valued model(): |eval - model| <= this many
   // output ulps on every input code (½: correctly rounded; < 1: faithful).
   virtual double datapath_bound_ulps(std::size_t slot) const = 0;
-  // Structured description: config and per-slot constants (tables sizes, coefficients, widths).
+  // Structured description: config, per-slot constants (tables sizes, coefficients, widths) and
+  // the elaboration (what the scene made the unit build, and why).
   virtual nlohmann::json describe() const = 0;
   // Latency, initiation interval and merge-buffer depth of the unit's hardware (timing keys).
   virtual UnitTiming timing() const = 0;
@@ -100,10 +111,10 @@ class UnitDescription {
   virtual ~UnitDescription() = default;
   // Name, summary and the unit's own keys (without the common ones).
   virtual UnitInfo info() const = 0;
-  // Builds the unit for `slots` from its keys (the common ones already read into `common`).
-  // Throws std::invalid_argument for bad values.
+  // Builds the unit for a scene's slots from its keys: one datapath per group of `plan`, one
+  // threshold per slot. Throws std::invalid_argument for bad values.
   virtual std::unique_ptr<SpecularUnit> build(const KeyReader& keys,
-                                              const std::vector<MaterialParams>& slots) const = 0;
+                                              const SlotPlan& plan) const = 0;
 };
 
 }  // namespace glint

@@ -1,30 +1,36 @@
-// The one implementation of SpecularUnit, for every unit kind: per-slot datapath instances, the
-// comparator in front, the batch loop the compiler inlines the datapath into, the staged
-// evaluation through the same datapath function, and the description.
+// The one implementation of SpecularUnit, for every unit kind: the datapath instances (one per
+// group of slots, units/slot_plan.h), the comparator in front with a threshold per slot, the batch
+// loop the compiler inlines the datapath into, the staged evaluation through the same datapath
+// function, and the description with its elaboration report.
 //
 // A kind (src/units/<unit>/<unit>.cpp) is a struct with:
 //   using Config = ...;  using Datapath = ...;      // Datapath(config, MaterialParams)
 //   static constexpr const char* kName, kSummary;
 //   static std::vector<UnitKey> keys();            // its own keys, in catalogue order
 //   static std::unique_ptr<SpecularUnit> build(const KeyReader&, const CommonKeys&,
-//                                              const std::vector<MaterialParams>&);
+//                                              const SlotPlan&);   // a datapath per plan.groups
 //   static std::vector<Stage> stages(const Config&, const std::vector<Datapath>&, UnitTiming);
 //   static void cost(CostBuilder&, const LaneShape&, const Config&, const std::vector<Datapath>&);
 //   static nlohmann::json describe_slot(const Datapath&);
 //   static double error_bound(const Datapath&);    // optional (UnitKindDefaults: NaN)
 //   static bool carries_root(const Config&);       // optional (UnitKindDefaults: false)
+//   static std::optional<NRegister> n_register(const Config&, const std::vector<Datapath>&,
+//                                              bool fixed);   // optional: units with an n register
 // (deriving from UnitKindDefaults for the optional ones), and its Datapath has eval(t), run(t,
 // probe) (eval is run with NoProbe), model, float_model and datapath_bound_ulps() (its error
 // budget: |eval - model| in output ulps). build() ends with make_unit_set<Kind>(...), which also
-// sets every slot's comparator threshold from the unit's own output (unit_threshold_raw).
+// sets every slot's comparator threshold from the unit's own output (unit_threshold_raw) through
+// the datapath of the slot's group.
 #pragma once
 
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -32,12 +38,16 @@
 
 #include "cost/builder.h"
 #include "units/keys.h"
+#include "units/lane_cost.h"
+#include "units/n_register.h"
+#include "units/slot_plan.h"
 #include "units/unit.h"
 
 namespace glint {
 
 // What a kind leaves out unless it says otherwise: its contract is against its own real-valued
-// model (no stated bound against t^n), and its comparator carries no root to a u scaler.
+// model (no stated bound against t^n), its comparator carries no root to a u scaler, and it holds
+// no shininess register.
 struct UnitKindDefaults {
   template <class Datapath>
   static double error_bound(const Datapath&) {
@@ -47,6 +57,10 @@ struct UnitKindDefaults {
   static bool carries_root(const Config&) {
     return false;
   }
+  template <class Config, class Datapath>
+  static std::optional<NRegister> n_register(const Config&, const std::vector<Datapath>&, bool) {
+    return std::nullopt;
+  }
 };
 
 template <class Kind>
@@ -55,24 +69,31 @@ class UnitSet final : public SpecularUnit {
   using Config = typename Kind::Config;
   using Datapath = typename Kind::Datapath;
 
-  UnitSet(std::string canonical, const CommonKeys& common, Config cfg, std::vector<Datapath> units,
-          const std::vector<MaterialParams>& slots, nlohmann::json config, UnitTiming timing)
+  UnitSet(std::string canonical, const CommonKeys& common, Config cfg,
+          std::vector<Datapath> datapaths, const SlotPlan& plan, nlohmann::json config,
+          UnitTiming timing)
       : name_(Kind::kName),
         canonical_(std::move(canonical)),
         in_(common.in),
         out_(common.out),
         skip_(common.skip),
         cfg_(std::move(cfg)),
-        units_(std::move(units)),
+        datapaths_(std::move(datapaths)),
+        group_(plan.group),
+        params_(plan.params),
+        group_params_(plan.groups),
+        origin_(plan.origin),
+        capacity_(plan.capacity),
         config_(std::move(config)),
         timing_(timing),
-        layout_(Kind::stages(cfg_, units_, timing_), timing_.ii, out_) {
-    thresholds_.assign(units_.size(), -1);
+        layout_(Kind::stages(cfg_, datapaths_, timing_), timing_.ii, out_) {
+    thresholds_.assign(group_.size(), -1);
     if (!skip_) return;
-    for (std::size_t s = 0; s < units_.size(); ++s) {
-      const Datapath& u = units_[s];
+    // Each slot's own threshold through the datapath it shares: its level eps_K / c_y is its own.
+    for (std::size_t s = 0; s < group_.size(); ++s) {
+      const Datapath& u = datapaths_[group_[s]];
       thresholds_[s] =
-          unit_threshold_raw(slots[s], in_, out_, [&u](std::int64_t t) { return u.eval(t); });
+          unit_threshold_raw(params_[s], in_, out_, [&u](std::int64_t t) { return u.eval(t); });
     }
   }
 
@@ -80,14 +101,17 @@ class UnitSet final : public SpecularUnit {
   std::string canonical_spec() const override { return canonical_; }
   QFormat in_format() const override { return in_; }
   QFormat out_format() const override { return out_; }
-  std::size_t slots() const override { return units_.size(); }
+  std::size_t slots() const override { return group_.size(); }
+  std::size_t slot_capacity() const override { return capacity_; }
+  std::size_t datapath_groups() const override { return datapaths_.size(); }
+  std::size_t datapath_of(std::size_t s) const override { return group_[s]; }
   std::int64_t tau_raw(std::size_t s) const override { return thresholds_[s]; }
-  std::int64_t eval(std::size_t s, std::int64_t t) const override { return units_[s].eval(t); }
-  double model(std::size_t s, std::int64_t t) const override { return units_[s].model(t); }
-  double float_model(std::size_t s, double t) const override { return units_[s].float_model(t); }
+  std::int64_t eval(std::size_t s, std::int64_t t) const override { return dp(s).eval(t); }
+  double model(std::size_t s, std::int64_t t) const override { return dp(s).model(t); }
+  double float_model(std::size_t s, double t) const override { return dp(s).float_model(t); }
   void eval_batch(std::size_t s, const std::int64_t* t, std::int64_t* out, std::uint8_t* skipped,
                   std::size_t n) const override {
-    const Datapath& u = units_[s];
+    const Datapath& u = dp(s);
     const std::int64_t tau = thresholds_[s];
     for (std::size_t i = 0; i < n; ++i) {
       const bool sk = tau_skip(t[i], tau);
@@ -98,18 +122,16 @@ class UnitSet final : public SpecularUnit {
   void eval_staged(std::size_t s, std::int64_t t, std::int64_t* values) const override {
     // Registers a short-cut input leaves untouched (t = 0 in pow, t <= t0 in lut) read 0.
     std::fill(values, values + layout_.size(), 0);
-    units_[s].run(t, StageProbe(layout_, values));
+    dp(s).run(t, StageProbe(layout_, values));
   }
   const StageLayout& stages() const override { return layout_; }
-  double error_bound(std::size_t s) const override { return Kind::error_bound(units_[s]); }
-  double datapath_bound_ulps(std::size_t s) const override {
-    return units_[s].datapath_bound_ulps();
-  }
+  double error_bound(std::size_t s) const override { return Kind::error_bound(dp(s)); }
+  double datapath_bound_ulps(std::size_t s) const override { return dp(s).datapath_bound_ulps(); }
   UnitTiming timing() const override { return timing_; }
   bool comparator_enabled() const override { return skip_; }
   bool comparator_carries_root() const override { return Kind::carries_root(cfg_); }
   void add_cost(CostBuilder& b, const LaneShape& lane) const override {
-    Kind::cost(b, lane, cfg_, units_);
+    Kind::cost(b, lane, cfg_, datapaths_);
   }
   nlohmann::json describe() const override {
     nlohmann::json j;
@@ -119,21 +141,90 @@ class UnitSet final : public SpecularUnit {
     j["timing"] = {
         {"latency", timing_.latency}, {"ii", timing_.ii}, {"buffer_depth", timing_.buffer_depth}};
     nlohmann::json slots = nlohmann::json::array();
-    for (std::size_t s = 0; s < units_.size(); ++s) {
-      nlohmann::json slot = Kind::describe_slot(units_[s]);
+    for (std::size_t s = 0; s < group_.size(); ++s) {
+      nlohmann::json slot = Kind::describe_slot(dp(s));
       slot["threshold_raw"] = thresholds_[s];
       slots.push_back(std::move(slot));
     }
     j["slots"] = std::move(slots);
+    j["elaboration"] = elaboration();
     return j;
   }
 
  private:
+  const Datapath& dp(std::size_t s) const { return datapaths_[group_[s]]; }
+
+  // What the scene made the unit build, and why (README, "Only the hardware a scene needs").
+  nlohmann::json elaboration() const {
+    const bool fixed = capacity_ > 0;
+    nlohmann::json e{{"slots", group_.size()},
+                     {"capacity", fixed ? capacity_ : group_.size()},
+                     {"sized_to", fixed ? "capacity" : "stream"},
+                     {"datapath_groups", datapaths_.size()}};
+    std::vector<nlohmann::json> served(datapaths_.size(), nlohmann::json::array());
+    nlohmann::json slot_list = nlohmann::json::array();
+    for (std::size_t s = 0; s < group_.size(); ++s) {
+      served[group_[s]].push_back(s);
+      const MaterialParams& m = params_[s];
+      nlohmann::json slot{{"slot", s},
+                          {"name", m.name},
+                          {"group", group_[s]},
+                          {"tau", m.tau},
+                          {"level", m.level},
+                          {"always_skip", m.always_skip},
+                          {"threshold_raw", thresholds_[s]}};
+      if (s < origin_.size()) {
+        const SlotOrigin& o = origin_[s];
+        slot["material"] = o.material;
+        slot["lights"] = o.lights;
+        slot["c_y"] = o.c_y;
+        slot["why"] = o.own_tau ? "these lights change the material's c_y: a tau of its own"
+                                : "the material's threshold (every light gives it this c_y)";
+      } else {
+        slot["why"] = "a slot of its own";
+      }
+      slot_list.push_back(std::move(slot));
+    }
+    nlohmann::json groups = nlohmann::json::array();
+    for (std::size_t g = 0; g < datapaths_.size(); ++g) {
+      const MaterialParams& m = group_params_[g];
+      groups.push_back({{"group", g},
+                        {"name", m.name},
+                        {"slots", served[g]},
+                        {"built_for", {{"n", m.shininess}, {"tau", m.tau}, {"level", m.level}}},
+                        {"why", served[g].size() > 1
+                                    ? "one datapath for its slots, built for the smallest tau and "
+                                      "level among them (the largest c_y)"
+                                    : "the datapath of its slot"}});
+    }
+    e["groups"] = std::move(groups);
+    e["slot_list"] = std::move(slot_list);
+    if (const auto n = Kind::n_register(cfg_, datapaths_, fixed))
+      e["n_register"] = n_register_json(*n, group_params_);
+    // Every table the cost model places (units/lane_cost.h), as entries x width x banks.
+    nlohmann::json tables = nlohmann::json::array();
+    long long words = 0;
+    for (const Primitive& p : unit_cost(*this).inventory) {
+      if (p.kind != "table") continue;
+      tables.push_back(
+          {{"where", p.where}, {"entries", p.width_a}, {"width", p.width_b}, {"banks", p.count}});
+      words += static_cast<long long>(p.width_a) * p.count;
+    }
+    e["tables"] = std::move(tables);
+    e["table_entries"] = words;
+    return e;
+  }
+
   std::string name_, canonical_;
   QFormat in_, out_;
   bool skip_;
   Config cfg_;
-  std::vector<Datapath> units_;
+  std::vector<Datapath> datapaths_;           // one per datapath group
+  std::vector<std::uint32_t> group_;          // per slot: its group
+  std::vector<MaterialParams> params_;        // per slot: its comparator's parameters
+  std::vector<MaterialParams> group_params_;  // per group: what its datapath was built from
+  std::vector<SlotOrigin> origin_;
+  std::size_t capacity_ = 0;  // fixed chip capacity (0: sized to the slots)
   nlohmann::json config_;
   UnitTiming timing_;
   StageLayout layout_;
@@ -157,13 +248,13 @@ decltype(auto) for_slot(const MaterialParams& m, F&& f) {
   }
 }
 
-// One datapath instance per slot.
+// One datapath instance per group (plan.groups), each built from the group's params.
 template <class Datapath, class Config, class... Extra>
-std::vector<Datapath> build_per_slot(const Config& cfg, const std::vector<MaterialParams>& slots,
-                                     const Extra&... extra) {
+std::vector<Datapath> build_per_group(const Config& cfg, const std::vector<MaterialParams>& groups,
+                                      const Extra&... extra) {
   std::vector<Datapath> units;
-  units.reserve(slots.size());
-  for (const auto& m : slots) for_slot(m, [&] { units.emplace_back(cfg, m, extra...); });
+  units.reserve(groups.size());
+  for (const auto& m : groups) for_slot(m, [&] { units.emplace_back(cfg, m, extra...); });
   return units;
 }
 
@@ -173,9 +264,8 @@ std::vector<Datapath> build_per_slot(const Config& cfg, const std::vector<Materi
 template <class Kind>
 std::unique_ptr<SpecularUnit> make_unit_set(const CommonKeys& common, nlohmann::json config,
                                             typename Kind::Config cfg,
-                                            std::vector<typename Kind::Datapath> units,
-                                            const std::vector<MaterialParams>& slots,
-                                            UnitTiming timing) {
+                                            std::vector<typename Kind::Datapath> datapaths,
+                                            const SlotPlan& plan, UnitTiming timing) {
   timing.buffer_depth = common.buffer > 0 ? common.buffer : timing.latency + 3;
   config["buffer"] = timing.buffer_depth;
   std::string canonical = Kind::kName;
@@ -190,7 +280,7 @@ std::unique_ptr<SpecularUnit> make_unit_set(const CommonKeys& common, nlohmann::
     sep = ',';
   }
   return std::make_unique<UnitSet<Kind>>(std::move(canonical), common, std::move(cfg),
-                                         std::move(units), slots, std::move(config), timing);
+                                         std::move(datapaths), plan, std::move(config), timing);
 }
 
 // The catalogue entry of a kind.
@@ -198,9 +288,8 @@ template <class Kind>
 class DescriptionOf final : public UnitDescription {
  public:
   UnitInfo info() const override { return {Kind::kName, Kind::kSummary, Kind::keys()}; }
-  std::unique_ptr<SpecularUnit> build(const KeyReader& keys,
-                                      const std::vector<MaterialParams>& slots) const override {
-    return Kind::build(keys, read_common_keys(keys), slots);
+  std::unique_ptr<SpecularUnit> build(const KeyReader& keys, const SlotPlan& plan) const override {
+    return Kind::build(keys, read_common_keys(keys), plan);
   }
 };
 

@@ -89,7 +89,7 @@ int sc_main(int argc, char* argv[]) {
   std::vector<std::unique_ptr<glint::SpecularUnit>> owned;
   std::vector<const glint::SpecularUnit*> units;
   for (const auto& s : split(units_arg)) {
-    owned.push_back(glint::make_unit(glint::parse_unit_spec(s), slots.params));
+    owned.push_back(glint::make_unit(glint::parse_unit_spec(s), slots));
     units.push_back(owned.back().get());
   }
   std::vector<glint::LaneAccumulator> acc;

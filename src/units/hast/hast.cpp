@@ -1,11 +1,12 @@
 // hast: keys, build, timing, stage layout, cost inventory and description of Hast's chain.
 //
 // Hardware (L = d, II 1): the u scaler (k table, subtractor Wi, multiplier Wi x Wk with Wk the
-// widest slot's k_int_bits + k_frac_bits, clamp), then d - 1 multipliers (fh + 1) x (fh + 1),
-// fh = Fo + guard; each rounds in its tree (to fh bits, the last one to the output format).
-// Keys match= and root= change only the per-slot root in the k/root tables (units/match.h);
-// d=auto adds a per-slot d table and a 2:1 operand mux (u or 1.0) in front of every chain
-// multiplier, the chain as long as the largest d chosen.
+// widest datapath group's k_int_bits + k_frac_bits, clamp), then d - 1 multipliers (fh + 1) x
+// (fh + 1), fh = Fo + guard; each rounds in its tree (to fh bits, the last one to the output
+// format). Keys match= and root= change only the per-group root in the k/root tables (units/
+// match.h); d=auto adds a per-group d table and a 2:1 operand mux (u or 1.0) in front of every
+// chain multiplier, the chain as long as the largest d chosen. A datapath group (units/
+// slot_plan.h) is a material's: its slots share k, root and d.
 #include "units/hast/hast.h"
 
 #include <fmt/format.h>
@@ -90,7 +91,8 @@ struct Hast : UnitKindDefaults {
   }
 
   static std::unique_ptr<SpecularUnit> build(const KeyReader& keys, const CommonKeys& common,
-                                             const std::vector<MaterialParams>& slots) {
+                                             const SlotPlan& plan) {
+    const std::vector<MaterialParams>& groups = plan.groups;
     const std::string* d_key = keys.find("d");
     const bool auto_d = d_key && *d_key == "auto";
     HastConfig c{common.in, common.out, auto_d ? 16 : keys.integer("d", 4, 1, 16),
@@ -109,7 +111,9 @@ struct Hast : UnitKindDefaults {
                 fmt::format("d=auto chooses d by minimax: it needs match=minimax (given "
                             "match={}{})",
                             to_string(match), root >= 0 ? ", root=" + *root_key : ""));
-    const std::vector<HastSlot> roots = slot_roots(keys, match, auto_d, c.d, root, slots);
+    // Roots per datapath group: match=none takes the group's Källberg threshold, the smallest tau
+    // of its slots, so the chain's f is > 0 wherever any of their comparators lets t through.
+    const std::vector<HastSlot> roots = slot_roots(keys, match, auto_d, c.d, root, groups);
     if (auto_d) {
       // The chain is as long as the largest order any slot chose.
       c.per_slot_d = true;
@@ -128,10 +132,10 @@ struct Hast : UnitKindDefaults {
     // u scaler stage, then d - 1 multiplier stages.
     const UnitTiming timing{c.d, 1, 0};
     std::vector<HastUnit> units;
-    units.reserve(slots.size());
-    for (std::size_t s = 0; s < slots.size(); ++s)
-      for_slot(slots[s], [&] { units.emplace_back(c, slots[s], roots[s]); });
-    return make_unit_set<Hast>(common, std::move(config), c, std::move(units), slots, timing);
+    units.reserve(groups.size());
+    for (std::size_t g = 0; g < groups.size(); ++g)
+      for_slot(groups[g], [&] { units.emplace_back(c, groups[g], roots[g]); });
+    return make_unit_set<Hast>(common, std::move(config), c, std::move(units), plan, timing);
   }
 
   static std::vector<Stage> stages(const Config& c, const std::vector<Datapath>&, UnitTiming) {
@@ -167,7 +171,7 @@ struct Hast : UnitKindDefaults {
     const int db = c.per_slot_d ? clog2(d + 1) : 0;
     if (c.per_slot_d) {
       // Read beside the k table: off the stage's path.
-      b.slot_table(L.slots, db, 1, true, "stage 1: d table (per slot)");
+      b.slot_table(L.groups, db, 1, true, "stage 1: d table (per datapath group)");
       b.op("table_read");
     }
     if (d == 1) {

@@ -1,4 +1,5 @@
-// horner: keys, build (one fit per slot), timing, stage layout, cost inventory and description.
+// horner: keys, build (one fit per datapath group), timing, stage layout, cost inventory and
+// description.
 //
 // Hardware (L = degree + 1, II 1): stage 1 the u scaler (tau domain; on the full domain u = t is
 // wiring) beside the read of c_p; then p multiply-add stages, each a multiplier Wacc x (fh + 1)
@@ -45,7 +46,7 @@ struct Horner : UnitKindDefaults {
   }
 
   static std::unique_ptr<SpecularUnit> build(const KeyReader& keys, const CommonKeys& common,
-                                             const std::vector<MaterialParams>& slots) {
+                                             const SlotPlan& plan) {
     const int degree = keys.integer("degree", 4, 1, 10);
     const std::string method = keys.choice("method", "minimax", {"ls", "robust", "minimax"});
     const std::string domain = keys.choice("domain", "tau", {"tau", "full"});
@@ -56,7 +57,9 @@ struct Horner : UnitKindDefaults {
     spec.method = parse_fit_method(method);
     spec.tau_domain = domain == "tau";
     spec.constrain = constrain;
-    std::vector<HornerUnit> units = build_horner_slots(spec, c, slots);
+    // One fit per datapath group, on the group's [tau_q, 1]: the smallest tau of its slots, so
+    // every input any of their comparators lets through lies in the fitted domain.
+    std::vector<HornerUnit> units = build_horner_slots(spec, c, plan.groups);
     nlohmann::json config = common_config(common);
     config["degree"] = degree;
     config["method"] = method;
@@ -66,7 +69,7 @@ struct Horner : UnitKindDefaults {
     // u scaler stage, then one multiply-add stage per degree.
     const UnitTiming timing{degree + 1, 1, 0};
     return make_unit_set<Horner>(common, std::move(config), HornerSetup{c, domain == "tau"},
-                                 std::move(units), slots, timing);
+                                 std::move(units), plan, timing);
   }
 
   // Widest coefficient and accumulator over the slots (the registers are shared).
@@ -110,13 +113,13 @@ struct Horner : UnitKindDefaults {
     }
     const int wacc = acc_int + fh;  // signed accumulator
 
-    // One coefficient bank per stage, every bank holding all slots.
-    const Seg coef = b.slot_table(L.slots, cw, p + 1, false,
-                                  "coefficient tables (per slot, one bank per stage)");
+    // One coefficient bank per stage, every bank holding all datapath groups.
+    const Seg coef = b.slot_table(L.groups, cw, p + 1, false,
+                                  "coefficient tables (per datapath group, one bank per stage)");
     b.op("table_read", p + 1);
     // Stage 1: the u scaler (tau domain; on the full domain u = t is wiring), c_p read beside it.
     const Seg first = tau_domain ? parallel(coef, series(u_scaler_cost(b, L, wk, fh))) : coef;
-    b.reg((fh + 1) + cw + L.slot_bits, "stage 1: u, c_p, slot id");
+    b.reg((fh + 1) + cw + L.group_bits, "stage 1: u, c_p, group id");
     b.stage("stage 1", {first});
     for (int s = 2; s <= p + 1; ++s) {
       const bool last = s == p + 1;
@@ -129,7 +132,7 @@ struct Horner : UnitKindDefaults {
         sp.push_back(b.mux(wo, 3, fmt::format("stage {}: clamp to [0, 1]", s)));
         b.reg(wo, fmt::format("stage {}: result", s));
       } else {
-        b.reg((fh + 1) + wacc + L.slot_bits, fmt::format("stage {}: u, acc, slot id", s));
+        b.reg((fh + 1) + wacc + L.group_bits, fmt::format("stage {}: u, acc, group id", s));
       }
       b.stage(fmt::format("stage {}", s), sp);
     }

@@ -1,4 +1,5 @@
-// The horner unit's per-slot build: one fit per slot on the domain the hardware evaluates, the
+// The horner unit's per-datapath build: one fit per datapath group (units/slot_plan.h; the
+// "slots" below are the groups' params) on the domain the hardware evaluates, the
 // shared guard, and the monotonicity repair (horner.cpp calls it; datapath.h has the budget).
 #pragma once
 

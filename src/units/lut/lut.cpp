@@ -1,10 +1,11 @@
 // lut: keys, build, timing, stage layout, cost inventory and description of the table +
 // interpolation baseline.
 //
-// Hardware (L = 2, II 1): stage 1 the span table (per slot), the subtractor t - t0, the index
-// shifter (the span is per slot) and the t^n table per slot (2^bits + 1) x (table_frac + 1) read at
-// both segment ends; stage 2 the node difference, the interpolation multiplier (table_frac + 2) x
-// (Fi - span - bits, widest slot), the adder and the clamp.
+// Hardware (L = 2, II 1): stage 1 the span table (per datapath group: a material's slots share
+// their table, units/slot_plan.h), the subtractor t - t0, the index shifter (the span is per
+// group) and the t^n table per group (2^bits + 1) x (table_frac + 1) read at both segment ends;
+// stage 2 the node difference, the interpolation multiplier (table_frac + 2) x (Fi - span - bits,
+// widest group), the adder and the clamp.
 #include "units/lut/lut.h"
 
 #include <fmt/format.h>
@@ -30,7 +31,7 @@ struct Lut : UnitKindDefaults {
   }
 
   static std::unique_ptr<SpecularUnit> build(const KeyReader& keys, const CommonKeys& common,
-                                             const std::vector<MaterialParams>& slots) {
+                                             const SlotPlan& plan) {
     LutConfig c{common.in, common.out, keys.integer("bits", 6, 1, 16),
                 keys.integer("table_frac", -1, 0, 40, true), common.skip};
     if (c.table_frac < 0) c.table_frac = common.out.frac_bits + 2;
@@ -39,11 +40,13 @@ struct Lut : UnitKindDefaults {
     config["table_frac"] = c.table_frac;
     // index + table read, interpolation + rounding.
     const UnitTiming timing{2, 1, 0};
-    auto units = build_per_slot<LutUnit>(c, slots);
-    return make_unit_set<Lut>(common, std::move(config), c, std::move(units), slots, timing);
+    // One table per datapath group, spanning from the group's smallest tau (its slots' comparators
+    // let nothing lower through).
+    auto units = build_per_group<LutUnit>(c, plan.groups);
+    return make_unit_set<Lut>(common, std::move(config), c, std::move(units), plan, timing);
   }
 
-  // Interpolation bits: Fi - span - bits, the widest over slots.
+  // Interpolation bits: Fi - span - bits, the widest over datapath groups.
   static int max_remainder_bits(const std::vector<Datapath>& units) {
     int r = 0;
     for (const LutUnit& u : units) r = std::max(r, u.remainder_bits());
@@ -71,14 +74,16 @@ struct Lut : UnitKindDefaults {
     const int entries = (1 << bits) + 1;
     const int tw = tf + 1;  // t^n in [0, 1]: 1.0 at the last node
     const int sbits = clog2(fi + 1);
-    int r_max = 0;  // interpolation bits: fi - span - bits, widest over slots
+    int r_max = 0;  // interpolation bits: fi - span - bits, widest over datapath groups
     for (const LutUnit& u : units) r_max = std::max(r_max, fi - u.span_log2() - bits);
 
     // Stage 1: t - t0 (t0 = 1 - 2^-span), the index field at the slot's span, the two nodes.
-    const Seg sp = b.slot_table(L.slots, sbits, 1, true, "stage 1: span table (per slot)");
+    const Seg sp =
+        b.slot_table(L.groups, sbits, 1, true, "stage 1: span table (per datapath group)");
     const Seg sub = b.adder(wi, "stage 1: t - t0");
     const Seg sh = b.shifter(wi, sbits, "stage 1: index shifter");
-    const Seg tab = b.slot_table(entries, tw, L.slots, true, "stage 1: t^n table (per slot)");
+    const Seg tab =
+        b.slot_table(entries, tw, L.groups, true, "stage 1: t^n table (per datapath group)");
     b.op("table_read", 3);
     b.op("add");
     b.op("shift");

@@ -121,6 +121,8 @@ class PowUnit {
   const std::shared_ptr<const PowTables>& tables() const { return tables_; }
 
   double shininess_q() const;
+  double shininess() const { return n_; }  // the n the register stands for
+  std::int64_t n_raw() const { return n_raw_; }
   const PowConfig& config() const { return cfg_; }
   std::size_t table_bits() const;
 
@@ -139,8 +141,8 @@ class PowUnit {
   double bound_ = 0;
 };
 
-// One PowUnit per slot, all sharing one PowTables (built with the first slot). A refusal names
-// the slot's material, as every kind's per-slot build does.
+// One PowUnit per datapath group, all sharing one PowTables (built with the first). A refusal names
+// the group's material, as every kind's build does.
 std::vector<PowUnit> build_pow_units(const PowConfig& cfg,
                                      const std::vector<MaterialParams>& slots);
 

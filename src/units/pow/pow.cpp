@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <optional>
 
 #include "units/pow/datapath.h"
 #include "units/unit_set.h"
@@ -36,7 +37,7 @@ struct Pow : UnitKindDefaults {
   }
 
   static std::unique_ptr<SpecularUnit> build(const KeyReader& keys, const CommonKeys& common,
-                                             const std::vector<MaterialParams>& slots) {
+                                             const SlotPlan& plan) {
     PowConfig c;
     c.in = common.in;
     c.out = common.out;
@@ -57,23 +58,37 @@ struct Pow : UnitKindDefaults {
     // leading-one detect + log2 table read, log2 interpolation, multiply by n, exp2 table read,
     // exp2 interpolation + shift + rounding.
     const UnitTiming timing{5, 1, 0};
-    auto units = build_pow_units(c, slots);
-    return make_unit_set<Pow>(common, std::move(config), c, std::move(units), slots, timing);
+    auto units = build_pow_units(c, plan.groups);
+    return make_unit_set<Pow>(common, std::move(config), c, std::move(units), plan, timing);
   }
 
-  // The widths of the registers (the cost model counts the same).
+  // The widths of the registers for an n register of format nf (the stage layout: the key's
+  // format; the cost model: the register as the scene elaborates it, n_register()).
   struct Widths {
     int ebits, log2t_int, yint, log_r, exp_r;
   };
-  static Widths widths(const Config& c) {
+  static Widths widths(const Config& c, const QFormat& nf) {
     const int fi = c.in.frac_bits;
     const int ebits = clog2(fi + 1);  // exponent of t / normalisation shift
-    return {ebits, ebits + 1, (c.n_format.width() - c.n_format.frac_bits) + ebits + 1,
-            std::max(0, fi - c.log_bits), std::max(0, c.y_frac - c.exp_bits)};
+    return {ebits, ebits + 1, nf.int_bits + ebits + 1, std::max(0, fi - c.log_bits),
+            std::max(0, c.y_frac - c.exp_bits)};
+  }
+
+  // The n register holds every group's n_q exactly in the bits those values use (units/
+  // n_register.h): y = n log2 t is the same product with fewer zero bits around n.
+  static std::optional<NRegister> n_register(const Config& c, const std::vector<Datapath>& units,
+                                             bool fixed) {
+    std::vector<std::int64_t> raw;
+    std::vector<double> target;
+    for (const PowUnit& u : units) {
+      raw.push_back(u.n_raw());
+      target.push_back(u.shininess());
+    }
+    return elaborate_n_register(c.n_format, raw, target, fixed);
   }
 
   static std::vector<Stage> stages(const Config& c, const std::vector<Datapath>&, UnitTiming) {
-    const Widths w = widths(c);
+    const Widths w = widths(c, c.n_format);
     const QFormat log_node = uq(1, c.log_frac), exp_node = uq(2, c.exp_frac);
     return {input_stage(),
             {"log_table",
@@ -96,11 +111,11 @@ struct Pow : UnitKindDefaults {
   }
 
   static void cost(CostBuilder& b, const LaneShape& L, const Config& c,
-                   const std::vector<Datapath>&) {
-    const QFormat nf = c.n_format;
+                   const std::vector<Datapath>& units) {
+    const QFormat nf = n_register(c, units, L.fixed)->built;
     const int lb = c.log_bits, lf = c.log_frac, yf = c.y_frac, eb = c.exp_bits, xf = c.exp_frac;
     const int wi = L.in.width(), wo = L.out.width(), wn = nf.width();
-    const Widths w = widths(c);
+    const Widths w = widths(c, nf);
     const int ebits = w.ebits;
     const int lw = lf + 1;                 // log2(1 + x) in [0, 1]: 1.0 at the last node
     const int log_r = w.log_r;             // interpolation bits of the mantissa
@@ -116,7 +131,8 @@ struct Pow : UnitKindDefaults {
     b.op("lzd");
     b.op("shift");
     b.op("table_read", 2);
-    b.reg(2 * lw + log_r + ebits + L.slot_bits, "stage 1: log2 nodes, remainder, exponent, slot");
+    b.reg(2 * lw + log_r + ebits + L.group_bits,
+          "stage 1: log2 nodes, remainder, exponent, group id");
     b.stage("stage 1", {z, sh, lt});
 
     // Stage 2: log2 interpolation; the n register read beside it.
@@ -129,7 +145,7 @@ struct Pow : UnitKindDefaults {
     }
     p2.push_back(b.adder(lw, "stage 2: + log2 node"));
     b.op("add");
-    const Seg n = b.slot_table(L.slots, wn, 1, true, "stage 2: n table (per slot)");
+    const Seg n = b.slot_table(L.groups, wn, 1, true, "stage 2: n table (per datapath group)");
     b.op("table_read");
     p2.front() = parallel(p2.front(), n);
     b.reg(log2t_w + wn, "stage 2: log2 t, n");

@@ -8,13 +8,15 @@
 // row reused q times with remainder/divisor/quotient/counter registers and a load mux, II = q);
 // the last stage rounds (Q + 1) >> 1 with an incrementer of q bits and clamps to 1.
 //
-// Key match= picks what the n register holds per slot: the material's n (Schlick's own use), or the
-// n' matching t^n by minimax or by half-width (units/match.h); the hardware is the same.
+// Key match= picks what the n register holds per datapath group: the material's n (Schlick's own
+// use), or the n' matching t^n by minimax or by half-width (units/match.h); the hardware is the
+// same.
 #include "units/schlick/schlick.h"
 
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <optional>
 #include <unordered_map>
 
 #include "units/schlick/datapath.h"
@@ -51,7 +53,7 @@ struct Schlick : UnitKindDefaults {
   }
 
   static std::unique_ptr<SpecularUnit> build(const KeyReader& keys, const CommonKeys& common,
-                                             const std::vector<MaterialParams>& slots) {
+                                             const SlotPlan& plan) {
     SchlickConfig c{common.in, common.out, keys.format("n", SchlickConfig{}.n_format), common.skip};
     c.match = parse_match_mode(keys.choice("match", "none", match_mode_names()));
     nlohmann::json config = common_config(common);
@@ -65,11 +67,12 @@ struct Schlick : UnitKindDefaults {
     const int q = common.out.frac_bits + 2;
     const bool iterative = divider == "iterative";
     const UnitTiming timing{q + 2, iterative ? q : 1, 0};
-    // n' per slot, solved once per distinct n (materials often share one; minimax costs ~30 us).
+    // n' per datapath group, solved once per distinct n (materials often share one; minimax
+    // costs ~30 us).
     std::vector<SchlickUnit> units;
-    units.reserve(slots.size());
+    units.reserve(plan.groups.size());
     std::unordered_map<double, double> n_prime;
-    for (const MaterialParams& m : slots) {
+    for (const MaterialParams& m : plan.groups) {
       for_slot(m, [&] {
         auto it = n_prime.find(m.shininess);
         if (it == n_prime.end())
@@ -78,18 +81,31 @@ struct Schlick : UnitKindDefaults {
       });
     }
     return make_unit_set<Schlick>(common, std::move(config), SchlickSetup{c, iterative},
-                                  std::move(units), slots, timing);
+                                  std::move(units), plan, timing);
   }
 
   // D in units of 2^-(Fn + Fi): D = n (1 - t) + t < max(n, 1) needs max(Wn, Fn + 1) + Fi bits.
-  static QFormat denominator_format(const SchlickConfig& c) {
-    const QFormat& nf = c.n_format;
-    return uq(std::max(nf.width(), nf.frac_bits + 1) - nf.frac_bits, nf.frac_bits + c.in.frac_bits);
+  static QFormat denominator_format(const QFormat& nf, const QFormat& in) {
+    return uq(std::max(nf.width(), nf.frac_bits + 1) - nf.frac_bits, nf.frac_bits + in.frac_bits);
+  }
+
+  // The n register holds every group's n'_q exactly in the bits those values use (units/
+  // n_register.h). S = t / (n (1 - t) + t) is the same quotient when n and t are scaled alike, so
+  // D and the divider shrink with it: Q = T 2^(Fn + Fo) / D does not depend on Fn.
+  static std::optional<NRegister> n_register(const Config& c, const std::vector<Datapath>& units,
+                                             bool fixed) {
+    std::vector<std::int64_t> raw;
+    std::vector<double> target;
+    for (const SchlickUnit& u : units) {
+      raw.push_back(u.n_raw());
+      target.push_back(u.n_prime());
+    }
+    return elaborate_n_register(c.datapath.n_format, raw, target, fixed);
   }
 
   static std::vector<Stage> stages(const Config& c, const std::vector<Datapath>&, UnitTiming) {
     const SchlickConfig& d = c.datapath;
-    const QFormat df = denominator_format(d);
+    const QFormat df = denominator_format(d.n_format, d.in);
     const QFormat rf = uq(df.int_bits + 1, df.frac_bits);  // partial remainder < 2 D
     const int q = d.out.frac_bits + 2;
     std::vector<Stage> s{input_stage(), {"mac", 1, 1, {{"D", df}}}};
@@ -110,17 +126,17 @@ struct Schlick : UnitKindDefaults {
   }
 
   static void cost(CostBuilder& b, const LaneShape& L, const Config& c,
-                   const std::vector<Datapath>&) {
+                   const std::vector<Datapath>& units) {
     const bool iterative = c.iterative;
-    const QFormat nf = c.datapath.n_format;
+    const QFormat nf = n_register(c, units, L.fixed)->built;
     const int wi = L.in.width(), fi = L.in.frac_bits, wo = L.out.width();
     const int wn = nf.width();
-    const int wd = denominator_format(c.datapath).width();
+    const int wd = denominator_format(nf, L.in).width();
     const int q = L.out.frac_bits + 2;
 
     // Stage 1: D = n (1 - t) + t. 1 - t is the complement of t plus one: the +n correction is one
     // more row of the multiplier's tree.
-    const Seg n = b.slot_table(L.slots, wn, 1, true, "stage 1: n table (per slot)");
+    const Seg n = b.slot_table(L.groups, wn, 1, true, "stage 1: n table (per datapath group)");
     const Seg mul = b.multiplier(wn, fi + 1, "stage 1: n (1 - t)");
     const Seg add = b.adder(wd, "stage 1: + t");
     b.reg(wd + wi, "stage 1: D and t");

@@ -18,7 +18,7 @@ int sc_main(int, char*[]) {
   header.materials.push_back({"white", {1, 1, 1}, 50, glint::Lobe::kBlinn, 0});
   const glint::SlotMap slots = glint::make_slots(header);
   const std::unique_ptr<glint::SpecularUnit> unit =
-      glint::make_unit(glint::parse_unit_spec("hast"), slots.params);
+      glint::make_unit(glint::parse_unit_spec("hast"), slots);
 
   const std::vector<double> ts{1.0, 0.5, 0.95, -0.25, 0.9};
   std::size_t next = 0, matched = 0, computed = 0;
