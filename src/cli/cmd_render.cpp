@@ -21,6 +21,7 @@ struct RenderCommandOptions {
   std::string out_dir;
   std::string vectors;
   int threads = 0;
+  std::size_t slots = 0;
   bool json = false;
 };
 
@@ -32,6 +33,7 @@ int run_render(const RenderCommandOptions& o) {
   RenderOptions options;
   for (const auto& s : o.units) options.units.push_back(parse_unit_spec(s));
   options.threads = o.threads > 0 ? o.threads : default_threads();
+  options.slot_capacity = o.slots;
   options.progress = isatty(STDERR_FILENO);
   const Scene scene = load_scene(o.scene);
   std::unique_ptr<VectorWriter> vectors;
@@ -41,7 +43,12 @@ int run_render(const RenderCommandOptions& o) {
       for (std::size_t i = 0; i < n; ++i) vectors->write(rows[i]);
     };
   }
-  const RenderResult r = render_scene(scene, options);
+  RenderResult r;
+  try {
+    r = render_scene(scene, options);
+  } catch (const SlotCapacityError& e) {
+    refuse_slots(o.slots, e);  // the scene needs more than the chip holds
+  }
   write_render(r, o.out_dir);
   if (vectors) vectors->commit();
   if (o.json) {
@@ -90,6 +97,7 @@ void add_render_command(CLI::App& app, int& status) {
                   "Threads (default: every core); results do not depend "
                   "on it")
       ->check(CLI::Range(1, 256));
+  add_slots_option(sub, o->slots);
   sub->add_flag("--json", o->json, "Print the report on stdout instead of the summary");
   sub->callback([o, &status] { status = guarded([&] { return run_render(*o); }); });
 }

@@ -77,7 +77,7 @@ RenderResult render_scene(const Scene& scene, const RenderOptions& options) {
   std::vector<UnitSpec> specs = options.units;
   if (specs.empty())
     for (const std::string& name : unit_names()) specs.push_back(parse_unit_spec(name));
-  Evaluator ev(header, specs, 8);
+  Evaluator ev(header, specs, 8, options.slot_capacity);
   const SlotMap& slots = ev.slots();
   const std::size_t n_units = ev.units().size();
   std::set<std::string> lobes;

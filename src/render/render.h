@@ -31,6 +31,7 @@ VectorHeader scene_request_header(const Scene& scene,
 struct RenderOptions {
   std::vector<UnitSpec> units;  // empty: every unit at its defaults
   int threads = 1;
+  std::size_t slot_capacity = 0;  // --slots N: a chip of N slots (0: sized to the scene)
   int tile_rows = 16;     // rows ray-cast and evaluated together (memory: one tile's requests)
   bool progress = false;  // a progress line on stderr
   // Receives every tile's requests in raster order (pixel, then light), e.g. for a vector file.
@@ -98,7 +99,8 @@ struct RenderResult {
   Image8 contact_sheet;
 
   SkipCounts skip_total() const;
-  nlohmann::json to_json() const;  // the render report (report.json)
+  std::vector<std::string> t_inputs() const;  // "r.v" and/or "n.h": the cosines the scene needs
+  nlohmann::json to_json() const;             // the render report (report.json)
 };
 
 RenderResult render_scene(const Scene& scene, const RenderOptions& options);

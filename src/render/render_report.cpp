@@ -1,5 +1,6 @@
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <memory>
@@ -48,6 +49,16 @@ nlohmann::json SkipCounts::to_json() const {
           {"computed", computed},
           {"skipped_fraction_t_le_0", fraction(facing_away + zero, n)},
           {"skipped_fraction_tau", fraction(facing_away + zero + tau, n)}};
+}
+
+std::vector<std::string> RenderResult::t_inputs() const {
+  // Phong lobes are fed r.v, Blinn and Gaussian ones n.h: the front end builds only what is used.
+  std::vector<std::string> t;
+  if (std::find(lobes.begin(), lobes.end(), "phong") != lobes.end()) t.push_back("r.v");
+  if (std::find_if(lobes.begin(), lobes.end(), [](const std::string& l) { return l != "phong"; }) !=
+      lobes.end())
+    t.push_back("n.h");
+  return t;
 }
 
 SkipCounts RenderResult::skip_total() const {
@@ -110,6 +121,7 @@ nlohmann::json RenderResult::to_json() const {
           {"resolution", {width, height}},
           {"requests", requests},
           {"lobes", lobes},
+          {"t_inputs", t_inputs()},
           {"lights", lights},
           {"materials", used_materials},
           {"slots", slots},
