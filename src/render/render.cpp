@@ -261,14 +261,13 @@ RenderResult render_scene(const Scene& scene, const RenderOptions& options) {
     r.cost = unit_cost(*ev.units()[u]);
     r.skipped = stats[u].skipped;
     r.computed = stats[u].vectors - stats[u].skipped;
-    out.heatmap_scale = std::max(out.heatmap_scale, r.error.max_lsb);
+    // Each heat map on its own scale (at least 1 LSB): a shared one would paint a 1-LSB unit
+    // black beside a 60-LSB one. The scale is drawn in and reported.
+    r.heatmap_scale = std::max(1.0, r.error.max_lsb);
+    const std::vector<double> lsb(unit_error[u].begin(), unit_error[u].end());
+    r.heatmap =
+        heatmap_with_scale(lsb, width, height, r.heatmap_scale, r.label + " error, 8-bit LSB");
     out.units.push_back(std::move(r));
-  }
-  // One colour scale for every unit's heat map, so that they compare at a glance.
-  for (std::size_t u = 0; u < n_units; ++u) {
-    std::vector<double> lsb(unit_error[u].begin(), unit_error[u].end());
-    out.units[u].heatmap = heatmap_with_scale(lsb, width, height, out.heatmap_scale,
-                                              out.units[u].label + " error, 8-bit LSB");
   }
   out.slots = nlohmann::json::array();
   for (std::size_t s = 0; s < slots.params.size(); ++s) {

@@ -72,6 +72,7 @@ struct SkipCounts {
 struct UnitRender {
   std::string label, spec;
   Image8 image, specular, heatmap;
+  double heatmap_scale = 1;  // LSBs at the top of the heat map's colour bar
   ImageError error;
   UnitStats stats;  // request-level accuracy (the eval report's)
   UnitCost cost;
@@ -95,7 +96,6 @@ struct RenderResult {
   std::vector<UnitRender> units;
   std::vector<std::string> lobes;  // lobes present in the scene's visible materials
   nlohmann::json slots;            // the slots the units were elaborated for
-  double heatmap_scale = 1;        // LSBs at the top of every heat map's colour bar
   Image8 contact_sheet;
 
   SkipCounts skip_total() const;

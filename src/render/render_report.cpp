@@ -106,6 +106,7 @@ nlohmann::json RenderResult::to_json() const {
     units_json.push_back({{"unit", u.label},
                           {"spec", u.spec},
                           {"image_error", u.error.to_json()},
+                          {"heatmap_scale_lsb", u.heatmap_scale},
                           {"requests", u.stats.vectors},
                           {"skipped", u.skipped},
                           {"skipped_beyond_t_le_0", beyond},
@@ -127,7 +128,6 @@ nlohmann::json RenderResult::to_json() const {
           {"slots", slots},
           {"skip", {{"total", total.to_json()}, {"per_light_material", per_pair}}},
           {"skip_only_image_error", skip_only_error.to_json()},
-          {"heatmap_scale_lsb", heatmap_scale},
           {"units", units_json},
           {"files", render_file_names(*this)}};
 }
