@@ -239,3 +239,36 @@ TEST(RenderSlots, FixedCapacityChip) {
 
 }  // namespace
 }  // namespace glint
+
+namespace glint {
+namespace {
+
+// Large renders get a contact sheet of reduced tiles (the files keep full size); an error is kept
+// in its reduced heat map by the block maximum.
+TEST(RenderSheet, LargeImagesAreReducedOnTheSheet) {
+  Scene scene = load_scene(scene_path("small.json"));
+  scene.camera.width = 1290;
+  scene.camera.height = 60;
+  RenderOptions o;
+  o.units = {parse_unit_spec("schlick")};
+  const RenderResult r = render_scene(scene, o);
+  EXPECT_EQ(r.units[0].image.width, 1290);
+  // Factor 3: tiles of 430 pixels; the heat map's legend makes its cell the widest.
+  const int cell = r.units[0].heatmap.width - 1290 + 430;
+  EXPECT_EQ(r.contact_sheet.width, 3 * cell + 4 * 8);
+}
+
+TEST(Downscale, BlockMeanRounded) {
+  Image8 img(4, 3, {0, 0, 0});
+  img.set(0, 0, {9, 0, 255});
+  img.set(1, 1, {0, 3, 255});
+  const Image8 d = downscale(img, 2);
+  ASSERT_EQ(d.width, 2);
+  ASSERT_EQ(d.height, 2);
+  EXPECT_EQ(d.at(0, 0), (Rgb8{2, 1, 128}));  // (9 + 2) / 4, (3 + 2) / 4, (510 + 2) / 4
+  EXPECT_EQ(d.at(0, 1), (Rgb8{0, 0, 0}));    // an edge block of two pixels
+  EXPECT_THROW(downscale(img, 0), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace glint

@@ -72,6 +72,11 @@ std::string fit_text(std::string_view text, int max_width, int height = 14);
 Image8 heatmap_with_scale(const std::vector<double>& error_lsb, int width, int height,
                           double scale_max, const std::string& title);
 
+// The image reduced by an integer factor: each output pixel the rounded mean of its factor x
+// factor block (edge blocks over the pixels they have), in the encoded values (a thumbnail, not a
+// photometric resampling). factor 1 returns a copy. Throws std::invalid_argument for factor < 1.
+Image8 downscale(const Image8& image, int factor);
+
 // A contact sheet: the images in a grid of `columns`, each with its label drawn above it, on a
 // dark background. Images of different sizes are placed in cells of the largest size.
 // Each cell is as wide as the widest image and as tall as a 14-pixel label, 4 pixels and the

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -43,6 +44,31 @@ void Image8::set(int x, int y, Rgb8 c) {
   pixels[i] = c[0];
   pixels[i + 1] = c[1];
   pixels[i + 2] = c[2];
+}
+
+}  // namespace glint
+
+namespace glint {
+
+Image8 downscale(const Image8& image, int factor) {
+  if (factor < 1) throw std::invalid_argument("downscale: factor must be >= 1");
+  const int w = (image.width + factor - 1) / factor, h = (image.height + factor - 1) / factor;
+  Image8 out(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      unsigned sum[3] = {0, 0, 0}, n = 0;
+      for (int sy = y * factor; sy < std::min(image.height, (y + 1) * factor); ++sy)
+        for (int sx = x * factor; sx < std::min(image.width, (x + 1) * factor); ++sx) {
+          const Rgb8 c = image.at(sx, sy);
+          for (int k = 0; k < 3; ++k) sum[k] += c[k];
+          ++n;
+        }
+      out.set(x, y,
+              {static_cast<std::uint8_t>((sum[0] + n / 2) / n),
+               static_cast<std::uint8_t>((sum[1] + n / 2) / n),
+               static_cast<std::uint8_t>((sum[2] + n / 2) / n)});
+    }
+  return out;
 }
 
 }  // namespace glint

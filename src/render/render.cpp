@@ -40,6 +40,21 @@ std::vector<std::uint32_t> used_materials(const Scene& scene) {
   return {used.begin(), used.end()};
 }
 
+constexpr int kSheetTileWidth = 640;
+
+// The largest value of each factor x factor block of a width x height map.
+std::vector<double> block_max(const std::vector<std::uint8_t>& map, int width, int height,
+                              int factor) {
+  const int w = (width + factor - 1) / factor, h = (height + factor - 1) / factor;
+  std::vector<double> out(static_cast<std::size_t>(w) * h, 0.0);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      double& m = out[static_cast<std::size_t>(y / factor) * w + x / factor];
+      m = std::max(m, static_cast<double>(map[static_cast<std::size_t>(y) * width + x]));
+    }
+  return out;
+}
+
 // The requests of one image row, made on its own thread and joined in raster order.
 struct RowRequests {
   std::vector<VectorRow> rows;
@@ -91,6 +106,9 @@ class SceneRenderer {
     if (options_.progress) std::fprintf(stderr, "\n");
     finish();
   }
+
+  // Each unit's per-pixel error in LSBs (its largest channel), row-major.
+  const std::vector<std::vector<std::uint8_t>>& error_lsb() const { return error_; }
 
  private:
   static std::vector<UnitSpec> unit_specs(const RenderOptions& o) {
@@ -366,16 +384,36 @@ RenderResult render_scene(const Scene& scene, const RenderOptions& options) {
   }
   out.lobes.assign(lobes.begin(), lobes.end());
 
-  SceneRenderer(scene, options, out).run();
+  SceneRenderer renderer(scene, options, out);
+  renderer.run();
+  const std::vector<std::vector<std::uint8_t>>& error_lsb = renderer.error_lsb();
 
+  // Full-size tiles would make a 1080p sheet 5760 pixels wide and 350 MB in memory: tiles are
+  // reduced to at most kSheetTileWidth pixels (error maps by the largest error of each block, so
+  // a one-pixel error still shows), the files keep full size.
+  const int factor = (out.width + kSheetTileWidth - 1) / kSheetTileWidth;
+  std::vector<Image8> thumbs;
+  thumbs.reserve(3 + 3 * out.units.size());
+  const auto thumb = [&](const Image8& image) -> const Image8* {
+    thumbs.push_back(factor > 1 ? downscale(image, factor) : image);
+    return &thumbs.back();
+  };
   std::vector<std::pair<std::string, const Image8*>> tiles{
-      {"reference", &out.reference},
-      {"reference specular", &out.reference_specular},
-      {"skip mask (light blue: tau, dark: t<=0)", &out.skip_mask}};
-  for (const UnitRender& r : out.units) {
-    tiles.emplace_back(r.label, &r.image);
-    tiles.emplace_back(r.label + " specular", &r.specular);
-    tiles.emplace_back(r.label + " error", &r.heatmap);
+      {"reference", thumb(out.reference)},
+      {"reference specular", thumb(out.reference_specular)},
+      {"skip mask (light blue: tau, dark: t<=0)", thumb(out.skip_mask)}};
+  for (std::size_t u = 0; u < out.units.size(); ++u) {
+    const UnitRender& r = out.units[u];
+    tiles.emplace_back(r.label, thumb(r.image));
+    tiles.emplace_back(r.label + " specular", thumb(r.specular));
+    if (factor > 1) {
+      thumbs.push_back(heatmap_with_scale(block_max(error_lsb[u], out.width, out.height, factor),
+                                          thumbs.back().width, thumbs.back().height,
+                                          r.heatmap_scale, r.label + " error, 8-bit LSB"));
+      tiles.emplace_back(r.label + " error", &thumbs.back());
+    } else {
+      tiles.emplace_back(r.label + " error", &r.heatmap);
+    }
   }
   out.contact_sheet = contact_sheet(tiles, 3);
   return out;
