@@ -389,7 +389,7 @@ class ObjScene : public BadScene {
     json s = base_scene();
     json object = {{"type", "mesh"}, {"file", "m.obj"}, {"material", "b"}};
     object.update(extra);
-    s["objects"] = {object};
+    s["objects"] = json::array({object});  // {object} alone is a copy under clang
     return write(s);
   }
   std::string obj_path() const { return dir_.file("m.obj"); }
