@@ -1,8 +1,10 @@
 #include "rtl_model/clocked_sim.h"
 
 #include <algorithm>
+#include <memory>
 #include <stdexcept>
 
+#include "io/output_set.h"
 #include "rtl_model/colour_multiply.h"
 #include "rtl_model/compute_pipeline.h"
 #include "rtl_model/result_merge.h"
@@ -239,7 +241,16 @@ std::vector<TimingStats> run_clocked(const std::vector<const SpecularUnit*>& uni
   quiet_systemc_banner();
   quiet_reports();
 
-  const bool tracing = !options.vcd_path.empty();
+  // The trace's files: the caller's outputs, or our own, committed after a successful run.
+  std::unique_ptr<OutputSet> own_outputs;
+  TraceOutputs own_trace;
+  const TraceOutputs* trace = options.trace_outputs;
+  if (!trace && !options.vcd_path.empty()) {
+    own_outputs = std::make_unique<OutputSet>();
+    own_trace = declare_trace_outputs(*own_outputs, options.vcd_path, options.trace_format, "");
+    trace = &own_trace;
+  }
+  const bool tracing = trace != nullptr;
   const std::vector<std::string> labels = lane_labels(units);
   SimControl control;
   control.set_lanes(units.size());
@@ -247,11 +258,7 @@ std::vector<TimingStats> run_clocked(const std::vector<const SpecularUnit*>& uni
   std::unique_ptr<Top> top;
   std::unique_ptr<TraceControl> vcd;
   if (tracing) {
-    const bool fst =
-        options.trace_format == TraceFormat::kFst ||
-        (options.trace_format == TraceFormat::kByExtension && is_fst_path(options.vcd_path));
-    vcd = std::make_unique<TraceControl>(options.vcd_path, fst,
-                                         [&](VcdWriter& w) { top->add_traces(w, labels); });
+    vcd = std::make_unique<TraceControl>(*trace, [&](VcdWriter& w) { top->add_traces(w, labels); });
     control.set_window(
         options.vcd_first, options.vcd_last, units.size(), [&] { vcd->open(); },
         [&] { vcd->close(); });
@@ -294,7 +301,28 @@ std::vector<TimingStats> run_clocked(const std::vector<const SpecularUnit*>& uni
   if (mismatches)
     throw std::logic_error("run_clocked: " + std::to_string(mismatches) +
                            " results differ from the datapath (model error)");
+  if (own_outputs) own_outputs->commit();
   return stats;
+}
+
+TraceOutputs declare_trace_outputs(OutputSet& outputs, const std::string& path, TraceFormat format,
+                                   const std::string& option) {
+  TraceOutputs t;
+  t.path = path;
+  t.fst = format == TraceFormat::kFst ||
+          (format == TraceFormat::kByExtension && rtl::is_fst_path(path));
+  const std::string name = option.empty() ? "trace" : option;
+  if (path == "-") {
+    if (t.fst)
+      throw OutputError(name +
+                        " -: an FST needs a file (vcd2fst seeks in it); standard output "
+                        "takes a VCD");
+    t.trace = &outputs.add(name, path, /*allow_stdout=*/true);
+    return t;
+  }
+  t.trace = t.fst ? &outputs.add_produced(name, path) : &outputs.add(name, path);
+  t.save = &outputs.add(name + "'s save file", rtl::TraceControl::gtkw_path(path));
+  return t;
 }
 
 }  // namespace glint

@@ -35,11 +35,35 @@ enum class TraceFormat {
   kFst,
 };
 
+class OutputSet;
+class OutputFile;
+
+// A trace's files as outputs of the caller's OutputSet (output_set.h), made by
+// declare_trace_outputs: the trace (a temporary for a VCD, standard output for "-", or a private
+// folder vcd2fst writes an FST into) and the GTKWave save file beside it.
+struct TraceOutputs {
+  std::string path;  // as given
+  bool fst = false;
+  OutputFile* trace = nullptr;
+  OutputFile* save = nullptr;  // null when the trace goes to standard output
+};
+
+// Declares the trace at `path` and its save file (same name, .gtkw: rtl::TraceControl::gtkw_path)
+// in `outputs`, named `option` ("--vcd") in messages: checked, and created, now. "-" is standard
+// output (a VCD without a save file; an FST needs a file: OutputError).
+TraceOutputs declare_trace_outputs(OutputSet& outputs, const std::string& path, TraceFormat format,
+                                   const std::string& option);
+
 struct ClockedOptions {
   // Trace output (empty: none), VCD or FST (trace_format). A GTKWave save file is written beside
-  // it (same name, .gtkw).
+  // it (same name, .gtkw). run_clocked declares both in an OutputSet of its own and commits them at
+  // the end of a successful run.
   std::string vcd_path;
   TraceFormat trace_format = TraceFormat::kByExtension;
+  // Instead of vcd_path: the trace goes into outputs the caller declared (declare_trace_outputs),
+  // and run_clocked only writes them; the caller commits them with its other outputs, so that all
+  // are written or none.
+  const TraceOutputs* trace_outputs = nullptr;
   // VCD window of vector indices: tracing starts in the cycle the first lane's source presents
   // vector vcd_first and stops one cycle after every lane retired vector vcd_last (or its last).
   std::uint64_t vcd_first = 0, vcd_last = std::numeric_limits<std::uint64_t>::max();

@@ -26,6 +26,8 @@ class VectorReaderStream final : public RowStream {
   explicit VectorReaderStream(const std::string& path)
       : owned_(std::make_unique<VectorReader>(path)), reader_(owned_.get()) {}
   explicit VectorReaderStream(VectorReader& reader) : reader_(&reader) {}
+  explicit VectorReaderStream(std::unique_ptr<VectorReader> reader)
+      : owned_(std::move(reader)), reader_(owned_.get()) {}
 
   bool next(VectorRow& row) override { return reader_->next(row); }
   const VectorHeader& header() const { return reader_->header(); }

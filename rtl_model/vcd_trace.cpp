@@ -18,7 +18,9 @@
 #include <stdexcept>
 #include <systemc>
 
-#include "io/atomic_file.h"
+#include "io/output_set.h"
+#include "io/signal_cleanup.h"
+#include "rtl_model/clocked_sim.h"
 #include "rtl_model/rtl_common.h"
 
 extern char** environ;
@@ -38,25 +40,24 @@ std::uint64_t now_ns() {
 
 }  // namespace
 
-// vcd2fst reading the VCD from a pipe ("-v -": stdin) and writing <dir>/trace.fst, where <dir> is
-// a temporary directory beside the target that only this run uses: vcd2fst's FST writer keeps a
-// side file (<fst>.hier) next to its output while it runs, and removing the whole directory is
-// what guarantees that a failed run leaves nothing behind.
+// vcd2fst reading the VCD from a pipe ("-v -": stdin) and writing <folder>/trace.fst, where
+// <folder> is the output's private temporary folder (OutputSet::add_produced): vcd2fst's FST
+// writer keeps a side file (<fst>.hier) next to its output while it runs, and the folder keeps all
+// of it out of the user's. The process and every file it makes there are registered with
+// signal_cleanup.h: a termination signal kills it before the files and the folder are removed.
 class TraceControl::Vcd2Fst {
  public:
-  explicit Vcd2Fst(const std::string& target)
-      : target_(target), dir_(target + ".tmp." + std::to_string(::getpid()) + ".fst.d") {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);  // a stale one of an earlier process with the same id
-    if (!fs::create_directory(dir_, ec) || ec)
-      fail("cannot create the temporary directory '" + dir_ +
-           "': " + (ec ? ec.message() : std::string("exists")));
+  Vcd2Fst(const std::string& target, const std::string& folder) : target_(target) {
+    fst_ = (fs::path(folder) / "trace.fst").string();
+    log_ = (fs::path(folder) / "vcd2fst.log").string();
+    for (const std::string& f : {fst_, fst_ + ".hier", log_})
+      handles_.push_back(register_cleanup(CleanupKind::kFile, f));
     try {
       start();
     } catch (...) {
       // No destructor runs for a half-built object: undo here what it would.
       kill();
-      fs::remove_all(dir_, ec);
+      release();
       throw;
     }
   }
@@ -64,8 +65,7 @@ class TraceControl::Vcd2Fst {
   ~Vcd2Fst() {
     kill();
     if (pipe_) std::fclose(pipe_);  // only if never handed over (a constructor failure)
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
+    release();
   }
 
   Vcd2Fst(const Vcd2Fst&) = delete;
@@ -78,16 +78,16 @@ class TraceControl::Vcd2Fst {
     return p;
   }
 
-  // Stops vcd2fst at once (a failed run: its partial output is removed with the directory).
+  // Stops vcd2fst at once (a failed run: its partial output goes with the folder).
   void kill() {
     if (pid_ <= 0) return;
     ::kill(pid_, SIGKILL);
     wait();
   }
 
-  // After the VCD's pipe was closed (`vcd_ok`: every write succeeded): waits for vcd2fst to write
-  // the FST and renames it onto the target. Throws OutputError with vcd2fst's messages otherwise.
-  void commit(bool vcd_ok) {
+  // After the VCD's pipe was closed (`vcd_ok`: every write succeeded): waits for vcd2fst and
+  // returns the FST it wrote. Throws OutputError with vcd2fst's messages otherwise.
+  std::string finish(bool vcd_ok) {
     if (pid_ <= 0) fail("vcd2fst is not running");
     const int status = wait();
     const bool exited_ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
@@ -98,19 +98,21 @@ class TraceControl::Vcd2Fst {
                                               : "status " + std::to_string(status);
       fail("vcd2fst failed (" + why + ")" + messages());
     }
-    fs::rename(fst_, target_, ec);
-    if (ec) fail("cannot rename the FST into place: " + ec.message());
-    fs::remove_all(dir_, ec);
+    return fst_;
   }
 
  private:
   // vcd2fst reading a new pipe, whose write end becomes pipe_.
   void start() {
-    fst_ = (fs::path(dir_) / "trace.fst").string();
-    log_ = (fs::path(dir_) / "vcd2fst.log").string();
     int fds[2];
     if (::pipe2(fds, O_CLOEXEC) != 0) fail(std::string("pipe: ") + std::strerror(errno));
-    const int err = spawn(fds[0]);
+    int err = 0;
+    {
+      // Signals held from the start to the registration: the process is never unregistered.
+      SignalShield shield;
+      err = spawn(fds[0]);
+      if (err == 0) pid_handle_ = register_cleanup_process(pid_);
+    }
     ::close(fds[0]);  // the child's copy is its stdin
     if (err != 0) {
       ::close(fds[1]);
@@ -127,8 +129,8 @@ class TraceControl::Vcd2Fst {
 
   // posix_spawnp (not fork + exec of a shell): no quoting of the path, and an exec failure (no
   // vcd2fst on PATH) is returned here rather than discovered as a broken pipe. stdin = the pipe,
-  // stdout discarded, stderr kept for the error message; default SIGPIPE and an empty signal mask
-  // whatever this process uses.
+  // stdout discarded, stderr kept for the error message (a new file, O_EXCL); default SIGPIPE and
+  // SIGXFSZ and an empty signal mask whatever this process uses.
   int spawn(int read_fd) {
     posix_spawn_file_actions_t actions;
     posix_spawnattr_t attr;
@@ -136,13 +138,17 @@ class TraceControl::Vcd2Fst {
     posix_spawnattr_init(&attr);
     posix_spawn_file_actions_adddup2(&actions, read_fd, 0);
     posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-    posix_spawn_file_actions_addopen(&actions, 2, log_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    sigset_t none, pipe_only;
+    posix_spawn_file_actions_addopen(&actions, 2, log_.c_str(),
+                                     O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW, 0600);
+    sigset_t none, defaults;
     sigemptyset(&none);
-    sigemptyset(&pipe_only);
-    sigaddset(&pipe_only, SIGPIPE);
+    sigemptyset(&defaults);
+    sigaddset(&defaults, SIGPIPE);
+    // glint ignores SIGXFSZ (its writes then fail with EFBIG, which it reports); vcd2fst might not
+    // check its writes, so past a file size limit it dies as it would by default: a failure seen.
+    sigaddset(&defaults, SIGXFSZ);
     posix_spawnattr_setsigmask(&attr, &none);
-    posix_spawnattr_setsigdefault(&attr, &pipe_only);
+    posix_spawnattr_setsigdefault(&attr, &defaults);
     posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
     std::string a0 = "vcd2fst", a1 = "-v", a2 = "-", a3 = "-f", a4 = fst_;
     char* argv[] = {a0.data(), a1.data(), a2.data(), a3.data(), a4.data(), nullptr};
@@ -157,8 +163,17 @@ class TraceControl::Vcd2Fst {
     int status = 0;
     while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
     }
+    release_cleanup(pid_handle_);
+    pid_handle_ = -1;
     pid_ = -1;
     return status;
+  }
+
+  void release() noexcept {
+    for (int h : handles_) release_cleanup(h);
+    handles_.clear();
+    release_cleanup(pid_handle_);
+    pid_handle_ = -1;
   }
 
   // The start of vcd2fst's stderr, for the error message.
@@ -174,13 +189,13 @@ class TraceControl::Vcd2Fst {
     return text.empty() ? "" : ": " + text;
   }
 
-  [[noreturn]] void fail(const std::string& why) const {
-    throw OutputError("cannot write FST '" + target_ + "': " + why);
-  }
+  [[noreturn]] void fail(const std::string& why) const { throw OutputError(target_ + ": " + why); }
 
-  std::string target_, dir_, fst_, log_;
+  std::string target_, fst_, log_;
   pid_t pid_ = -1;
   std::FILE* pipe_ = nullptr;
+  std::vector<int> handles_;
+  int pid_handle_ = -1;
 };
 
 bool is_fst_path(const std::string& path) {
@@ -190,22 +205,25 @@ bool is_fst_path(const std::string& path) {
   return ext == ".fst";
 }
 
-TraceControl::TraceControl(std::string path, bool fst, AddTraces add_traces)
-    : vcd_path_(std::move(path)),
-      fst_(fst),
+TraceControl::TraceControl(const TraceOutputs& outputs, AddTraces add_traces)
+    : vcd_path_(outputs.path),
+      fst_(outputs.fst),
+      outputs_(outputs),
       add_traces_(std::move(add_traces)),
       writer_(kRootScope) {
-  check_output_path(vcd_path_);
-  check_output_path(gtkw_path());
   if (fst_) {
-    vcd2fst_ = std::make_unique<Vcd2Fst>(vcd_path_);
+    vcd2fst_ = std::make_unique<Vcd2Fst>(what(), outputs.trace->work_folder());
     writer_.open(vcd2fst_->take_pipe(), /*pipe=*/true);
     return;
   }
-  temp_path_ = vcd_path_ + ".tmp." + std::to_string(::getpid()) + ".vcd";
-  std::FILE* f = std::fopen(temp_path_.c_str(), "wb");
+  // The writer buffers on its own: a descriptor of its own on the output's temporary (or on
+  // standard output), closed by the writer; the OutputSet fsyncs and renames the file.
+  const int fd = outputs.trace->dup_fd();
+  std::FILE* f = ::fdopen(fd, "wb");
   if (!f) {
-    throw OutputError("cannot write VCD '" + vcd_path_ + "': " + std::strerror(errno));
+    const int err = errno;
+    ::close(fd);
+    throw OutputError(what() + ": " + std::strerror(err));
   }
   writer_.open(f);
 }
@@ -214,11 +232,7 @@ TraceControl::~TraceControl() {
   if (!committed_) {
     if (vcd2fst_) vcd2fst_->kill();  // first: the writer's last words then go nowhere, at once
     writer_.close(0);                // the values it refers to may be gone: nothing is sampled
-    vcd2fst_.reset();                // removes its directory
-    if (!temp_path_.empty()) {
-      std::error_code ec;
-      fs::remove(temp_path_, ec);
-    }
+    vcd2fst_.reset();
   }
 }
 
@@ -261,11 +275,15 @@ void TraceControl::close() {
   writer_.time(std::max(now_ns(), writer_.last_time()));  // where the trace ends
 }
 
-std::string TraceControl::gtkw_path() const {
-  fs::path p(vcd_path_);
-  if (p.extension() == ".vcd" || is_fst_path(vcd_path_))
-    return p.replace_extension(".gtkw").string();
-  return vcd_path_ + ".gtkw";
+std::string TraceControl::what() const {
+  const std::string& option = outputs_.trace->option();
+  return (option.empty() ? std::string(fst_ ? "FST" : "VCD") : option) + " " + vcd_path_;
+}
+
+std::string TraceControl::gtkw_path(const std::string& path) {
+  fs::path p(path);
+  if (p.extension() == ".vcd" || is_fst_path(path)) return p.replace_extension(".gtkw").string();
+  return path + ".gtkw";
 }
 
 void TraceControl::commit() {
@@ -273,21 +291,15 @@ void TraceControl::commit() {
   close();
   const bool written = writer_.close(writer_.last_time());
   if (fst_) {
-    vcd2fst_->commit(written);  // waits for vcd2fst; throws with its messages
-  } else {
-    if (!written)
-      throw OutputError("cannot write VCD '" + vcd_path_ + "': " + std::strerror(errno));
-    std::error_code ec;
-    fs::rename(temp_path_, vcd_path_, ec);
-    if (ec) {
-      fs::remove(temp_path_, ec);
-      throw OutputError("cannot rename VCD into '" + vcd_path_ + "': " + ec.message());
-    }
+    // Waits for vcd2fst; throws with its messages.
+    outputs_.trace->set_produced(vcd2fst_->finish(written));
+  } else if (!written) {
+    const int err = writer_.error();
+    throw OutputError(what() + ": write failed: " + (err != 0 ? std::strerror(err) : "I/O error"));
   }
   committed_ = true;
-  AtomicOutputFile gtkw(gtkw_path());
-  gtkw.stream() << gtkw_text(fs::absolute(vcd_path_).string(), start_ns_, signals());
-  gtkw.commit(false);
+  if (outputs_.save)
+    outputs_.save->stream() << gtkw_text(fs::absolute(vcd_path_).string(), start_ns_, signals());
 }
 
 namespace {

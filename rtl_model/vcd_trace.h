@@ -10,15 +10,20 @@
 // rising edge's time with the clock's rise; the clock's fall follows at the falling edge's time.
 // The reset state (before cycle 0) is read by sample_reset, before the first rising edge.
 //
-// The file is written under a temporary name beside the target and renamed by commit(), like every
-// glint output: a failed run leaves no VCD behind. It may be opened during the simulation (the VCD
-// window): its initial $dumpvars, at the opening time, holds every value settled in that time
-// step; each later cycle's changes follow until close(), which ends the file with its own time.
+// The files are outputs of an OutputSet (io/output_set.h), declared before the run
+// (declare_trace_outputs in clocked_sim.h): the VCD is written into its exclusively created
+// temporary beside the target (or to standard output), and renamed into place with the run's other
+// outputs when the caller commits them; a failed run leaves no VCD behind. The file may be opened
+// during the simulation (the VCD window): its initial $dumpvars, at the opening time, holds every
+// value settled in that time step; each later cycle's changes follow until close(), which ends the
+// file with its own time.
 //
 // FST: the same VCD text is streamed through a pipe into Debian's vcd2fst (package gtkwave), which
-// runs beside the simulation (on another core) and writes the FST into a private temporary
-// directory beside the target; commit() waits for it and renames the FST into place. A failed run
-// kills vcd2fst and removes the directory: no file, partial or otherwise, is left behind.
+// runs beside the simulation (on another core) and writes the FST into the output's private
+// temporary folder beside the target (0700, a fresh name); commit() waits for it and hands the FST
+// to the OutputSet, which renames it into place. A failed run kills vcd2fst and the OutputSet
+// removes the folder; vcd2fst and its files are registered with signal_cleanup.h, so SIGINT or
+// SIGTERM stop it and remove them too: no file, partial or otherwise, is left behind.
 #pragma once
 
 #include <cstdint>
@@ -29,6 +34,10 @@
 
 #include "io/vcd_writer.h"
 
+namespace glint {
+struct TraceOutputs;
+}
+
 namespace glint::rtl {
 
 class TraceControl {
@@ -36,10 +45,10 @@ class TraceControl {
   // Registers every traced value with the writer (called once, by open()).
   using AddTraces = std::function<void(VcdWriter&)>;
 
-  // Creates the temporary file now (throws OutputError if it cannot); `fst`: write an FST file at
-  // `path` (starts vcd2fst now; OutputError if it cannot be started).
-  TraceControl(std::string path, bool fst, AddTraces add_traces);
-  ~TraceControl();  // removes the temporary (and stops vcd2fst) unless committed
+  // Writes into `outputs` (which must outlive this object); for an FST, starts vcd2fst now
+  // (OutputError if it cannot be started).
+  TraceControl(const TraceOutputs& outputs, AddTraces add_traces);
+  ~TraceControl();  // stops vcd2fst unless committed (the OutputSet removes the files)
 
   TraceControl(const TraceControl&) = delete;
   TraceControl& operator=(const TraceControl&) = delete;
@@ -61,22 +70,25 @@ class TraceControl {
   const std::vector<TracedSignal>& signals() const { return writer_.signals(); }
 
   // Closes (opening first if the window never opened, so the file is a valid VCD of the final
-  // state), renames the VCD (or, once vcd2fst has finished, the FST) into place and writes the
-  // .gtkw beside it (gtkw_text). Throws OutputError if the trace could not be written.
+  // state), waits for vcd2fst (FST) and writes the .gtkw (gtkw_text): every file complete, for the
+  // OutputSet to commit. Throws OutputError if the trace could not be written.
   void commit();
 
   const std::string& vcd_path() const { return vcd_path_; }  // the trace file, VCD or FST
   bool fst() const { return fst_; }
-  std::string gtkw_path() const;
+  std::string gtkw_path() const { return gtkw_path(vcd_path_); }
+  // The save file of a trace at `path`: `.vcd` / `.fst` replaced by `.gtkw`, else `.gtkw` added.
+  static std::string gtkw_path(const std::string& path);
 
  private:
   class Vcd2Fst;  // the vcd2fst process and its temporary directory
 
   void initial_dump(std::uint64_t t_ns);
+  std::string what() const;  // the output in messages: "--vcd t.vcd" (or "VCD t.vcd")
 
   std::string vcd_path_;
   bool fst_;
-  std::string temp_path_;  // VCD: the temporary file; FST: unused (Vcd2Fst owns its directory)
+  const TraceOutputs& outputs_;
   std::unique_ptr<Vcd2Fst> vcd2fst_;
   AddTraces add_traces_;
   VcdWriter writer_;

@@ -3,13 +3,12 @@
 #include <unistd.h>
 
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
 #include <memory>
 
 #include "cli/cli.h"
 #include "eval/evaluate.h"
-#include "io/atomic_file.h"
+#include "io/output_set.h"
 #include "io/vectors.h"
 
 namespace glint::cli {
@@ -28,6 +27,11 @@ int run_eval(const EvalOptions& o) {
   std::vector<UnitSpec> specs;
   for (const auto& s : o.units.empty() ? unit_names() : o.units)
     specs.push_back(parse_unit_spec(s));
+  // Outputs first, before any work: checked, their temporaries made (output_set.h).
+  OutputSet outputs;
+  outputs.add_input("VECTORS", o.vectors);
+  if (o.json) outputs.claim_stdout("--json");
+  OutputFile* dump = o.dump.empty() ? nullptr : &outputs.add("--dump", o.dump, true);
   VectorReader reader(o.vectors);
   std::unique_ptr<Evaluator> evaluator;
   try {
@@ -37,15 +41,9 @@ int run_eval(const EvalOptions& o) {
   }
   Evaluator& ev = *evaluator;
 
-  std::unique_ptr<AtomicOutputFile> dump;
-  if (!o.dump.empty()) {
-    std::error_code ec;
-    if (std::filesystem::equivalent(o.vectors, o.dump, ec))
-      throw std::invalid_argument(fmt::format("--dump {}: is the input vector file", o.dump));
-    dump = std::make_unique<AtomicOutputFile>(o.dump);
+  if (dump)
     dump->stream() << "line,material,light,x,y,t,t_raw,unit,reference,model,fixed,fixed_raw,"
                       "skipped\n";
-  }
   const auto& materials = reader.header().materials;
   auto write = [&](const EvalRecord& r) {
     dump->stream() << fmt::format("{},{},{},{},{},{:.17g},{},{},{:.17g},{:.17g},{:.17g},{},{}\n",
@@ -65,7 +63,7 @@ int run_eval(const EvalOptions& o) {
       std::fprintf(stderr, "\r%llu vectors", static_cast<unsigned long long>(reader.rows_read()));
   }
   if (progress && reader.rows_read() >= 0x100000) std::fprintf(stderr, "\n");
-  if (dump) dump->commit();
+  outputs.commit();
 
   if (o.json) {
     nlohmann::json j = ev.to_json();
@@ -73,18 +71,19 @@ int run_eval(const EvalOptions& o) {
     j["rows"] = reader.rows_read();
     print_json(j);
   } else {
+    // With an output on standard output ("-"), the summary goes to stderr.
+    std::ostream& out = outputs.writes_stdout() ? std::cerr : std::cout;
     const SlotMap& slots = ev.slots();
-    std::cout << fmt::format("{}: {} vectors, {} slots{}, {} datapath groups{}\n", o.vectors,
-                             reader.rows_read(), slots.params.size(),
-                             slots.per_light ? " (lights change some materials' tau)" : "",
-                             slots.groups.size(),
-                             slots.capacity > 0
-                                 ? fmt::format(", a chip of {} slots", slots.capacity)
-                                 : std::string())
-              << format_eval_table(ev.stats()) << format_parts_table(ev.stats())
-              << "elaboration (what the scene built):\n"
-              << format_elaboration(ev.stats());
-    for (const auto& s : ev.stats()) std::cout << fmt::format("  {}: {}\n", s.name, s.spec);
+    out << fmt::format("{}: {} vectors, {} slots{}, {} datapath groups{}\n", o.vectors,
+                       reader.rows_read(), slots.params.size(),
+                       slots.per_light ? " (lights change some materials' tau)" : "",
+                       slots.groups.size(),
+                       slots.capacity > 0 ? fmt::format(", a chip of {} slots", slots.capacity)
+                                          : std::string())
+        << format_eval_table(ev.stats()) << format_parts_table(ev.stats())
+        << "elaboration (what the scene built):\n"
+        << format_elaboration(ev.stats());
+    for (const auto& s : ev.stats()) out << fmt::format("  {}: {}\n", s.name, s.spec);
   }
   return kExitOk;
 }
@@ -95,9 +94,12 @@ void add_eval_command(CLI::App& app, int& status) {
   auto o = std::make_shared<EvalOptions>();
   CLI::App* sub =
       app.add_subcommand("eval", "Run the untimed bit-accurate datapaths over a vector file");
-  sub->add_option("VECTORS", o->vectors, "Vector file (see traces/README.md)")->required();
+  sub->add_option("VECTORS", o->vectors, "Vector file (see traces/README.md); - for stdin")
+      ->required();
   sub->add_option("--unit", o->units, "Unit SPEC NAME[:key=value,...] (repeatable; default all)");
-  sub->add_option("--dump", o->dump, "Per-vector CSV (written atomically)");
+  sub->add_option("--dump", o->dump,
+                  "Per-vector CSV (written atomically; - for stdout, then the summary goes to "
+                  "stderr)");
   add_display_bits_option(sub, o->display_bits);
   add_slots_option(sub, o->slots);
   sub->add_flag("--json", o->json, "Print one JSON document on stdout");

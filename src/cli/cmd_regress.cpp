@@ -21,7 +21,7 @@
 
 #include "cli/cli.h"
 #include "eval/sim_report.h"
-#include "io/atomic_file.h"
+#include "io/output_set.h"
 
 namespace glint::cli {
 namespace {
@@ -152,17 +152,15 @@ int run_regress(const RegressOptions& o) {
       }
     }
   }
-  // Every golden is written to its temporary file before any is renamed into place.
-  if (!updates.empty()) fs::create_directories(golden_dir);
-  std::vector<std::unique_ptr<AtomicOutputFile>> files;
-  for (const auto& [path, golden] : updates) {
-    files.push_back(std::make_unique<AtomicOutputFile>(path.string()));
-    files.back()->stream() << golden.dump(2) << '\n';
-  }
-  for (std::size_t i = 0; i < files.size(); ++i) {
-    files[i]->commit();
-    std::cerr << fmt::format("updated {}\n", updates[i].first.string());
-  }
+  // Every golden is written to its temporary file, then all are committed together (output_set.h):
+  // all are updated or none.
+  OutputSet goldens;
+  if (!updates.empty()) goldens.make_folder("--update", golden_dir.string());
+  for (const auto& [path, golden] : updates)
+    goldens.add("--update", path.string()).stream() << golden.dump(2) << '\n';
+  goldens.commit();
+  for (const auto& update : updates)
+    std::cerr << fmt::format("updated {}\n", update.first.string());
   if (o.json) {
     print_json({{"checked", checked}, {"failed", failed}, {"traces", summary}});
   } else {

@@ -7,6 +7,7 @@
 
 #include "cli/cli.h"
 #include "eval/parallel.h"
+#include "io/output_set.h"
 #include "io/vectors.h"
 #include "render/render.h"
 #include "scene/scene.h"
@@ -35,10 +36,20 @@ int run_render(const RenderCommandOptions& o) {
   options.threads = o.threads > 0 ? o.threads : default_threads();
   options.slot_capacity = o.slots;
   options.progress = isatty(STDERR_FILENO);
+  // Outputs first, before any work: the folder made if missing, every file checked and its
+  // temporary created; all committed together at the end, or none (output_set.h).
+  OutputSet outputs;
+  outputs.add_input("SCENE", o.scene);
+  if (o.json) outputs.claim_stdout("--json");
+  const RenderOutputs files =
+      declare_render_outputs(outputs, o.out_dir, render_unit_labels(options.units), "-o");
+  OutputFile* vectors_file =
+      o.vectors.empty() ? nullptr : &outputs.add("--write-vectors", o.vectors, true);
   const Scene scene = load_scene(o.scene);
   std::unique_ptr<VectorWriter> vectors;
-  if (!o.vectors.empty()) {
-    vectors = std::make_unique<VectorWriter>(o.vectors, scene_request_header(scene));
+  if (vectors_file) {
+    vectors = std::make_unique<VectorWriter>(vectors_file->stream(), scene_request_header(scene),
+                                             o.vectors);
     options.on_requests = [&](const VectorRow* rows, std::size_t n) {
       for (std::size_t i = 0; i < n; ++i) vectors->write(rows[i]);
     };
@@ -49,35 +60,38 @@ int run_render(const RenderCommandOptions& o) {
   } catch (const SlotCapacityError& e) {
     refuse_slots(o.slots, e);  // the scene needs more than the chip holds
   }
-  write_render(r, o.out_dir);
-  if (vectors) vectors->commit();
+  write_render(r, files);
+  if (vectors) vectors->commit();  // flushes into its output
+  outputs.commit();
   if (o.json) {
     print_json(r.to_json());
     return kExitOk;
   }
+  // With --write-vectors - (standard output), the summary goes to stderr.
+  std::ostream& out = outputs.writes_stdout() ? std::cerr : std::cout;
   const SkipCounts total = r.skip_total();
   const auto pct = [](std::uint64_t part, std::uint64_t whole) {
     return whole ? 100.0 * static_cast<double>(part) / static_cast<double>(whole) : 0.0;
   };
-  std::cout << fmt::format(
+  out << fmt::format(
       "{}: {}x{}, {} lights, {} requests; skipped: {:.1f}% with tau, {:.1f}% with t <= 0; "
       "skip alone: max {} LSB\n",
       r.scene_name, r.width, r.height, r.lights.size(), r.requests,
       pct(total.facing_away + total.zero + total.tau, total.total()),
       pct(total.facing_away + total.zero, total.total()), lsb_text(r.skip_only_error.max_lsb));
   // highlight / core: the extent at 10 % and 50 % of the material's peak, against the reference.
-  std::cout << fmt::format("{:<9} {:>8} {:>9} {:>8} {:>7} {:>10} {:>7} {:>7} {:>9} {:<}\n", "unit",
-                           "max_lsb", "mean_lsb", "psnr_dB", "diff%", "highlight", "core", "skip%",
-                           "area_ge", "spec");
+  out << fmt::format("{:<9} {:>8} {:>9} {:>8} {:>7} {:>10} {:>7} {:>7} {:>9} {:<}\n", "unit",
+                     "max_lsb", "mean_lsb", "psnr_dB", "diff%", "highlight", "core", "skip%",
+                     "area_ge", "spec");
   for (const UnitRender& u : r.units) {
-    std::cout << fmt::format(
+    out << fmt::format(
         "{:<9} {:>8} {:>9.4f} {:>8} {:>6.2f}% {:>9.3f}x {:>6.3f}x {:>6.1f}% {:>9.0f} {}\n", u.label,
         lsb_text(u.error.max_lsb), u.error.mean_lsb,
         std::isfinite(u.error.psnr_db) ? fmt::format("{:.2f}", u.error.psnr_db) : "inf",
         100.0 * u.error.differing_fraction, u.error.highlight_ratio, u.error.core_ratio,
         pct(u.skipped, u.stats.vectors), u.cost.area_ge, u.spec);
   }
-  std::cout << fmt::format("images and report.json in {}\n", o.out_dir);
+  out << fmt::format("images and report.json in {}\n", o.out_dir);
   return kExitOk;
 }
 
@@ -92,7 +106,7 @@ void add_render_command(CLI::App& app, int& status) {
   sub->add_option("-o,--out", o->out_dir, "Folder for the PNG images and report.json")->required();
   sub->add_option("--write-vectors", o->vectors,
                   "Also write the scene's shading requests as a vector file (for eval, sim, "
-                  "regress)");
+                  "regress; - for stdout, then the summary goes to stderr)");
   sub->add_option("--threads", o->threads,
                   "Threads (default: every core); results do not depend "
                   "on it")

@@ -1,9 +1,9 @@
 // glint sim: the cycle-approximate SystemC model of the specular units over a vector stream.
 //
-// run_sim works in three steps, each its own function: check every option before any input is
-// read or any output created (check_sim_options), build the lanes and run the chosen mode
+// run_sim works in three steps, each its own function: check every option and declare every output
+// before any input is read (check_sim_options), build the lanes and run the chosen mode
 // (make_lanes, run_clocked_mode / run_fast_mode), then write the outputs (build_report,
-// write_outputs). Output files are committed only at the end, so a failure leaves none.
+// write_outputs). The outputs are one OutputSet, committed only at the end: all or none.
 #include <fmt/format.h>
 #include <unistd.h>
 
@@ -18,7 +18,8 @@
 
 #include "cli/cli.h"
 #include "eval/sim_report.h"
-#include "io/atomic_file.h"
+#include "io/input_source.h"
+#include "io/output_set.h"
 #include "io/vectors.h"
 #include "rtl_model/clocked_sim.h"
 #include "rtl_model/fast_sim.h"
@@ -38,18 +39,21 @@ struct SimOptions {
   bool json = false;
 };
 
-// What the options decide before the vector file is opened.
+// What the options decide before the vector file is opened, and the outputs, declared (checked,
+// their temporaries made) before any work. Not movable: clocked_options points at trace.
 struct SimPlan {
+  SimPlan() = default;
+  SimPlan(const SimPlan&) = delete;
+  SimPlan& operator=(const SimPlan&) = delete;
+
   std::vector<UnitSpec> specs;
   bool clocked = false;
-  ClockedOptions clocked_options;  // VCD path and window; sink and colour stage come later
+  ClockedOptions clocked_options;  // VCD outputs and window; sink and colour stage come later
+  OutputSet outputs;               // committed together at the end, or none
+  OutputFile* report = nullptr;
+  OutputFile* dump = nullptr;
+  TraceOutputs trace;
 };
-
-void write_atomic(const std::string& path, const std::string& text) {
-  AtomicOutputFile f(path);
-  f.stream() << text;
-  f.commit();
-}
 
 // A decimal unsigned 64-bit integer, digits only: no sign (std::stoull would wrap "-1" to
 // 2^64 - 1), no overflow.
@@ -75,41 +79,29 @@ void parse_vcd_window(const std::string& text, ClockedOptions& co) {
   co.vcd_last = *last;
 }
 
-// Every check that needs no input: unit specs, sink, output paths, mode and VCD window. Output
-// paths are checked here, before simulating, not when they are written.
-SimPlan check_sim_options(const SimOptions& o) {
-  SimPlan plan;
+// Every check that needs no input: unit specs, sink, mode and VCD window, then the outputs
+// (--report, --dump, --vcd and its save file), declared in plan.outputs before simulating: each
+// checked (not a link, device or folder; its folder exists), none the input or another output, at
+// most one of them (or --json) on standard output.
+void check_sim_options(const SimOptions& o, SimPlan& plan) {
   for (const auto& s : o.units.empty() ? unit_names() : o.units)
     plan.specs.push_back(parse_unit_spec(s));
   if (!(o.sink_ready >= kMinSinkReady && o.sink_ready <= 1))
     throw std::invalid_argument(fmt::format(
         "--sink-ready must be in [{}, 1] (a run takes ~vectors / p cycles)", kMinSinkReady));
-  // Outputs by option (the VCD's save file beside it too): none may be the input or another.
-  std::vector<std::pair<std::string, std::filesystem::path>> outputs;
-  for (const auto& [option, path] : {std::pair{"--report", &o.report}, std::pair{"--dump", &o.dump},
-                                     std::pair{"--vcd", &o.vcd}}) {
-    if (path->empty()) continue;
-    std::error_code ec;
-    if (std::filesystem::equivalent(o.vectors, *path, ec))
-      throw std::invalid_argument(fmt::format("output {} is the input vector file", *path));
-    check_output_path(*path);
-    outputs.emplace_back(option,
-                         std::filesystem::weakly_canonical(std::filesystem::absolute(*path)));
-    if (option == std::string("--vcd"))
-      outputs.emplace_back("--vcd's save file",
-                           std::filesystem::path(outputs.back().second).replace_extension(".gtkw"));
-  }
-  for (std::size_t i = 0; i < outputs.size(); ++i)
-    for (std::size_t j = i + 1; j < outputs.size(); ++j)
-      if (outputs[i].second == outputs[j].second)
-        throw std::invalid_argument(fmt::format("{} and {} name the same file {}", outputs[i].first,
-                                                outputs[j].first, outputs[i].second.string()));
   plan.clocked = o.mode == "clocked" || (o.mode == "auto" && !o.vcd.empty());
   if (!plan.clocked && !o.vcd.empty())
     throw std::invalid_argument("--vcd needs the clocked mode (--mode clocked or auto)");
-  plan.clocked_options.vcd_path = o.vcd;
   if (!o.vcd_window.empty()) parse_vcd_window(o.vcd_window, plan.clocked_options);
-  return plan;
+  OutputSet& out = plan.outputs;
+  out.add_input("VECTORS", o.vectors);
+  if (o.json) out.claim_stdout("--json");
+  if (!o.report.empty()) plan.report = &out.add("--report", o.report, /*allow_stdout=*/true);
+  if (!o.dump.empty()) plan.dump = &out.add("--dump", o.dump, /*allow_stdout=*/true);
+  if (!o.vcd.empty()) {
+    plan.trace = declare_trace_outputs(out, o.vcd, TraceFormat::kByExtension, "--vcd");
+    plan.clocked_options.trace_outputs = &plan.trace;
+  }
 }
 
 // The lanes of one run: a unit per spec, built for the stream's slots, and its accumulator.
@@ -146,23 +138,22 @@ void make_lanes(const VectorHeader& header, const std::vector<UnitSpec>& specs, 
 // keep working.
 class SimDump {
  public:
-  SimDump(const std::string& path, const VectorHeader& header, const SimLanes& lanes)
-      : file_(path), header_(header), lanes_(lanes) {
-    file_.stream() << "line,unit,t,t_raw,skipped,fixed_raw,fixed,issue,done,retire,material,light,"
-                      "x,y\n";
+  SimDump(OutputFile& file, const VectorHeader& header, const SimLanes& lanes)
+      : out_(file.stream()), header_(header), lanes_(lanes) {
+    out_ << "line,unit,t,t_raw,skipped,fixed_raw,fixed,issue,done,retire,material,light,"
+            "x,y\n";
   }
   void row(std::size_t lane, const VectorRow& row, std::int64_t t_raw, bool skipped,
            std::int64_t out_raw, const ResultTiming& t) {
-    file_.stream() << fmt::format(
+    out_ << fmt::format(
         "{},{},{:.17g},{},{},{},{:.17g},{},{},{},{},{},{},{}\n", row.line,
         lanes_.acc[lane].stats().name, row.t, t_raw, skipped ? 1 : 0, out_raw,
         std::ldexp(static_cast<double>(out_raw), -lanes_.units[lane]->out_format().frac_bits),
         t.issue, t.done, t.retire, header_.materials[row.material].name, row.light, row.x, row.y);
   }
-  void commit() { file_.commit(); }
 
  private:
-  AtomicOutputFile file_;
+  std::ostream& out_;
   const VectorHeader& header_;
   const SimLanes& lanes_;
 };
@@ -174,11 +165,12 @@ struct SimRun {
 
 // Clocked mode: per-cycle processes. Each lane reads its own stream (lanes run independently);
 // the caller's reader only supplied the header.
-SimRun run_clocked_mode(const SimOptions& o, ClockedOptions co, SimLanes& lanes, SimDump* dump) {
+SimRun run_clocked_mode(const SimOptions& o, ClockedOptions co, const RereadableInput& input,
+                        SimLanes& lanes, SimDump* dump) {
   co.colour_stage = lanes.colour;
   co.sink = SinkReady{o.sink_ready, o.seed};
   auto open = [&]() -> std::unique_ptr<RowStream> {
-    return std::make_unique<VectorReaderStream>(o.vectors);
+    return std::make_unique<VectorReaderStream>(input.open());
   };
   auto on_result = [&](const LaneOutput& r) {
     const std::size_t slot = lanes.slots.slot(r.row);
@@ -241,36 +233,49 @@ nlohmann::json build_report(const SimOptions& o, bool clocked, const SimLanes& l
   return report;
 }
 
-// Commits the dump, writes --report, then prints the report (JSON or table) on stdout.
-void write_outputs(const SimOptions& o, bool clocked, std::uint64_t rows,
-                   const nlohmann::json& report, SimDump* dump) {
-  if (dump) dump->commit();
-  if (!o.report.empty()) write_atomic(o.report, report.dump(2) + "\n");
+// Writes --report, commits every output (all or none), then prints the report (JSON or table) on
+// stdout; the table on stderr when an output is standard output.
+void write_outputs(const SimOptions& o, SimPlan& plan, std::uint64_t rows,
+                   const nlohmann::json& report) {
+  const bool clocked = plan.clocked;
+  if (plan.report) plan.report->stream() << report.dump(2) << "\n";
+  plan.outputs.commit();
   if (o.json) {
     print_json(report);
     return;
   }
-  std::cout << fmt::format("{}: {} vectors, {} mode, sink ready {}{}\n", o.vectors, rows,
-                           clocked ? "clocked" : "fast", o.sink_ready,
-                           o.vcd.empty() ? "" : ", VCD " + o.vcd)
-            << format_sim_table(report);
+  std::ostream& out = plan.outputs.writes_stdout() ? std::cerr : std::cout;
+  out << fmt::format("{}: {} vectors, {} mode, sink ready {}{}\n", o.vectors, rows,
+                     clocked ? "clocked" : "fast", o.sink_ready,
+                     o.vcd.empty() ? "" : ", VCD " + o.vcd)
+      << format_sim_table(report);
   for (const auto& u : report["units"])
-    std::cout << fmt::format("  {}: {}\n", u["unit"].get<std::string>(),
-                             u["spec"].get<std::string>());
+    out << fmt::format("  {}: {}\n", u["unit"].get<std::string>(), u["spec"].get<std::string>());
 }
 
 int run_sim(const SimOptions& o) {
-  const SimPlan plan = check_sim_options(o);
-  VectorReader reader(o.vectors);
+  SimPlan plan;
+  check_sim_options(o, plan);
+  // The clocked model reads the stream once per lane: standard input or a pipe is kept in an
+  // anonymous temporary file (input_source.h); fast mode reads it once, as it comes.
+  std::unique_ptr<RereadableInput> input;
+  std::unique_ptr<VectorReader> reader;
+  if (plan.clocked) {
+    input = std::make_unique<RereadableInput>(o.vectors);
+    reader = input->open();
+  } else {
+    reader = std::make_unique<VectorReader>(o.vectors);
+  }
   SimLanes lanes;
-  make_lanes(reader.header(), plan.specs, o.display_bits, o.slots, lanes);
+  make_lanes(reader->header(), plan.specs, o.display_bits, o.slots, lanes);
   std::unique_ptr<SimDump> dump;
-  if (!o.dump.empty()) dump = std::make_unique<SimDump>(o.dump, reader.header(), lanes);
+  if (plan.dump) dump = std::make_unique<SimDump>(*plan.dump, reader->header(), lanes);
   const bool progress = isatty(STDERR_FILENO);
-  const SimRun run = plan.clocked ? run_clocked_mode(o, plan.clocked_options, lanes, dump.get())
-                                  : run_fast_mode(o, reader, lanes, dump.get(), progress);
+  const SimRun run = plan.clocked
+                         ? run_clocked_mode(o, plan.clocked_options, *input, lanes, dump.get())
+                         : run_fast_mode(o, *reader, lanes, dump.get(), progress);
   if (progress && run.rows >= 0x100000) std::fprintf(stderr, "\n");
-  write_outputs(o, plan.clocked, run.rows, build_report(o, plan.clocked, lanes, run), dump.get());
+  write_outputs(o, plan, run.rows, build_report(o, plan.clocked, lanes, run));
   return kExitOk;
 }
 
@@ -280,13 +285,17 @@ void add_sim_command(CLI::App& app, int& status) {
   auto o = std::make_shared<SimOptions>();
   CLI::App* sub = app.add_subcommand(
       "sim", "Cycle-approximate SystemC simulation of units side by side on a vector file");
-  sub->add_option("VECTORS", o->vectors, "Vector file (see traces/README.md)")->required();
+  sub->add_option("VECTORS", o->vectors, "Vector file (see traces/README.md); - for stdin")
+      ->required();
   sub->add_option("--unit", o->units,
                   "Unit SPEC NAME[:key=value,...] (repeatable; default all five); timing keys: "
                   "buffer, schlick divider");
-  sub->add_option("--report", o->report, "Write the JSON report to this file (atomically)");
-  sub->add_option("--dump", o->dump, "Per-result CSV with cycle stamps (atomically)");
-  sub->add_option("--vcd", o->vcd, "VCD trace (clocked mode) + GTKWave save file beside it");
+  sub->add_option("--report", o->report,
+                  "Write the JSON report to this file (atomically; - for stdout)");
+  sub->add_option("--dump", o->dump, "Per-result CSV with cycle stamps (atomically; - for stdout)");
+  sub->add_option("--vcd", o->vcd,
+                  "VCD trace (clocked mode) + GTKWave save file beside it; .fst: FST; - : VCD "
+                  "on stdout (no save file)");
   sub->add_option("--vcd-window", o->vcd_window, "FIRST:LAST vector indices to trace");
   sub->add_option("--mode", o->mode, "fast | clocked | auto (clocked when --vcd is given)")
       ->check(CLI::IsMember({"fast", "clocked", "auto"}))

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "cli/cli.h"
+#include "io/signal_cleanup.h"
 #include "rtl_model/sc_setup.h"
 
 #ifndef GLINT_VERSION
@@ -36,6 +37,9 @@ bool check_subcommand(CLI::App& app, int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // SIGINT, SIGTERM and the like remove the run's temporary files before ending it; a file size
+  // limit makes writes fail (an error reported, exit 2) instead of killing glint.
+  glint::install_cleanup_handlers();
   glint::quiet_systemc_banner();
   CLI::App app{"glint: simulator of fixed-point specular shading units (max(0,t)^n)"};
   app.set_version_flag("--version", std::string("glint ") + GLINT_VERSION);

@@ -207,6 +207,7 @@ void VcdWriter::open(std::FILE* file, bool pipe) {
   // surface in the fwrite that the guard covers rather than in a later hidden flush.
   if (pipe_) std::setvbuf(file_, nullptr, _IONBF, 0);
   failed_ = false;
+  error_ = 0;
   capacity_ = std::max(kBufferBytes, 2 * (max_changes_bytes_ + kIdSlack) + 64);
   buffer_ = std::make_unique<char[]>(capacity_);
   pos_ = 0;
@@ -219,7 +220,7 @@ void VcdWriter::flush() {
   if (pos_ == 0) return;
   if (file_) {
     SigpipeGuard guard(pipe_);
-    if (std::fwrite(buffer_.get(), 1, pos_, file_) != pos_) failed_ = true;
+    if (std::fwrite(buffer_.get(), 1, pos_, file_) != pos_) fail(errno);
   }
   flushed_ += pos_;
   pos_ = 0;
@@ -394,7 +395,7 @@ bool VcdWriter::close(std::uint64_t end_time) {
   flush();
   {
     SigpipeGuard guard(pipe_);
-    if (std::fclose(file_) != 0) failed_ = true;
+    if (std::fclose(file_) != 0) fail(errno);
   }
   file_ = nullptr;
   buffer_.reset();

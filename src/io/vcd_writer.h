@@ -79,6 +79,8 @@ class VcdWriter {
   // Writes "#end_time" when it is later than the last time, flushes and closes. Returns false if
   // any write (or the close) failed.
   bool close(std::uint64_t end_time);
+  // The errno of the first failed write (or close), 0 if none.
+  int error() const { return error_; }
 
  private:
   struct Var {
@@ -99,6 +101,10 @@ class VcdWriter {
   };
 
   void check_name(const std::string& name);
+  void fail(int err) {
+    if (!failed_) error_ = err;
+    failed_ = true;
+  }
   Var next_var(int width);
   void reserve(std::size_t bytes);  // room for `bytes` more in the buffer (flushes if needed)
   void flush();
@@ -123,6 +129,7 @@ class VcdWriter {
   std::FILE* file_ = nullptr;
   bool pipe_ = false;
   bool failed_ = false;
+  int error_ = 0;
   std::unique_ptr<char[]> buffer_;
   std::size_t capacity_ = 0, pos_ = 0;
   std::uint64_t flushed_ = 0;

@@ -1,5 +1,7 @@
 #include "io/vectors.h"
 
+#include <unistd.h>
+
 #include <cerrno>
 #include <charconv>
 #include <cstring>
@@ -8,6 +10,7 @@
 #include <stdexcept>
 
 #include "io/atomic_file.h"
+#include "io/input_source.h"
 #include "io/line_reader.h"
 #include "io/vector_header.h"
 #include "io/vector_rows.h"
@@ -58,14 +61,14 @@ std::array<double, 3> VectorHeader::intensity(int index) const {
 // (vector_header.cpp), RowParser (vector_rows.cpp). The rules they check are in vector_syntax.h
 // and vector_rules.h, shared with validate() (vector_rules.cpp) and the writer below.
 struct VectorReader::Impl {
-  std::unique_ptr<std::ifstream> owned;  // the file, when the reader opened it
+  std::unique_ptr<std::istream> owned;  // the stream, when the reader owns it
   LineReader lines;
   VectorFileHeader file;  // read by the constructor
   RowParser rows;
   std::uint64_t rows_read = 0;
   std::unique_ptr<InputError> error;  // the first row error, rethrown by every later next()
 
-  Impl(std::unique_ptr<std::ifstream> owned_file, std::istream& in, std::string name)
+  Impl(std::unique_ptr<std::istream> owned_file, std::istream& in, std::string name)
       : owned(std::move(owned_file)),
         lines(in, std::move(name)),
         file(read_vector_header(lines)),
@@ -86,6 +89,13 @@ struct VectorReader::Impl {
 };
 
 VectorReader::VectorReader(const std::string& path) {
+  if (path == "-") {
+    // Standard input, read in place (a pipe is read as it comes; nothing is reopened).
+    auto in = std::make_unique<FdInputStream>(STDIN_FILENO, false);
+    std::istream& ref = *in;
+    impl_ = std::make_unique<Impl>(std::move(in), ref, kStdinName);
+    return;
+  }
   auto file = std::make_unique<std::ifstream>(path, std::ios::in | std::ios::binary);
   if (!file->is_open()) {
     const int err = errno;
@@ -99,6 +109,11 @@ VectorReader::VectorReader(const std::string& path) {
 
 VectorReader::VectorReader(std::istream& in, std::string name)
     : impl_(std::make_unique<Impl>(nullptr, in, std::move(name))) {}
+
+VectorReader::VectorReader(std::unique_ptr<std::istream> in, std::string name) {
+  std::istream& ref = *in;
+  impl_ = std::make_unique<Impl>(std::move(in), ref, std::move(name));
+}
 
 VectorReader::~VectorReader() = default;
 
@@ -186,7 +201,7 @@ struct VectorWriter::Impl {
   void flush() {
     out->write(buf.data(), static_cast<std::streamsize>(buf.size()));
     buf.clear();
-    if (!*out) throw std::runtime_error("VectorWriter: cannot write '" + where + "'");
+    if (!*out) throw OutputError("cannot write '" + where + "'");
   }
 
   void write(const VectorRow& r) {
@@ -237,7 +252,7 @@ struct VectorWriter::Impl {
       file->commit();
     } else {
       out->flush();
-      if (!*out) throw std::runtime_error("VectorWriter: cannot write '" + where + "'");
+      if (!*out) throw OutputError("cannot write '" + where + "'");
     }
     committed = true;
   }
@@ -250,8 +265,8 @@ VectorWriter::VectorWriter(const std::string& path, const VectorHeader& header)
   impl_->write_header();
 }
 
-VectorWriter::VectorWriter(std::ostream& out, const VectorHeader& header)
-    : impl_(std::make_unique<Impl>("<stream>", header)) {
+VectorWriter::VectorWriter(std::ostream& out, const VectorHeader& header, std::string name)
+    : impl_(std::make_unique<Impl>(std::move(name), header)) {
   impl_->out = &out;
   impl_->write_header();
 }

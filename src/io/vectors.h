@@ -94,9 +94,12 @@ struct VectorRow {
 class VectorReader {
  public:
   // Opens and reads the header; throws InputError (line 0, field "file" if it cannot be opened).
+  // "-" is standard input (named "<stdin>" in errors).
   explicit VectorReader(const std::string& path);
   // Reads from `in` (which must outlive the reader); `name` is used as the file name in errors.
   VectorReader(std::istream& in, std::string name);
+  // Reads from `in`, which the reader owns.
+  VectorReader(std::unique_ptr<std::istream> in, std::string name);
   ~VectorReader();
 
   VectorReader(const VectorReader&) = delete;
@@ -119,10 +122,11 @@ class VectorReader {
 class VectorWriter {
  public:
   // Writes to a temporary file beside `path`, renamed to `path` by commit(). Throws
-  // std::invalid_argument if the header is invalid, std::runtime_error if the file can't be made.
+  // std::invalid_argument if the header is invalid, OutputError if the file can't be made.
   VectorWriter(const std::string& path, const VectorHeader& header);
-  // Writes to `out` (which must outlive the writer); commit() flushes it.
-  VectorWriter(std::ostream& out, const VectorHeader& header);
+  // Writes to `out` (which must outlive the writer; `name` names it in errors); commit() flushes
+  // it.
+  VectorWriter(std::ostream& out, const VectorHeader& header, std::string name = "<stream>");
   // Without commit(), a path writer removes its temporary file (no output appears).
   ~VectorWriter();
 
@@ -135,7 +139,7 @@ class VectorWriter {
   // the file back yields bit-identical values.
   void write(const VectorRow& row);
   // Flushes everything; for a path writer, fsyncs and renames into place. Throws
-  // std::runtime_error on I/O failure. No write() after commit().
+  // OutputError on I/O failure. No write() after commit().
   void commit();
 
   const VectorHeader& header() const;

@@ -20,6 +20,9 @@
 
 namespace glint {
 
+class OutputSet;
+class OutputFile;
+
 inline constexpr int kRenderReportVersion = 1;
 
 // The header of a scene's shading requests: the lights, and only the materials objects use (units
@@ -107,8 +110,25 @@ RenderResult render_scene(const Scene& scene, const RenderOptions& options);
 
 // The file names write_render uses, in contact-sheet order.
 std::vector<std::string> render_file_names(const RenderResult& result);
-// Writes every image as PNG and report.json into `dir` (created if missing). Every file is written
-// to a temporary beside it and renamed only when all were written.
+// The same before rendering: the labels render_scene gives the units of `specs` (every unit at its
+// defaults when empty; std::invalid_argument for an unknown unit), and their files.
+std::vector<std::string> render_unit_labels(const std::vector<UnitSpec>& specs);
+std::vector<std::string> render_file_names(const std::vector<std::string>& labels);
+
+// The render's files as outputs of an OutputSet (io/output_set.h), declared before rendering:
+// `dir` made if missing (removed again if the run fails), every file checked and its temporary
+// created. `option` names the folder in messages.
+struct RenderOutputs {
+  std::vector<std::pair<std::string, OutputFile*>> files;  // name in `dir`, output
+};
+RenderOutputs declare_render_outputs(OutputSet& outputs, const std::string& dir,
+                                     const std::vector<std::string>& labels,
+                                     const std::string& option = "-o");
+// Writes every image as PNG and report.json into the declared outputs (the names must be the
+// result's: std::logic_error otherwise); the caller commits them with its other outputs.
+void write_render(const RenderResult& result, const RenderOutputs& outputs);
+// The same into `dir` with an OutputSet of its own, committed: every file is written to its
+// temporary, and all are renamed into place only when all were written (output_set.h).
 void write_render(const RenderResult& result, const std::string& dir);
 
 }  // namespace glint

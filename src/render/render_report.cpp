@@ -5,8 +5,9 @@
 #include <filesystem>
 #include <memory>
 
-#include "io/atomic_file.h"
+#include "io/output_set.h"
 #include "render/render.h"
+#include "units/catalogue.h"
 
 namespace glint {
 namespace {
@@ -68,17 +69,31 @@ SkipCounts RenderResult::skip_total() const {
   return t;
 }
 
-std::vector<std::string> render_file_names(const RenderResult& r) {
+std::vector<std::string> render_file_names(const std::vector<std::string>& labels) {
   std::vector<std::string> names{"reference.png", "reference_specular.png", "skip_mask.png",
                                  "skip_only.png"};
-  for (const UnitRender& u : r.units) {
-    names.push_back(u.label + ".png");
-    names.push_back(u.label + "_specular.png");
-    names.push_back(u.label + "_error.png");
+  for (const std::string& label : labels) {
+    names.push_back(label + ".png");
+    names.push_back(label + "_specular.png");
+    names.push_back(label + "_error.png");
   }
   names.push_back("contact_sheet.png");
   names.push_back("report.json");
   return names;
+}
+
+std::vector<std::string> render_file_names(const RenderResult& r) {
+  std::vector<std::string> labels;
+  for (const UnitRender& u : r.units) labels.push_back(u.label);
+  return render_file_names(labels);
+}
+
+std::vector<std::string> render_unit_labels(const std::vector<UnitSpec>& specs) {
+  std::vector<std::string> names;
+  if (specs.empty()) return unit_labels(unit_names());
+  // unit_info refuses an unknown name: a label becomes a file name, so only the catalogue's.
+  for (const UnitSpec& s : specs) names.push_back(unit_info(s.name).name);
+  return unit_labels(names);
 }
 
 nlohmann::json RenderResult::to_json() const {
@@ -132,35 +147,47 @@ nlohmann::json RenderResult::to_json() const {
           {"files", render_file_names(*this)}};
 }
 
-void write_render(const RenderResult& r, const std::string& dir) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec) throw OutputError(fmt::format("{}: cannot create the folder: {}", dir, ec.message()));
-  std::vector<std::pair<std::string, const Image8*>> images{
-      {"reference.png", &r.reference},
-      {"reference_specular.png", &r.reference_specular},
-      {"skip_mask.png", &r.skip_mask},
-      {"skip_only.png", &r.skip_only}};
+RenderOutputs declare_render_outputs(OutputSet& outputs, const std::string& dir,
+                                     const std::vector<std::string>& labels,
+                                     const std::string& option) {
+  outputs.make_folder(option, dir);
+  RenderOutputs out;
+  for (const std::string& name : render_file_names(labels))
+    out.files.emplace_back(name, &outputs.add(option + " (" + name + ")",
+                                              (std::filesystem::path(dir) / name).string()));
+  return out;
+}
+
+void write_render(const RenderResult& r, const RenderOutputs& outputs) {
+  if (render_file_names(r) != [&] {
+        std::vector<std::string> names;
+        for (const auto& f : outputs.files) names.push_back(f.first);
+        return names;
+      }())
+    throw std::logic_error("write_render: the declared files are not the render's");
+  std::vector<const Image8*> images{&r.reference, &r.reference_specular, &r.skip_mask,
+                                    &r.skip_only};
   for (const UnitRender& u : r.units) {
-    images.emplace_back(u.label + ".png", &u.image);
-    images.emplace_back(u.label + "_specular.png", &u.specular);
-    images.emplace_back(u.label + "_error.png", &u.heatmap);
+    images.push_back(&u.image);
+    images.push_back(&u.specular);
+    images.push_back(&u.heatmap);
   }
-  images.emplace_back("contact_sheet.png", &r.contact_sheet);
-  // Every file is written to its temporary first and renamed only when all are complete, so a
-  // failure (disk full, a bad folder) leaves the folder's previous files as they were.
-  std::vector<std::unique_ptr<AtomicOutputFile>> files;
-  for (const auto& [name, image] : images) {
-    files.push_back(
-        std::make_unique<AtomicOutputFile>((std::filesystem::path(dir) / name).string()));
-    const std::vector<std::uint8_t> png = encode_png(*image);
-    files.back()->stream().write(reinterpret_cast<const char*>(png.data()),
-                                 static_cast<std::streamsize>(png.size()));
+  images.push_back(&r.contact_sheet);
+  for (std::size_t i = 0; i < images.size(); ++i) {
+    const std::vector<std::uint8_t> png = encode_png(*images[i]);
+    outputs.files[i].second->stream().write(reinterpret_cast<const char*>(png.data()),
+                                            static_cast<std::streamsize>(png.size()));
   }
-  files.push_back(
-      std::make_unique<AtomicOutputFile>((std::filesystem::path(dir) / "report.json").string()));
-  files.back()->stream() << r.to_json().dump(2) << '\n';
-  for (auto& f : files) f->commit();
+  outputs.files.back().second->stream() << r.to_json().dump(2) << '\n';
+}
+
+void write_render(const RenderResult& r, const std::string& dir) {
+  std::vector<std::string> labels;
+  for (const UnitRender& u : r.units) labels.push_back(u.label);
+  OutputSet outputs;
+  const RenderOutputs files = declare_render_outputs(outputs, dir, labels, "render folder");
+  write_render(r, files);
+  outputs.commit();
 }
 
 }  // namespace glint
