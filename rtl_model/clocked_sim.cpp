@@ -15,22 +15,12 @@
 #include "rtl_model/tau_comparator.h"
 #include "rtl_model/vcd_trace.h"
 #include "rtl_model/vector_source.h"
+#include "units/lane_cost.h"
 
 namespace glint {
 
 UnitTiming clocked_timing(const SpecularUnit& unit, bool colour_stage) {
-  UnitTiming t = unit.timing();
-  if (colour_stage) t.latency += 1;
-  return t;
-}
-
-bool stream_is_coloured(const VectorHeader& header) {
-  auto grey = [](const std::array<double, 3>& c) { return c[0] == c[1] && c[1] == c[2]; };
-  for (int i = 0; i < header.lights; ++i)
-    if (!grey(header.intensity(i))) return true;
-  for (const VectorMaterial& m : header.materials)
-    if (!grey(m.specular)) return true;
-  return false;
+  return lane_timing(unit, colour_stage);
 }
 
 namespace rtl {

@@ -94,11 +94,10 @@ struct ClockedRunInfo {
   std::vector<std::string> traced;         // hierarchical names of the traced signals
 };
 
-// The timing the clocked lane realises for `unit`: its own, plus one stage with the colour stage.
+// The timing the clocked lane realises for `unit`: its own, plus one stage with the colour stage
+// (lane_timing, units/lane_cost.h). Whether a stream needs the colour stage: stream_is_coloured
+// (eval/evaluate.h).
 UnitTiming clocked_timing(const SpecularUnit& unit, bool colour_stage);
-
-// True when some light intensity or material specular colour is not grey (r, g, b not all equal).
-bool stream_is_coloured(const VectorHeader& header);
 
 // Elaborates one lane per unit (only the given units), runs until every lane's stream is drained
 // and retired, then returns per-lane TimingStats (filled as TimingEngine fills them). `on_result`

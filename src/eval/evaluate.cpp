@@ -174,6 +174,15 @@ SlotMap make_slots(const VectorHeader& header, std::size_t capacity) {
   return map;
 }
 
+bool stream_is_coloured(const VectorHeader& header) {
+  auto grey = [](const std::array<double, 3>& c) { return c[0] == c[1] && c[1] == c[2]; };
+  for (int i = 0; i < header.lights; ++i)
+    if (!grey(header.intensity(i))) return true;
+  for (const VectorMaterial& m : header.materials)
+    if (!grey(m.specular)) return true;
+  return false;
+}
+
 double reference_value(const SlotMap& slots, std::size_t slot, double t) {
   // t = cos(phi) <= 1: the slack up to 1 + 1e-3 that vector files allow is float noise of unit
   // vectors, not a brighter highlight (1.001^5000 would be 147).

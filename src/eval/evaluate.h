@@ -55,6 +55,10 @@ class SlotCapacityError : public std::invalid_argument {
 // colours (SlotCapacityError otherwise, with the counts); 0: sized to the stream.
 SlotMap make_slots(const VectorHeader& header, std::size_t capacity = 0);
 
+// True when some light intensity or material specular colour is not grey (r, g, b not all equal):
+// every lane then builds the per-channel colour stage (its cost and one stage of latency).
+bool stream_is_coloured(const VectorHeader& header);
+
 // The float reference the units are judged against: max(0,t)^n for Phong and Blinn (eq.1-2, the
 // scalar lobe; colour is a separate multiply), exp(-(acos t / omega)^2) for Gaussian lobes (eq.7),
 // at t clamped to <= 1.
@@ -200,6 +204,8 @@ class Evaluator {
   void add_batch(const VectorRow* rows, std::size_t count, BatchResults& out, int threads = 1);
   std::vector<UnitStats> stats() const;
   const std::string& label(std::size_t unit) const { return lanes_[unit].stats().name; }
+  // The digest of unit u's results so far (LaneAccumulator::digest; sim reports it as "digest").
+  std::uint64_t digest(std::size_t unit) const { return lanes_[unit].digest(); }
   const std::vector<std::unique_ptr<SpecularUnit>>& units() const { return units_; }
   const SlotMap& slots() const { return slots_; }
   // The report's version, slots and units (the caller adds vectors_file and rows).

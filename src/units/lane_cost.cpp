@@ -32,4 +32,10 @@ UnitCost unit_cost(const SpecularUnit& unit, bool colour_multiply, int colour_en
   return b.finish();
 }
 
+UnitTiming lane_timing(const SpecularUnit& unit, bool colour_stage) {
+  UnitTiming t = unit.timing();
+  if (colour_stage) t.latency += 1;
+  return t;
+}
+
 }  // namespace glint

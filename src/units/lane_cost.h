@@ -12,4 +12,9 @@ namespace glint {
 // 0: one per threshold entry).
 UnitCost unit_cost(const SpecularUnit& unit, bool colour_multiply = false, int colour_entries = 0);
 
+// The timing of the same lane: the unit's own (latency, II, merge buffer), plus one stage of
+// latency with the colour stage. Both SystemC modes and `glint sweep` schedule with it
+// (timing/timing.h's TimingEngine), so a sweep's cycles are the cycles `glint sim` reports.
+UnitTiming lane_timing(const SpecularUnit& unit, bool colour_stage);
+
 }  // namespace glint
