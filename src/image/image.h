@@ -59,6 +59,19 @@ int text_width(std::string_view text, int height = 14);
 // an ellipsis that fits; empty if not even the ellipsis fits.
 std::string fit_text(std::string_view text, int max_width, int height = 14);
 
+// Shapes for charts (glint sweep's plots), anti-aliased: each pixel is blended with the colour by
+// the fraction of it the shape covers (estimated from the distance of its centre to the shape's
+// edge), in the stored sRGB values as text is; clipped to the image; deterministic. Coordinates
+// are in pixels, (0, 0) the top-left corner of the top-left pixel, so pixel (x, y) has its centre
+// at (x + 0.5, y + 0.5).
+// A straight segment `width` pixels wide (round caps).
+void draw_line(Image8& image, double x0, double y0, double x1, double y1, Rgb8 colour,
+               double width = 1.0);
+// A filled disc.
+void fill_circle(Image8& image, double cx, double cy, double radius, Rgb8 colour);
+// A filled axis-aligned rectangle [x0, x1) x [y0, y1), edges anti-aliased.
+void fill_rect(Image8& image, double x0, double y0, double x1, double y1, Rgb8 colour);
+
 // An error heat map: each pixel's error in LSBs mapped by heat_colour over [0, scale_max] (values
 // above clamp), pixels with no error colour, and a colour bar with tick labels ("0", ...,
 // "N LSB") and a title drawn to the right of the image. error_lsb has width * height entries.
