@@ -38,5 +38,8 @@ void add_units_command(CLI::App& app, int& status);
 void add_sim_command(CLI::App& app, int& status);
 void add_regress_command(CLI::App& app, int& status);
 void add_render_command(CLI::App& app, int& status);
+void add_sweep_command(CLI::App& app, int& status);
+void add_size_command(CLI::App& app, int& status);
+void add_merge_command(CLI::App& app, int& status);
 
 }  // namespace glint::cli

@@ -52,6 +52,9 @@ int main(int argc, char** argv) {
   glint::cli::add_sim_command(app, status);
   glint::cli::add_regress_command(app, status);
   glint::cli::add_render_command(app, status);
+  glint::cli::add_sweep_command(app, status);
+  glint::cli::add_size_command(app, status);
+  glint::cli::add_merge_command(app, status);
   if (!check_subcommand(app, argc, argv)) return glint::cli::kExitBadInput;
   try {
     app.parse(argc, argv);

@@ -1,0 +1,62 @@
+// glint merge: shard reports of one sweep (glint sweep --shard K/N -o shardK.json) joined into the
+// report the unsharded sweep writes, byte for byte.
+#include <fmt/format.h>
+
+#include <iostream>
+#include <memory>
+
+#include "cli/cli.h"
+#include "sweep/outputs.h"
+#include "sweep/report.h"
+
+namespace glint::cli {
+namespace {
+
+struct MergeOptions {
+  std::vector<std::string> shards;
+  std::string out, csv, plot;
+  bool json = false;
+};
+
+int run_merge(const MergeOptions& o) {
+  SweepOutputs outputs;
+  if (!o.out.empty()) add_output_by_extension(outputs, o.out);
+  if (!o.csv.empty()) {
+    if (!outputs.csv.empty())
+      throw std::invalid_argument(
+          fmt::format("--csv {}: -o {} already writes the CSV", o.csv, outputs.csv));
+    outputs.csv = o.csv;
+  }
+  outputs.plot_dir = o.plot;
+  if (outputs.json.empty() && outputs.csv.empty() && outputs.plot_dir.empty() && !o.json)
+    throw std::invalid_argument(
+        "merge: nothing to write (give -o OUT.json, --csv, --plot or --json)");
+  check_sweep_outputs(outputs, o.shards);
+  std::vector<std::pair<std::string, nlohmann::json>> shards;
+  for (const std::string& path : o.shards) shards.emplace_back(path, read_sweep_report(path));
+  const nlohmann::json report = merge_sweep_reports(shards);
+  write_sweep_outputs(report, outputs);
+  if (o.json) {
+    print_json(report);
+  } else {
+    std::cout << format_sweep_summary(report);
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_merge_command(CLI::App& app, int& status) {
+  auto o = std::make_shared<MergeOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "merge", "Join the shard reports of one sweep into the report of the whole sweep");
+  sub->add_option("SHARD", o->shards, "Shard reports (glint sweep --shard K/N -o FILE.json)")
+      ->required();
+  sub->add_option("-o,--out", o->out, "Write the merged report: FILE.json or FILE.csv");
+  sub->add_option("--csv", o->csv, "Also write the CSV table here");
+  sub->add_option("--plot", o->plot, "Write the plots of the merged sweep into this folder");
+  sub->add_flag("--json", o->json, "Print the merged report on stdout");
+  sub->callback([o, &status] { status = guarded([&] { return run_merge(*o); }); });
+}
+
+}  // namespace glint::cli

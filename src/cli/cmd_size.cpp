@@ -1,0 +1,96 @@
+// glint size: the cheapest configuration per unit family and overall that meets an error budget on
+// every given input (src/sweep/size.h), printed as a SPEC ready to paste. Exit 1 when none does.
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <iostream>
+#include <memory>
+
+#include "cli/cli.h"
+#include "eval/parallel.h"
+#include "sweep/size.h"
+
+namespace glint::cli {
+namespace {
+
+// No configuration meets the budget: a check that failed, as regress's exit 1.
+constexpr int kExitNoneMeets = 1;
+
+struct SizeOptions {
+  std::vector<std::string> vectors, scenes, grids;
+  std::string budget, objective = "area";
+  int display_bits = 8;
+  std::size_t slots = 0;
+  int jobs = 0;
+  bool no_image = false;
+  bool json = false;
+};
+
+int run_size_command(const SizeOptions& o) {
+  std::vector<SweepInput> inputs;
+  for (const std::string& v : o.vectors) inputs.push_back({v, false});
+  for (const std::string& s : o.scenes) inputs.push_back({s, true});
+  if (inputs.empty()) throw std::invalid_argument("size: give VECTORS files or --scene SCENE");
+  const SizeObjective objective = parse_size_objective(o.objective);
+  // Image-level measures only when every input is a scene rendered with them.
+  const bool image = !o.no_image && o.vectors.empty();
+  const std::vector<Budget> budgets = parse_budgets(o.budget, image);
+  std::vector<Grid> grids;
+  for (const std::string& g : o.grids.empty() ? default_size_grids() : o.grids)
+    grids.push_back(parse_grid(g));
+  expand_grids(grids);  // the cap, before any input is read
+  SweepSettings settings;
+  settings.display_bits = o.display_bits;
+  settings.slot_capacity = o.slots;
+  settings.jobs = o.jobs > 0 ? o.jobs : default_threads();
+  std::function<void(const std::string&)> progress;
+  if (isatty(STDERR_FILENO))
+    progress = [](const std::string& line) { std::fprintf(stderr, "\r%s", line.c_str()); };
+  SizeRun run;
+  try {
+    run = run_size(inputs, grids, budgets, objective, settings, !o.no_image, progress);
+  } catch (const SlotCapacityError& e) {
+    refuse_slots(o.slots, e);
+  }
+  if (progress) std::fprintf(stderr, "\n");
+  if (o.json) {
+    print_json(run.document);
+  } else {
+    std::cout << format_size(run);
+  }
+  return run.pick.best ? kExitOk : kExitNoneMeets;
+}
+
+}  // namespace
+
+void add_size_command(CLI::App& app, int& status) {
+  auto o = std::make_shared<SizeOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "size",
+      "The cheapest configuration per unit family and overall that meets an error "
+      "budget on every input");
+  sub->add_option("VECTORS", o->vectors, "Vector files (every one must meet the budget)");
+  sub->add_option("--scene", o->scenes, "Scene files (repeatable; every one must meet the budget)")
+      ->allow_extra_args(false);
+  sub->add_option("--budget", o->budget,
+                  "MEASURE OP VALUE[,...], all must hold, e.g. 'lsb8<=1', "
+                  "'bound_lsb<=0.5,mismatch_fraction<0.01', 'image.max_lsb<=1'")
+      ->required();
+  sub->add_option("--objective", o->objective, "area | throughput | area*latency")
+      ->capture_default_str();
+  sub->add_option("--grid", o->grids,
+                  "Grids to choose from (as glint sweep; repeatable); default: a grid per unit "
+                  "family (README)")
+      ->allow_extra_args(false);
+  add_display_bits_option(sub, o->display_bits);
+  add_slots_option(sub, o->slots);
+  sub->add_option("--jobs", o->jobs, "Threads (default: every core); results do not depend on it")
+      ->check(CLI::Range(1, 256));
+  sub->add_flag("--no-image", o->no_image,
+                "With --scene: leave out the image-level error (request-level errors only)");
+  sub->add_flag("--json", o->json, "Print the choice as one JSON document on stdout");
+  sub->callback([o, &status] { status = guarded([&] { return run_size_command(*o); }); });
+}
+
+}  // namespace glint::cli

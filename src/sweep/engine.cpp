@@ -1,0 +1,157 @@
+#include "sweep/engine.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "eval/parallel.h"
+#include "sweep/measures.h"
+#include "units/catalogue.h"
+#include "units/lane_cost.h"
+
+namespace glint {
+
+struct SweepEngine::Block {
+  std::vector<std::size_t> members;  // the configurations it evaluates (engine order)
+  std::unique_ptr<Evaluator> ev;     // their units, in that order
+  std::vector<TimingEngine> timing;  // one per unit of ev
+};
+
+SweepEngine::SweepEngine(const VectorHeader& header, std::vector<SweepConfig> configs,
+                         const SweepSettings& settings)
+    : configs_(std::move(configs)),
+      settings_(settings),
+      slots_(make_slots(header, settings.slot_capacity)),
+      colour_(stream_is_coloured(header)),
+      refused_(configs_.size()) {
+  settings_.block = std::max<std::size_t>(1, settings_.block);
+  settings_.chunk_rows = std::max<std::size_t>(1, settings_.chunk_rows);
+  const std::size_t n_blocks = (configs_.size() + settings_.block - 1) / settings_.block;
+  std::vector<std::unique_ptr<Block>> blocks(n_blocks);
+  // Blocks are built on the threads too (fits and tables take a while for thousands of
+  // configurations); each writes only its own block and its own configurations' refusals.
+  parallel_for(n_blocks, settings_.jobs, [&](std::size_t b) {
+    auto block = std::make_unique<Block>();
+    const std::size_t first = b * settings_.block;
+    const std::size_t last = std::min(configs_.size(), first + settings_.block);
+    std::vector<UnitSpec> specs;
+    for (std::size_t k = first; k < last; ++k) {
+      block->members.push_back(k);
+      specs.push_back(configs_[k].unit_spec);
+    }
+    try {
+      block->ev = std::make_unique<Evaluator>(header, specs, settings_.display_bits,
+                                              settings_.slot_capacity);
+    } catch (const std::invalid_argument&) {
+      // Some configuration cannot be built for this stream: find which, one by one (the slow
+      // path, only on refusal), and build the block without them.
+      block->members.clear();
+      specs.clear();
+      for (std::size_t k = first; k < last; ++k) {
+        try {
+          make_unit(configs_[k].unit_spec, slots_);
+        } catch (const std::invalid_argument& e) {
+          refused_[k] = e.what();
+          continue;
+        }
+        block->members.push_back(k);
+        specs.push_back(configs_[k].unit_spec);
+      }
+      block->ev = std::make_unique<Evaluator>(header, specs, settings_.display_bits,
+                                              settings_.slot_capacity);
+    }
+    for (const auto& unit : block->ev->units())
+      block->timing.emplace_back(lane_timing(*unit, colour_), settings_.sink);
+    blocks[b] = std::move(block);
+  });
+  for (auto& b : blocks)
+    if (!b->members.empty()) blocks_.push_back(std::move(b));
+}
+
+SweepEngine::~SweepEngine() = default;
+
+void SweepEngine::add(const VectorRow* rows, std::size_t count) {
+  for (std::size_t at = 0; at < count; at += settings_.chunk_rows) {
+    const std::size_t n = std::min(settings_.chunk_rows, count - at);
+    for (auto& block : blocks_) {
+      // The untimed datapaths and statistics of every unit in the block (threads over units)...
+      block->ev->add_batch(rows + at, n, batch_, settings_.jobs);
+      // ...then each unit's skip pattern through its own timing recurrences, in stream order.
+      parallel_for(block->timing.size(), settings_.jobs, [&](std::size_t u) {
+        TimingEngine& engine = block->timing[u];
+        const std::uint8_t* skipped = batch_.skipped.data() + u * n;
+        for (std::size_t i = 0; i < n; ++i) engine.next(skipped[i] != 0);
+      });
+    }
+    rows_ += n;
+  }
+}
+
+std::vector<nlohmann::json> SweepEngine::results() const {
+  std::vector<nlohmann::json> out(configs_.size());
+  for (std::size_t k = 0; k < configs_.size(); ++k) {
+    if (refused_[k].empty()) continue;
+    const SweepConfig& c = configs_[k];
+    out[k] = {
+        {"index", c.index}, {"unit", c.unit_spec.name}, {"spec", c.spec}, {"refused", refused_[k]}};
+  }
+  for (const auto& block_ptr : blocks_) {
+    const Block& block = *block_ptr;
+    const std::vector<UnitStats> stats = block.ev->stats();
+    for (std::size_t u = 0; u < stats.size(); ++u) {
+      const SweepConfig& c = configs_[block.members[u]];
+      const SpecularUnit& unit = *block.ev->units()[u];
+      const UnitStats& s = stats[u];
+      const TimingStats& t = block.timing[u].stats();
+      const UnitTiming& timing = block.timing[u].timing();
+      // The cost and operations as `glint sim` reports them (eval/sim_report.cpp): the colour
+      // stage when the stream is coloured, with one RGB entry per light x specular colour.
+      const UnitCost cost =
+          unit_cost(unit, colour_, static_cast<int>(colour_ ? slots_.colour_entries() : 0));
+      // Every kind the CSV has, 0 when the unit never executes it.
+      nlohmann::json per_computed = nlohmann::json::object(),
+                     per_request = nlohmann::json::object(), total = nlohmann::json::object();
+      for (const std::string& kind : operation_kinds())
+        per_computed[kind] = per_request[kind] = total[kind] = 0.0;
+      for (const auto& [kind, n] : cost.ops_per_computed) {
+        per_computed[kind] = n;
+        total[kind] = total.value(kind, 0.0) + n * static_cast<double>(t.computed);
+      }
+      for (const auto& [kind, n] : cost.ops_per_request) {
+        per_request[kind] = n;
+        total[kind] = total.value(kind, 0.0) + n * static_cast<double>(t.results);
+      }
+      out[block.members[u]] = {
+          {"index", c.index},
+          {"refused", nullptr},
+          {"unit", unit.name()},
+          {"spec", c.spec},
+          {"canonical_spec", unit.canonical_spec()},
+          {"area_ge", cost.area_ge},
+          {"critical_path", cost.critical_path},
+          {"critical_stage", cost.critical_stage},
+          {"latency", timing.latency},
+          {"ii", timing.ii},
+          {"buffer_depth", timing.buffer_depth},
+          {"area_latency", cost.area_ge * timing.latency},
+          {"vectors", s.vectors},
+          {"skipped", s.skipped},
+          {"computed", t.computed},
+          {"cycles", t.cycles},
+          {"throughput", t.throughput()},
+          {"latency_cycles",
+           {{"min", t.latency_min}, {"mean", t.latency_mean()}, {"max", t.latency_max}}},
+          {"stall_cycles", t.stall_cycles()},
+          {"stalls", {{"merge_buffer_full", t.stall_credit}, {"unit_busy", t.stall_unit}}},
+          {"operations",
+           {{"per_computed", per_computed}, {"per_request", per_request}, {"total", total}}},
+          {"errors", s.errors_json()},
+          {"digest", fmt::format("{:016x}", block.ev->digest(u))},
+      };
+    }
+  }
+  return out;
+}
+
+}  // namespace glint

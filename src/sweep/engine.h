@@ -1,0 +1,77 @@
+// The sweep's engine: one stream of shading requests, read once, through every configuration of a
+// sweep. All configurations' accumulators stay in memory and each chunk of rows goes through all
+// of them before the next is read, so memory is flat in the stream's length and many
+// configurations share one reading pass.
+//
+// Per chunk, the configurations are evaluated in blocks by eval's Evaluator::add_batch (the
+// untimed bit-accurate datapaths and the accuracy statistics `glint eval` reports, spread over
+// threads by unit) and each configuration's skip pattern then drives its own TimingEngine
+// (timing/timing.h, the recurrences `glint sim`'s fast mode runs). Issue 9's fast evaluation
+// engine replaces the body of SweepEngine::add and nothing else.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "eval/evaluate.h"
+#include "io/vectors.h"
+#include "sweep/grid.h"
+#include "timing/timing.h"
+
+namespace glint {
+
+struct SweepSettings {
+  int display_bits = 8;           // errors in LSBs of this depth (--display-bits)
+  std::size_t slot_capacity = 0;  // --slots N: a chip of N slots; 0: sized to the stream
+  int jobs = 1;                   // threads (results do not depend on it)
+  SinkReady sink;                 // sink backpressure of the timing model (default: always ready)
+  // Configurations per Evaluator, and rows per chunk: the per-chunk results buffer holds
+  // block x chunk_rows results (~9 bytes each).
+  std::size_t block = 64;
+  std::size_t chunk_rows = 16384;
+};
+
+class SweepEngine {
+ public:
+  // Builds every configuration for the stream's slots (make_slots; SlotCapacityError when
+  // --slots is too small). A configuration the unit cannot build for this stream (schlick's
+  // matched n' beyond its n register for a material's shininess, ...) is refused: it runs on no
+  // row and its report row says why ("refused"), the rest of the sweep goes on.
+  SweepEngine(const VectorHeader& header, std::vector<SweepConfig> configs,
+              const SweepSettings& settings);
+  ~SweepEngine();
+  SweepEngine(const SweepEngine&) = delete;
+  SweepEngine& operator=(const SweepEngine&) = delete;
+
+  // The next rows of the stream, in order, through every configuration.
+  void add(const VectorRow* rows, std::size_t count);
+
+  std::uint64_t rows() const { return rows_; }
+  std::size_t size() const { return configs_.size(); }
+  const std::vector<SweepConfig>& configs() const { return configs_; }
+  const SlotMap& slots() const { return slots_; }
+  bool colour() const { return colour_; }  // the stream is coloured: lanes build the colour stage
+
+  // One report row per configuration, in the engine's order (report.h describes a row): spec,
+  // cost, timing, operations, errors and digest, or only the spec and "refused". "image",
+  // "error" and "pareto" are added later.
+  std::vector<nlohmann::json> results() const;
+  // Why configuration k (in the engine's order) was refused; empty when it runs.
+  const std::string& refused(std::size_t k) const { return refused_[k]; }
+
+ private:
+  struct Block;
+  std::vector<SweepConfig> configs_;
+  SweepSettings settings_;
+  SlotMap slots_;
+  bool colour_ = false;
+  std::vector<std::unique_ptr<Block>> blocks_;
+  std::vector<std::string> refused_;  // per configuration: why it was refused, or empty
+  BatchResults batch_;
+  std::uint64_t rows_ = 0;
+};
+
+}  // namespace glint

@@ -1,0 +1,67 @@
+// The columns of a sweep's results (the CSV's, in order) and the measures budgets and plots name.
+//
+// A report row is a JSON object (report.h); each column is one scalar in it, named as the CSV
+// names it: "area_ge", "throughput", "max_lsb", "weighted.max_lsb", "parts.input.max_abs",
+// "image.max_lsb", ... Every numeric column is a measure. Measures in display LSBs may name
+// another depth by a suffix: "max_lsb10" is max_abs x (2^10 - 1), whatever --display-bits was,
+// and "lsb8" is short for "max_lsb8" (issue 9's "lsb8<=1").
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace glint {
+
+enum class ColumnKind { kInteger, kNumber, kText, kFlag };
+
+struct SweepColumn {
+  std::string name;     // CSV header and measure name
+  std::string pointer;  // JSON pointer into a report row
+  ColumnKind kind = ColumnKind::kNumber;
+  bool scene_only = false;  // image-level columns: only when the input is a scene
+};
+
+// Every column in CSV order (the image-level ones among them, flagged scene_only).
+const std::vector<SweepColumn>& sweep_columns();
+
+// Operation kinds of the energy proxy (cost/cost_model.h), the CSV's ops_<kind> columns. Fixed,
+// so that every shard of a sweep writes the same columns.
+const std::vector<std::string>& operation_kinds();
+
+// A measure a budget or --error-measure names, resolved against the columns.
+struct MeasureRef {
+  std::string name;  // as written
+  std::string pointer;
+  // LSB measures at an explicit depth: the value is the pointer's absolute error x (2^bits - 1).
+  int bits = 0;
+};
+
+// Resolves a measure name; nullopt if no column (or LSB measure with a depth suffix) has it.
+// `scene`: image-level columns exist.
+std::optional<MeasureRef> find_measure(std::string_view name, bool scene);
+// The same, throwing std::invalid_argument naming `option` and listing the measures.
+MeasureRef measure_or_throw(std::string_view name, bool scene, const std::string& option);
+
+// The measure's value in a row; nullopt when absent or null (an infinite PSNR, a missing part).
+std::optional<double> measure_value(const nlohmann::json& row, const MeasureRef& m);
+
+// The measures --error-measure accepts: error columns where lower is better (not t_at_*, counts,
+// PSNR or the highlight ratios).
+bool is_error_measure(const MeasureRef& m);
+
+// A comma-separated list of conditions MEASURE OP VALUE (OP one of <=, <, >=, >), all of which
+// must hold: "max_lsb8<=1,mismatch_fraction<0.01".
+struct Budget {
+  std::string text;  // one condition, as written
+  MeasureRef measure;
+  std::string op;
+  double limit = 0;
+};
+std::vector<Budget> parse_budgets(std::string_view text, bool scene);
+// Whether a row meets one condition (an absent value never does).
+bool meets(const nlohmann::json& row, const Budget& b);
+
+}  // namespace glint

@@ -1,0 +1,143 @@
+#include "sweep/sweep.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+
+#include "io/vectors.h"
+#include "render/render.h"
+#include "scene/scene.h"
+#include "sweep/measures.h"
+#include "sweep/report.h"
+
+namespace glint {
+namespace {
+
+// Renders per group of configurations: each keeps its images until the group's render returns
+// (image, specular, heat map, error map and its contact-sheet tiles: ~19 bytes per pixel), so a
+// group is as large as ~256 MB of them allows, at most 32.
+std::size_t render_group_size(const Scene& scene) {
+  const double per_config = 19.0 * scene.camera.width * scene.camera.height;
+  const double fits = 256.0 * 1024 * 1024 / std::max(per_config, 1.0);
+  return static_cast<std::size_t>(std::clamp(fits, 1.0, 32.0));
+}
+
+struct SceneRun {
+  nlohmann::json input;
+  std::vector<nlohmann::json> rows;
+};
+
+// A scene: the render layer ray-casts it and hands every tile's requests to the engine (the first
+// render only); the image-level error of each configuration is the render's own, from the final
+// 8-bit pixels, a group of configurations per render.
+SceneRun sweep_scene(const SweepJob& job, const std::vector<SweepConfig>& all,
+                     const std::vector<SweepConfig>& mine) {
+  const Scene scene = load_scene(job.input.path);
+  SweepEngine engine(scene_request_header(scene), mine, job.settings);
+  const std::size_t group = render_group_size(scene);
+  // Without image errors (or with no configuration in this shard) one render of one unit still
+  // makes the requests.
+  const std::size_t renders = job.image && !mine.empty() ? (mine.size() + group - 1) / group : 1;
+  std::vector<std::optional<ImageError>> images(mine.size());
+  for (std::size_t r = 0; r < renders; ++r) {
+    RenderOptions options;
+    options.threads = job.settings.jobs;
+    options.slot_capacity = job.settings.slot_capacity;
+    const std::size_t first = r * group;
+    const std::size_t last = job.image ? std::min(mine.size(), first + group) : first;
+    for (std::size_t k = first; k < last; ++k) options.units.push_back(mine[k].unit_spec);
+    if (options.units.empty()) options.units.push_back(all.front().unit_spec);
+    if (r == 0)
+      options.on_requests = [&](const VectorRow* rows, std::size_t n) { engine.add(rows, n); };
+    if (job.progress)
+      job.progress(fmt::format("sweep: {} render {}/{}", job.input.path, r + 1, renders));
+    const RenderResult result = render_scene(scene, options);
+    for (std::size_t k = first; k < last; ++k) images[k] = result.units[k - first].error;
+  }
+  SceneRun run;
+  run.rows = engine.results();
+  for (std::size_t k = 0; k < mine.size(); ++k)
+    if (images[k]) run.rows[k]["image"] = images[k]->to_json();
+  run.input = {{"kind", "scene"},
+               {"path", job.input.path},
+               {"scene", scene.name},
+               {"width", scene.camera.width},
+               {"height", scene.camera.height},
+               {"rows", engine.rows()},
+               {"slots", engine.slots().params.size()},
+               {"datapath_groups", engine.slots().groups.size()},
+               {"per_light_slots", engine.slots().per_light},
+               {"colour_multiply", engine.colour()}};
+  return run;
+}
+
+SceneRun sweep_vectors(const SweepJob& job, const std::vector<SweepConfig>& mine) {
+  VectorReader reader(job.input.path);
+  SweepEngine engine(reader.header(), mine, job.settings);
+  std::vector<VectorRow> chunk(std::max<std::size_t>(1, job.settings.chunk_rows));
+  for (;;) {
+    std::size_t n = 0;
+    while (n < chunk.size() && reader.next(chunk[n])) ++n;
+    if (n == 0) break;
+    engine.add(chunk.data(), n);
+    if (job.progress && (engine.rows() / chunk.size()) % 16 == 0)
+      job.progress(fmt::format("sweep: {} rows", engine.rows()));
+  }
+  SceneRun run;
+  run.rows = engine.results();
+  run.input = {{"kind", "vectors"},
+               {"path", job.input.path},
+               {"rows", engine.rows()},
+               {"slots", engine.slots().params.size()},
+               {"datapath_groups", engine.slots().groups.size()},
+               {"per_light_slots", engine.slots().per_light},
+               {"colour_multiply", engine.colour()}};
+  return run;
+}
+
+}  // namespace
+
+nlohmann::json run_sweep(const SweepJob& job) {
+  const bool image = job.input.scene && job.image;
+  const MeasureRef measure = measure_or_throw(job.error_measure, image, "--error-measure");
+  if (!is_error_measure(measure))
+    throw std::invalid_argument(fmt::format(
+        "--error-measure '{}': not an error measure (a lower-is-better error: max_lsb, "
+        "bound_lsb, mismatch_fraction, max_abs, rms, weighted.max_lsb, parts.*.max_abs, "
+        "image.max_lsb, ...)",
+        job.error_measure));
+  if (job.grids.empty()) throw std::invalid_argument("--grid: at least one grid is needed");
+  const std::vector<SweepConfig> all = expand_grids(job.grids);
+  const std::vector<SweepConfig> mine =
+      job.shards > 0 ? shard_configs(all, job.shard, job.shards) : all;
+  SceneRun run = job.input.scene ? sweep_scene(job, all, mine) : sweep_vectors(job, mine);
+
+  nlohmann::json grids = nlohmann::json::array();
+  for (const Grid& g : job.grids) grids.push_back(g.text);
+  nlohmann::json objectives = nlohmann::json::array();
+  for (const Objective& o : kObjectives)
+    objectives.push_back({{"name", o.name}, {"key", o.key}, {"minimise", o.minimise}});
+  nlohmann::json report = {
+      {"glint_sweep_report", kSweepReportVersion},
+      {"input", run.input},
+      {"grids", grids},
+      {"configurations", all.size()},
+      {"shard", job.shards > 0 ? nlohmann::json{{"index", job.shard}, {"count", job.shards}}
+                               : nlohmann::json(nullptr)},
+      {"display_bits", job.settings.display_bits},
+      {"slot_capacity", job.settings.slot_capacity > 0 ? nlohmann::json(job.settings.slot_capacity)
+                                                       : nlohmann::json(nullptr)},
+      {"sink", {{"ready", job.settings.sink.probability}, {"seed", job.settings.sink.seed}}},
+      {"image_error", image},
+      {"error_measure", job.error_measure},
+      {"objectives", objectives},
+      {"results", std::move(run.rows)},
+  };
+  mark_pareto(report);
+  return report;
+}
+
+}  // namespace glint

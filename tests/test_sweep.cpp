@@ -1,0 +1,380 @@
+// The sweep layer as a library: grid syntax and validation, cross products and shards, Pareto
+// fronts on hand-made sets, measures and budgets, the pick of `glint size` against a brute force,
+// the engine against eval's Evaluator and `glint sim`'s timing recurrences, thread counts, and
+// the report's CSV. Expected values come from the definitions (counts of a cross product, the
+// dominance relation, the timing recurrence run directly), never from a copied run.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "eval/evaluate.h"
+#include "io/vectors.h"
+#include "sweep/engine.h"
+#include "sweep/grid.h"
+#include "sweep/measures.h"
+#include "sweep/pareto.h"
+#include "sweep/report.h"
+#include "sweep/size.h"
+#include "sweep/sweep.h"
+#include "test_support.h"
+#include "units/catalogue.h"
+#include "units/lane_cost.h"
+
+namespace {
+
+using glint::Grid;
+using glint::parse_grid;
+using nlohmann::json;
+
+const std::string kTraces = GLINT_SOURCE_DIR "/traces";
+
+// The message of the std::invalid_argument `f` throws ("" if it throws nothing).
+template <class F>
+std::string error_of(F f) {
+  try {
+    f();
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(SweepGrid, RangesAndAlternatives) {
+  const Grid g = parse_grid("horner:degree=2..8,in=uq1.11|uq1.15");
+  EXPECT_EQ(g.unit, "horner");
+  ASSERT_EQ(g.axes.size(), 2u);
+  EXPECT_EQ(g.axes[0].key, "degree");
+  EXPECT_EQ(g.axes[0].values, (std::vector<std::string>{"2", "3", "4", "5", "6", "7", "8"}));
+  EXPECT_EQ(g.axes[1].values, (std::vector<std::string>{"uq1.11", "uq1.15"}));
+  EXPECT_EQ(g.size(), 14u);
+  EXPECT_EQ(parse_grid("lut:bits=4..9/2").axes[0].values,
+            (std::vector<std::string>{"4", "6", "8"}));
+  EXPECT_EQ(parse_grid("lut:bits=4..8/2").axes[0].values,
+            (std::vector<std::string>{"4", "6", "8"}));
+  EXPECT_EQ(parse_grid("horner:degree=2..4|8").axes[0].values,
+            (std::vector<std::string>{"2", "3", "4", "8"}));
+  // A key with one value passes through; a grid without keys is the unit's defaults.
+  EXPECT_EQ(parse_grid("hast:d=3").size(), 1u);
+  EXPECT_EQ(parse_grid("pow").size(), 1u);
+  EXPECT_TRUE(parse_grid("pow").axes.empty());
+}
+
+TEST(SweepGrid, KeysThatNeedOthersAreAcceptedWithThem) {
+  // hast's d=auto goes only with match=minimax: checked with the grid's other values.
+  EXPECT_EQ(parse_grid("hast:match=minimax,d=auto|3").size(), 2u);
+  const std::string e = error_of([] { parse_grid("hast:d=auto"); });
+  EXPECT_NE(e.find("--grid 'hast:d=auto'"), std::string::npos) << e;
+}
+
+TEST(SweepGrid, BadGridsNameTheGridAndTheKey) {
+  struct Case {
+    const char* grid;
+    std::vector<const char*> mentions;
+  };
+  const Case cases[] = {
+      {"horner:degre=2", {"--grid 'horner:degre=2'", "no key 'degre'", "degree"}},
+      {"horner:degree=0..3", {"--grid 'horner:degree=0..3'", "key 'degree'", "'0'"}},
+      {"horner:degree=2,method=fast", {"key 'method'", "'fast'"}},
+      {"lut:in=uq1.x", {"key 'in'", "uq1.x"}},
+      {"frob:x=1", {"--grid 'frob:x=1'", "unknown unit 'frob'"}},
+      {"horner:degree=4..2", {"key 'degree'", "empty range"}},
+      {"horner:degree=2..4/0", {"key 'degree'", "step"}},
+      {"horner:degree=2..x", {"key 'degree'", "lo..hi"}},
+      {"horner:degree=2|2", {"key 'degree'", "listed twice"}},
+      {"horner:degree=", {"key 'degree'", "empty value"}},
+      {"horner:degree=2||3", {"key 'degree'", "empty value"}},
+      {"horner:degree=2,degree=3", {"key 'degree' given twice"}},
+      {"horner:", {"no keys"}},
+      {"horner:degree=2,", {"trailing ','"}},
+      {"horner:degree", {"'degree' is not key=values"}},
+      {":degree=2", {"no unit name"}},
+  };
+  for (const Case& c : cases) {
+    const std::string e = error_of([&] { parse_grid(c.grid); });
+    ASSERT_FALSE(e.empty()) << c.grid << " was accepted";
+    for (const char* m : c.mentions) EXPECT_NE(e.find(m), std::string::npos) << c.grid << ": " << e;
+  }
+}
+
+TEST(SweepGrid, CrossProductOrderAndCount) {
+  const std::vector<Grid> grids = {parse_grid("horner:degree=2..4,in=uq1.11|uq1.15"),
+                                   parse_grid("lut:bits=4..6"), parse_grid("pow")};
+  const auto configs = glint::expand_grids(grids);
+  ASSERT_EQ(configs.size(), 3u * 2u + 3u + 1u);
+  // The first key varies slowest.
+  EXPECT_EQ(configs[0].spec, "horner:degree=2,in=uq1.11");
+  EXPECT_EQ(configs[1].spec, "horner:degree=2,in=uq1.15");
+  EXPECT_EQ(configs[2].spec, "horner:degree=3,in=uq1.11");
+  EXPECT_EQ(configs[5].spec, "horner:degree=4,in=uq1.15");
+  EXPECT_EQ(configs[6].spec, "lut:bits=4");
+  EXPECT_EQ(configs[9].spec, "pow");
+  std::set<std::string> specs;
+  for (std::size_t i = 0; i < configs.size(); ++i) {
+    EXPECT_EQ(configs[i].index, i);
+    specs.insert(configs[i].spec);
+    // The spec is what --unit would parse.
+    const glint::UnitSpec parsed = glint::parse_unit_spec(configs[i].spec);
+    EXPECT_EQ(parsed.name, configs[i].unit_spec.name);
+    EXPECT_EQ(parsed.keys, configs[i].unit_spec.keys);
+  }
+  EXPECT_EQ(specs.size(), configs.size());
+  EXPECT_EQ(configs[6].grid, 1u);
+}
+
+TEST(SweepGrid, CapOnConfigurations) {
+  const std::vector<Grid> grids = {parse_grid("lut:bits=4..9"), parse_grid("hast:d=1..5")};
+  EXPECT_EQ(glint::expand_grids(grids, 11).size(), 11u);
+  const std::string e = error_of([&] { glint::expand_grids(grids, 10); });
+  EXPECT_NE(e.find("11 configurations"), std::string::npos) << e;
+  EXPECT_NE(e.find("limit of 10"), std::string::npos) << e;
+  EXPECT_EQ(glint::kMaxSweepConfigurations, 100000u);
+}
+
+TEST(SweepGrid, ShardsPartitionRoundRobin) {
+  const auto all = glint::expand_grids({parse_grid("lut:bits=4..9,in=uq1.11|uq1.15")});
+  for (std::size_t n : {1u, 2u, 3u, 5u, 13u}) {
+    std::vector<int> seen(all.size(), 0);
+    for (std::size_t k = 0; k < n; ++k)
+      for (const auto& c : glint::shard_configs(all, k, n)) {
+        EXPECT_EQ(c.index % n, k);
+        ++seen[c.index];
+      }
+    for (int s : seen) EXPECT_EQ(s, 1);
+  }
+  EXPECT_EQ(glint::parse_shard("2/4"), (std::pair<std::size_t, std::size_t>{2, 4}));
+  for (const char* bad : {"4/4", "-1/4", "1/0", "1", "a/b", "1/2/3", ""})
+    EXPECT_NE(error_of([&] { glint::parse_shard(bad); }).find("--shard"), std::string::npos) << bad;
+}
+
+TEST(SweepPareto, HandMadeSet) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  //                            0  1  2  3  4  5    6
+  const std::vector<double> a = {1, 2, 3, 2, 4, nan, 5};
+  const std::vector<double> b = {5, 3, 4, 3, 1, 0, 1};
+  // 0: least a. 1 and 3: equal, both on. 2: dominated by 1. 4: least b among finite. 5: NaN.
+  // 6: dominated by 4 (same b, larger a).
+  EXPECT_EQ(glint::pareto_front(a, b),
+            (std::vector<bool>{true, true, false, true, true, false, false}));
+  EXPECT_TRUE(glint::pareto_front({}, {}).empty());
+}
+
+TEST(SweepPareto, AgreesWithTheDefinitionOnRandomSets) {
+  std::uint64_t s = 12345;
+  const auto next = [&] {
+    s = s * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>((s >> 33) % 20);  // many ties
+  };
+  for (int trial = 0; trial < 200; ++trial) {
+    std::vector<double> a(30), b(30);
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      a[i] = next();
+      b[i] = next();
+    }
+    const std::vector<bool> on = glint::pareto_front(a, b);
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      bool dominated = false;
+      for (std::size_t j = 0; j < a.size(); ++j)
+        dominated = dominated || (a[j] <= a[i] && b[j] <= b[i] && (a[j] < a[i] || b[j] < b[i]));
+      EXPECT_EQ(on[i], !dominated) << "trial " << trial << " point " << i;
+    }
+  }
+}
+
+TEST(SweepMeasures, NamesSuffixesAndBudgets) {
+  json row = {{"area_ge", 100.0},
+              {"errors", {{"max_abs", 2.0 / 255}, {"max_lsb", 2.0}, {"mismatch_fraction", 0.5}}}};
+  const auto lsb8 = glint::find_measure("lsb8", false);
+  ASSERT_TRUE(lsb8);
+  EXPECT_NEAR(*glint::measure_value(row, *lsb8), 2.0, 1e-12);
+  const auto lsb10 = glint::find_measure("max_lsb10", false);
+  ASSERT_TRUE(lsb10);
+  EXPECT_NEAR(*glint::measure_value(row, *lsb10), 2.0 / 255 * 1023, 1e-12);
+  EXPECT_FALSE(glint::find_measure("max_lsb17", false));
+  EXPECT_FALSE(glint::find_measure("frobs", false));
+  EXPECT_FALSE(glint::find_measure("image.max_lsb", false));
+  EXPECT_TRUE(glint::find_measure("image.max_lsb", true));
+
+  const auto budgets = glint::parse_budgets("lsb8<=2,mismatch_fraction<0.5,area_ge>=100", false);
+  ASSERT_EQ(budgets.size(), 3u);
+  EXPECT_TRUE(glint::meets(row, budgets[0]));
+  EXPECT_FALSE(glint::meets(row, budgets[1]));  // strict
+  EXPECT_TRUE(glint::meets(row, budgets[2]));
+  EXPECT_FALSE(glint::meets(json::object(), budgets[0]));  // a refused configuration
+  for (const char* bad : {"frobs<=1", "lsb8", "lsb8<=x", "<=1", "lsb8<=1,", "image.max_lsb<=1"}) {
+    const std::string e = error_of([&] { glint::parse_budgets(bad, false); });
+    EXPECT_NE(e.find("--budget"), std::string::npos) << bad << ": " << e;
+  }
+  EXPECT_NE(
+      error_of([] { glint::parse_budgets("frobs<=1", false); }).find("unknown measure 'frobs'"),
+      std::string::npos);
+  EXPECT_NE(error_of([] { glint::parse_budgets("image.max_lsb<=1", false); }).find("--scene"),
+            std::string::npos);
+}
+
+// The engine on one file: each configuration's errors equal a plain Evaluator's over the same
+// rows, and its cycles equal a TimingEngine fed the same unit's skip decisions one by one.
+TEST(SweepEngine, EqualsEvaluatorAndTimingRecurrences) {
+  const std::string file = kTraces + "/multi_light.vec";
+  const auto configs = glint::expand_grids({parse_grid("hast:d=2..4"),
+                                            parse_grid("schlick:divider=pipelined|iterative"),
+                                            parse_grid("lut:bits=5,buffer=2")});
+  glint::SweepSettings settings;
+  settings.block = 2;         // several blocks
+  settings.chunk_rows = 100;  // several chunks
+  glint::VectorReader reader(file);
+  glint::SweepEngine engine(reader.header(), configs, settings);
+  std::vector<glint::VectorRow> rows;
+  glint::VectorRow row;
+  while (reader.next(row)) rows.push_back(row);
+  engine.add(rows.data(), rows.size());
+  const std::vector<json> results = engine.results();
+  ASSERT_EQ(results.size(), configs.size());
+  for (std::size_t k = 0; k < configs.size(); ++k) {
+    glint::Evaluator ev(reader.header(), {configs[k].unit_spec});
+    const glint::SpecularUnit& unit = *ev.units()[0];
+    glint::TimingEngine timing(glint::lane_timing(unit, glint::stream_is_coloured(reader.header())),
+                               glint::SinkReady{});
+    const glint::SlotMap& slots = ev.slots();
+    for (const auto& r : rows) {
+      ev.add(r);
+      timing.next(unit.skip(slots.slot(r), glint::quantize_input(r.t, unit.in_format())));
+    }
+    const json& got = results[k];
+    EXPECT_EQ(got.at("spec"), configs[k].spec);
+    EXPECT_EQ(got.at("canonical_spec"), unit.canonical_spec());
+    EXPECT_EQ(got.at("errors"), ev.stats()[0].errors_json()) << configs[k].spec;
+    EXPECT_EQ(got.at("cycles"), timing.stats().cycles) << configs[k].spec;
+    EXPECT_EQ(got.at("computed"), timing.stats().computed);
+    EXPECT_EQ(got.at("stall_cycles"), timing.stats().stall_cycles());
+    EXPECT_EQ(got.at("digest"), fmt::format("{:016x}", ev.digest(0)));
+  }
+}
+
+// A configuration the stream cannot build is refused, the others run.
+TEST(SweepEngine, RefusedConfigurationKeepsTheRest) {
+  glint::SweepJob job;
+  job.input = {kTraces + "/contract_cases.vec", false};
+  // contract_cases.vec has a material of n ~ 13889: schlick's width match needs an n' beyond
+  // uq14.4.
+  job.grids = {parse_grid("schlick:match=none|width"), parse_grid("lut:bits=5")};
+  const json report = glint::run_sweep(job);
+  const json& rows = report.at("results");
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_TRUE(rows[0].at("refused").is_null());
+  ASSERT_TRUE(rows[1].at("refused").is_string());
+  EXPECT_NE(rows[1].at("refused").get<std::string>().find("n register"), std::string::npos);
+  EXPECT_TRUE(rows[1].at("error").is_null());
+  EXPECT_FALSE(rows[1].at("pareto").at("area").get<bool>());
+  EXPECT_TRUE(rows[2].at("refused").is_null());
+  EXPECT_GT(rows[2].at("vectors").get<std::uint64_t>(), 0u);
+}
+
+// --jobs: the same bytes for any thread count, whatever the block and chunk sizes.
+TEST(SweepEngine, SameReportForAnyThreadCount) {
+  glint::SweepJob job;
+  job.input = {kTraces + "/blinn_colored.vec", false};
+  job.grids = {parse_grid("horner:degree=2..5,in=uq1.11|uq1.15"), parse_grid("lut:bits=4..7"),
+               parse_grid("pow:log_bits=4|6")};
+  job.settings.block = 3;
+  job.settings.chunk_rows = 333;
+  job.settings.jobs = 1;
+  const std::string one = glint::report_json_text(glint::run_sweep(job));
+  for (int jobs : {2, 3, 5}) {
+    job.settings.jobs = jobs;
+    EXPECT_EQ(glint::report_json_text(glint::run_sweep(job)), one) << jobs << " threads";
+  }
+  job.settings.block = 64;
+  job.settings.chunk_rows = 16384;
+  EXPECT_EQ(glint::report_json_text(glint::run_sweep(job)), one) << "other block sizes";
+}
+
+// size's pick against a brute force over the sweep's rows.
+TEST(SweepSize, PicksTheCheapestMeetingTheBudgetOnEveryInput) {
+  const std::vector<Grid> grids = {parse_grid("lut:bits=4..8,in=uq1.11|uq1.15"),
+                                   parse_grid("horner:degree=2..5"), parse_grid("hast:d=2..4")};
+  std::vector<json> reports;
+  for (const char* f : {"/phong_basic.vec", "/multi_light.vec"}) {
+    glint::SweepJob job;
+    job.input = {kTraces + f, false};
+    job.grids = grids;
+    reports.push_back(glint::run_sweep(job));
+  }
+  for (const char* budget : {"max_lsb8<=2", "lsb8<=1.5,mismatch_fraction<0.05", "bound_lsb<=4"}) {
+    for (auto objective : {glint::SizeObjective::kArea, glint::SizeObjective::kThroughput,
+                           glint::SizeObjective::kAreaLatency}) {
+      const auto budgets = glint::parse_budgets(budget, false);
+      const glint::SizePick pick = glint::pick_cheapest(reports, budgets, objective);
+      // Brute force: the objective's worst over the inputs, over every configuration meeting
+      // every condition on both inputs; ties to the lower index.
+      const char* key = objective == glint::SizeObjective::kArea         ? "area_ge"
+                        : objective == glint::SizeObjective::kThroughput ? "throughput"
+                                                                         : "area_latency";
+      const bool maximise = objective == glint::SizeObjective::kThroughput;
+      std::optional<std::size_t> best;
+      double best_v = 0;
+      std::size_t meeting = 0;
+      const std::size_t n = reports[0].at("results").size();
+      for (std::size_t i = 0; i < n; ++i) {
+        bool ok = true;
+        double v = maximise ? INFINITY : -INFINITY;
+        for (const json& r : reports) {
+          const json& row = r.at("results")[i];
+          const double abs = row.at("errors").at("max_abs").get<double>();
+          const std::string b = budget;
+          if (b == "max_lsb8<=2") ok = ok && abs * 255 <= 2;
+          if (b.rfind("lsb8<=1.5", 0) == 0)
+            ok = ok && abs * 255 <= 1.5 &&
+                 row.at("errors").at("mismatch_fraction").get<double>() < 0.05;
+          if (b == "bound_lsb<=4") ok = ok && row.at("errors").at("bound").get<double>() * 255 <= 4;
+          const double x = row.at(key).get<double>();
+          v = maximise ? std::min(v, x) : std::max(v, x);
+        }
+        if (!ok) continue;
+        ++meeting;
+        if (!best || (maximise ? v > best_v : v < best_v)) {
+          best = i;
+          best_v = v;
+        }
+      }
+      EXPECT_EQ(pick.meeting, meeting) << budget;
+      EXPECT_EQ(pick.best, best) << budget << " " << glint::to_string(objective);
+      EXPECT_GT(meeting, 0u) << budget << ": the test wants a budget some configuration meets";
+    }
+  }
+  // Nothing meets an impossible budget.
+  const glint::SizePick none = glint::pick_cheapest(
+      reports, glint::parse_budgets("max_abs<0", false), glint::SizeObjective::kArea);
+  EXPECT_FALSE(none.best);
+  EXPECT_EQ(none.meeting, 0u);
+}
+
+TEST(SweepReport, CsvHasAHeaderAndARowPerConfiguration) {
+  glint::SweepJob job;
+  job.input = {kTraces + "/phong_basic.vec", false};
+  job.grids = {parse_grid("horner:degree=2..4,in=uq1.11|uq1.15")};
+  const json report = glint::run_sweep(job);
+  const std::string csv = glint::report_csv_text(report);
+  std::vector<std::string> lines;
+  std::size_t at = 0;
+  while (at < csv.size()) {
+    const std::size_t nl = csv.find('\n', at);
+    lines.push_back(csv.substr(at, nl - at));
+    at = nl + 1;
+  }
+  ASSERT_EQ(lines.size(), 7u);
+  EXPECT_EQ(lines[0].rfind("index,unit,spec,canonical_spec,area_ge,", 0), 0u) << lines[0];
+  EXPECT_EQ(lines[0].find("image."), std::string::npos);  // vectors: no image columns
+  // Specs hold commas: quoted.
+  EXPECT_NE(lines[1].find("\"horner:degree=2,in=uq1.11\""), std::string::npos) << lines[1];
+  EXPECT_EQ(report.at("glint_sweep_report"), glint::kSweepReportVersion);
+  EXPECT_TRUE(report.at("shard").is_null());
+  EXPECT_EQ(report.at("configurations"), 6u);
+}
+
+}  // namespace

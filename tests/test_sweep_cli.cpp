@@ -1,0 +1,332 @@
+// `glint sweep`, `glint size` and `glint merge` end to end: the real binary through the shell.
+// Figures are checked against the other subcommands' own reports on the same input (eval, sim,
+// render), shards against the unsharded run byte for byte, size against a brute force over the
+// sweep's rows, plots against the rows they draw.
+#include <gtest/gtest.h>
+#include <stdlib.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "test_support.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+const std::string kGlint = GLINT_BINARY_DIR "/glint";
+const std::string kTraces = GLINT_SOURCE_DIR "/traces";
+const auto quote = glint::test::shell_quote;
+const auto read_text = glint::test::read_file;
+
+struct CliRun {
+  int status = -1;
+  std::string out, err;
+};
+
+class SweepCli : public ::testing::Test {
+ protected:
+  CliRun glint(const std::string& args) {
+    const std::string out = tmp_.file("stdout"), err = tmp_.file("stderr");
+    const std::string cmd = "cd " + quote(tmp_.path().string()) + " && " + quote(kGlint) + " " +
+                            args + " >" + quote(out) + " 2>" + quote(err) + " </dev/null";
+    const int raw = std::system(cmd.c_str());
+    CliRun r;
+    r.status = (raw != -1 && WIFEXITED(raw)) ? WEXITSTATUS(raw) : -1;
+    r.out = read_text(out);
+    r.err = read_text(err);
+    fs::remove(out);
+    fs::remove(err);
+    return r;
+  }
+  json glint_json(const std::string& args) {
+    const CliRun r = glint(args);
+    EXPECT_EQ(r.status, 0) << "glint " << args << "\n" << r.err;
+    return json::accept(r.out) ? json::parse(r.out) : json();
+  }
+  std::string file(const std::string& name) const { return tmp_.file(name); }
+  std::vector<std::string> entries() const { return tmp_.entries(); }
+
+  glint::test::TempDir tmp_;
+};
+
+const std::string kGrids =
+    "--grid 'horner:degree=2..5,in=uq1.11|uq1.15' --grid 'lut:bits=4..7' --grid pow "
+    "--grid 'schlick:divider=pipelined|iterative' --grid 'hast:d=2..4'";
+
+// One configuration: the sweep's errors are `glint eval`'s and its cost and timing `glint sim`'s
+// for the same spec on the same file.
+TEST_F(SweepCli, OneConfigurationEqualsEvalAndSim) {
+  for (const char* f : {"/blinn_colored.vec", "/phong_basic.vec"}) {
+    for (const char* spec : {"hast:d=3", "schlick:divider=iterative", "lut:bits=5,in=uq1.12"}) {
+      const std::string vec = quote(kTraces + f);
+      const json sweep = glint_json("sweep " + vec + " --grid " + quote(spec) + " --json");
+      const json eval = glint_json("eval " + vec + " --unit " + quote(spec) + " --json");
+      const json sim = glint_json("sim " + vec + " --unit " + quote(spec) + " --json");
+      ASSERT_EQ(sweep.at("results").size(), 1u);
+      const json& row = sweep["results"][0];
+      const json& e = eval.at("units")[0];
+      const json& s = sim.at("units")[0];
+      EXPECT_EQ(row.at("errors"), e.at("errors")) << f << " " << spec;
+      EXPECT_EQ(row.at("errors"), s.at("errors")) << f << " " << spec;
+      EXPECT_EQ(row.at("canonical_spec"), s.at("spec"));
+      EXPECT_EQ(row.at("spec"), spec);
+      EXPECT_EQ(row.at("vectors"), e.at("vectors"));
+      EXPECT_EQ(row.at("skipped"), e.at("skipped"));
+      EXPECT_EQ(row.at("digest"), s.at("digest"));
+      for (const char* k : {"cycles", "throughput", "computed", "stall_cycles"})
+        EXPECT_EQ(row.at(k), s.at(k)) << k;
+      EXPECT_EQ(row.at("latency_cycles"), s.at("latency"));
+      EXPECT_EQ(row.at("area_ge"), s.at("area").at("ge"));
+      EXPECT_EQ(row.at("critical_path"), s.at("critical_path").at("delay"));
+      EXPECT_EQ(row.at("latency"), s.at("timing").at("latency").get<int>() +
+                                       (s.at("colour_multiply").get<bool>() ? 1 : 0));
+      for (const auto& [kind, n] : s.at("operations").items())
+        EXPECT_EQ(row.at("operations").at("total").at(kind), n) << kind;
+      EXPECT_EQ(row.at("error"), row.at("errors").at("max_lsb"));
+      // One configuration is on every front.
+      for (const char* o : {"area", "throughput", "area_latency"})
+        EXPECT_TRUE(row.at("pareto").at(o).get<bool>());
+    }
+  }
+}
+
+TEST_F(SweepCli, JobsGiveTheSameBytes) {
+  const std::string vec = quote(kTraces + "/multi_light.vec");
+  const CliRun one = glint("sweep " + vec + " " + kGrids + " --jobs 1 -o one.json --csv one.csv");
+  ASSERT_EQ(one.status, 0) << one.err;
+  const CliRun three =
+      glint("sweep " + vec + " " + kGrids + " --jobs 3 -o three.json --csv three.csv");
+  ASSERT_EQ(three.status, 0) << three.err;
+  EXPECT_EQ(read_text(file("one.json")), read_text(file("three.json")));
+  EXPECT_EQ(read_text(file("one.csv")), read_text(file("three.csv")));
+  EXPECT_EQ(one.out, three.out);
+}
+
+// Shards merged equal the unsharded run, byte for byte (JSON and CSV), whatever order the shard
+// files come in; Pareto flags are recomputed over the union.
+TEST_F(SweepCli, ShardsMergeToTheUnshardedRun) {
+  const std::string vec = quote(kTraces + "/eight_lights.vec");
+  ASSERT_EQ(glint("sweep " + vec + " " + kGrids + " -o all.json --csv all.csv").status, 0);
+  for (int k = 0; k < 3; ++k) {
+    const CliRun r = glint("sweep " + vec + " " + kGrids + " --shard " + std::to_string(k) +
+                           "/3 -o shard" + std::to_string(k) + ".json");
+    ASSERT_EQ(r.status, 0) << r.err;
+  }
+  const CliRun m =
+      glint("merge shard2.json shard0.json shard1.json -o merged.json --csv merged.csv");
+  ASSERT_EQ(m.status, 0) << m.err;
+  EXPECT_EQ(read_text(file("merged.json")), read_text(file("all.json")));
+  EXPECT_EQ(read_text(file("merged.csv")), read_text(file("all.csv")));
+  // A shard's own fronts are over its configurations only, so they differ somewhere.
+  const json s0 = json::parse(read_text(file("shard0.json")));
+  EXPECT_EQ(s0.at("shard"), (json{{"index", 0}, {"count", 3}}));
+
+  // Missing, repeated and foreign shards are refused, and nothing is written.
+  const struct {
+    const char* args;
+    const char* mention;
+  } bad[] = {{"shard0.json shard1.json", "shard 2/3 is missing"},
+             {"shard0.json shard0.json shard1.json", "both shard 0/3"},
+             {"all.json", "not a shard"},
+             {"shard0.json shard1.json nosuch.json", "nosuch.json"}};
+  for (const auto& b : bad) {
+    const CliRun r = glint(std::string("merge ") + b.args + " -o bad.json");
+    EXPECT_EQ(r.status, 2) << b.args;
+    EXPECT_NE(r.err.find(b.mention), std::string::npos) << b.args << ": " << r.err;
+    EXPECT_FALSE(fs::exists(file("bad.json")));
+  }
+  const CliRun other = glint("sweep " + vec + " --grid pow --shard 1/3 -o other.json");
+  ASSERT_EQ(other.status, 0);
+  const CliRun r = glint("merge shard0.json other.json shard2.json -o bad.json");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("another sweep"), std::string::npos) << r.err;
+}
+
+TEST_F(SweepCli, BadInputExitsTwoAndWritesNothing) {
+  const std::string vec = quote(kTraces + "/phong_basic.vec");
+  const struct {
+    std::string args;
+    const char* mention;
+  } bad[] = {
+      {"sweep " + vec + " --grid 'horner:degre=2'", "--grid 'horner:degre=2'"},
+      {"sweep " + vec + " --grid 'horner:degree=0..3'", "key 'degree'"},
+      {"sweep " + vec + " --grid 'hast:buffer=1..1000,d=1..16,guard=0..7'",
+       "128000 configurations exceed the limit of 100000"},
+      {"sweep --grid pow", "VECTORS"},
+      {"sweep " + vec + " --scene x.json --grid pow", "one input"},
+      {"sweep " + vec + " --grid pow --error-measure frobs", "--error-measure"},
+      {"sweep " + vec + " --grid pow --error-measure throughput", "not an error measure"},
+      {"sweep " + vec + " --grid pow --error-measure image.max_lsb", "need --scene"},
+      {"sweep " + vec + " --grid pow --shard 3/3", "--shard"},
+      {"sweep " + vec + " --grid pow -o out.txt", "-o out.txt"},
+      {"sweep " + vec + " --grid pow --csv " + vec, "is the input"},
+      {"sweep " + vec + " --grid pow -o a.csv --csv a.csv", "a.csv"},
+      {"sweep " + vec + " --grid pow --slots 0", "--slots"},
+      {"sweep nosuch.vec --grid pow -o out.json", "nosuch.vec"},
+      {"size --budget 'frobs<=1' " + vec, "unknown measure 'frobs'"},
+      {"size --budget 'lsb8<=1' --objective speed " + vec, "--objective"},
+      {"size --budget 'lsb8<=1'", "VECTORS"},
+      {"merge -o out.json", "SHARD"},
+  };
+  for (const auto& b : bad) {
+    const bool plots = b.args.rfind("size", 0) != 0;  // size writes no plots
+    const CliRun r = glint(b.args + (plots ? " --plot plots" : ""));
+    EXPECT_EQ(r.status, 2) << b.args << "\n" << r.err;
+    EXPECT_NE(r.err.find(b.mention), std::string::npos) << b.args << ": " << r.err;
+    EXPECT_TRUE(entries().empty()) << b.args << " left files";
+  }
+}
+
+// size against a brute force over `glint sweep`'s rows of the same grids on the same inputs.
+TEST_F(SweepCli, SizePicksTheCheapestAndExitsOneWhenNoneMeets) {
+  const std::string grids =
+      "--grid 'lut:bits=4..8,in=uq1.11|uq1.15' --grid 'horner:degree=2..5' "
+      "--grid 'pow:out=uq1.10|uq1.15'";
+  const std::vector<std::string> files = {kTraces + "/phong_basic.vec",
+                                          kTraces + "/multi_light.vec"};
+  std::vector<json> sweeps;
+  std::string inputs;
+  for (const std::string& f : files) {
+    sweeps.push_back(glint_json("sweep " + quote(f) + " " + grids + " --json"));
+    inputs += " " + quote(f);
+  }
+  const json size = glint_json("size --budget 'max_lsb8<=2' " + grids + inputs + " --json");
+  // Brute force: the largest area over the inputs among configurations within 2 LSB on both.
+  std::optional<std::size_t> best;
+  double best_area = 0;
+  std::map<std::string, std::pair<std::size_t, double>> per_family;
+  for (std::size_t i = 0; i < sweeps[0]["results"].size(); ++i) {
+    bool ok = true;
+    double area = 0;
+    for (const json& s : sweeps) {
+      const json& row = s["results"][i];
+      ok = ok && row["errors"]["max_abs"].get<double>() * 255 <= 2;
+      area = std::max(area, row["area_ge"].get<double>());
+    }
+    if (!ok) continue;
+    if (!best || area < best_area) {
+      best = i;
+      best_area = area;
+    }
+    const std::string unit = sweeps[0]["results"][i]["unit"];
+    if (!per_family.count(unit) || area < per_family[unit].second) per_family[unit] = {i, area};
+  }
+  ASSERT_TRUE(best);
+  EXPECT_EQ(size.at("best").at("index"), *best);
+  EXPECT_EQ(size.at("best").at("spec"), sweeps[0]["results"][*best]["spec"]);
+  EXPECT_DOUBLE_EQ(size.at("best").at("value").get<double>(), best_area);
+  for (const json& f : size.at("families")) {
+    const std::string unit = f.at("unit");
+    if (per_family.count(unit)) {
+      EXPECT_EQ(f.at("index"), per_family[unit].first) << unit;
+    } else {
+      EXPECT_TRUE(f.at("spec").is_null()) << unit;
+    }
+  }
+  // The text ends with the spec alone, ready to paste.
+  const CliRun text = glint("size --budget 'max_lsb8<=2' " + grids + inputs);
+  ASSERT_EQ(text.status, 0) << text.err;
+  const std::string last = text.out.substr(text.out.rfind('\n', text.out.size() - 2) + 1);
+  EXPECT_EQ(last, sweeps[0]["results"][*best]["spec"].get<std::string>() + "\n");
+
+  const CliRun none = glint("size --budget 'max_abs<0' " + grids + inputs);
+  EXPECT_EQ(none.status, 1) << none.err;
+  EXPECT_NE(none.out.find("no configuration meets the budget"), std::string::npos) << none.out;
+}
+
+// The default grids run on every shipped trace (README quotes the time).
+TEST_F(SweepCli, SizeDefaultGridsOnTheTraces) {
+  std::string inputs;
+  for (const char* f : {"/phong_basic.vec", "/multi_light.vec", "/eight_lights.vec"})
+    inputs += " " + quote(kTraces + f);
+  const json size = glint_json("size --budget 'lsb8<=1'" + inputs + " --json");
+  EXPECT_GT(size.at("configurations").get<std::size_t>(), 100u);
+  ASSERT_TRUE(size.at("best").is_object());
+  for (const json& v : size.at("best").at("measures").at("lsb8")) EXPECT_LE(v.get<double>(), 1.0);
+}
+
+// --plot: both plots as SVG and PNG; the SVG holds one point per configuration with an error
+// value, those on the front marked.
+TEST_F(SweepCli, PlotsHoldEveryConfiguration) {
+  const std::string vec = quote(kTraces + "/multi_light.vec");
+  const CliRun r = glint("sweep " + vec + " " + kGrids + " -o r.json --plot plots");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json report = json::parse(read_text(file("r.json")));
+  for (const auto& [name, flag] : {std::pair<std::string, std::string>{"error_vs_area", "area"},
+                                   {"error_vs_throughput", "throughput"}}) {
+    const std::string svg = read_text(file("plots/" + name + ".svg"));
+    ASSERT_EQ(svg.rfind("<?xml version=\"1.0\"", 0), 0u) << name;
+    EXPECT_NE(svg.find("</svg>\n"), std::string::npos);
+    // Well formed enough: every element opened is closed or self-closing.
+    EXPECT_EQ(std::count(svg.begin(), svg.end(), '<'), std::count(svg.begin(), svg.end(), '>'));
+    const auto count = [&](const std::string& what) {
+      std::size_t n = 0;
+      for (std::size_t at = svg.find(what); at != std::string::npos; at = svg.find(what, at + 1))
+        ++n;
+      return n;
+    };
+    std::size_t points = 0, front = 0;
+    for (const json& row : report["results"]) {
+      if (!row["error"].is_number()) continue;
+      ++points;
+      front += row["pareto"][flag].get<bool>();
+    }
+    EXPECT_EQ(count("class=\"point "), points) << name;
+    EXPECT_EQ(count("class=\"point front\""), front) << name;
+    EXPECT_GT(front, 0u);
+    const std::string png = read_text(file("plots/" + name + ".png"));
+    ASSERT_GT(png.size(), 1000u) << name;
+    EXPECT_EQ(png.substr(1, 3), "PNG");
+  }
+  // The same bytes on a second run.
+  const std::string svg = read_text(file("plots/error_vs_area.svg"));
+  const std::string png = read_text(file("plots/error_vs_area.png"));
+  ASSERT_EQ(glint("sweep " + vec + " " + kGrids + " --plot plots").status, 0);
+  EXPECT_EQ(read_text(file("plots/error_vs_area.svg")), svg);
+  EXPECT_EQ(read_text(file("plots/error_vs_area.png")), png);
+}
+
+// A scene: request-level figures equal eval's on the scene's own requests (--write-vectors), and
+// the image-level error equals glint render's.
+TEST_F(SweepCli, SceneEqualsRenderAndEvalOnItsRequests) {
+  const std::string scene = quote(kTraces + "/scenes/small.json");
+  const std::string grid = "--grid 'lut:bits=4..6' --grid 'hast:d=2|4'";
+  const json sweep = glint_json("sweep --scene " + scene + " " + grid + " --json");
+  ASSERT_EQ(sweep.at("results").size(), 5u);
+  EXPECT_EQ(sweep.at("input").at("kind"), "scene");
+  EXPECT_TRUE(sweep.at("image_error").get<bool>());
+  for (const json& row : sweep["results"]) {
+    const std::string spec = row.at("spec");
+    const json render = glint_json("render " + scene + " --unit " + quote(spec) +
+                                   " -o r --write-vectors r.vec --json");
+    const json eval = glint_json("eval r.vec --unit " + quote(spec) + " --json");
+    EXPECT_EQ(row.at("image"), render.at("units")[0].at("image_error")) << spec;
+    EXPECT_EQ(row.at("errors"), eval.at("units")[0].at("errors")) << spec;
+    EXPECT_EQ(row.at("vectors"), render.at("requests"));
+  }
+  const CliRun csv = glint("sweep --scene " + scene + " " + grid + " --csv s.csv");
+  ASSERT_EQ(csv.status, 0) << csv.err;
+  EXPECT_NE(read_text(file("s.csv")).find(",image.max_lsb,"), std::string::npos);
+  // Image-level error measures for the fronts and budgets.
+  const json by_image =
+      glint_json("sweep --scene " + scene + " " + grid + " --error-measure image.max_lsb --json");
+  for (const json& row : by_image["results"])
+    EXPECT_EQ(row.at("error"), row.at("image").at("max_lsb"));
+  // --no-image: request-level only.
+  const json no_image = glint_json("sweep --scene " + scene + " " + grid + " --no-image --json");
+  EXPECT_FALSE(no_image.at("image_error").get<bool>());
+  for (const json& row : no_image["results"]) EXPECT_FALSE(row.contains("image"));
+}
+
+}  // namespace
