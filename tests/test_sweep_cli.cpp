@@ -172,6 +172,7 @@ TEST_F(SweepCli, BadInputExitsTwoAndWritesNothing) {
       {"sweep " + vec + " --grid pow -o out.txt", "-o out.txt"},
       {"sweep " + vec + " --grid pow --csv " + vec, "is the input"},
       {"sweep " + vec + " --grid pow -o a.csv --csv a.csv", "a.csv"},
+      {"sweep " + vec + " --grid pow -o nodir/a.json", "no folder nodir"},
       {"sweep " + vec + " --grid pow --slots 0", "--slots"},
       {"sweep nosuch.vec --grid pow -o out.json", "nosuch.vec"},
       {"size --budget 'frobs<=1' " + vec, "unknown measure 'frobs'"},

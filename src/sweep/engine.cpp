@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <stdexcept>
 
 #include "eval/parallel.h"
@@ -11,6 +12,9 @@
 #include "units/lane_cost.h"
 
 namespace glint {
+namespace {
+using Clock = std::chrono::steady_clock;
+}  // namespace
 
 struct SweepEngine::Block {
   std::vector<std::size_t> members;  // the configurations it evaluates (engine order)
@@ -75,14 +79,21 @@ void SweepEngine::add(const VectorRow* rows, std::size_t count) {
   for (std::size_t at = 0; at < count; at += settings_.chunk_rows) {
     const std::size_t n = std::min(settings_.chunk_rows, count - at);
     for (auto& block : blocks_) {
+      const auto t0 = Clock::now();
       // The untimed datapaths and statistics of every unit in the block (threads over units)...
       block->ev->add_batch(rows + at, n, batch_, settings_.jobs);
+      const auto t1 = Clock::now();
       // ...then each unit's skip pattern through its own timing recurrences, in stream order.
+      // Each on a local copy: neighbouring engines share cache lines, and two threads writing
+      // their statistics every row would take turns owning them (false sharing).
       parallel_for(block->timing.size(), settings_.jobs, [&](std::size_t u) {
-        TimingEngine& engine = block->timing[u];
+        TimingEngine engine = block->timing[u];
         const std::uint8_t* skipped = batch_.skipped.data() + u * n;
         for (std::size_t i = 0; i < n; ++i) engine.next(skipped[i] != 0);
+        block->timing[u] = std::move(engine);
       });
+      profile_.evaluate_s += std::chrono::duration<double>(t1 - t0).count();
+      profile_.timing_s += std::chrono::duration<double>(Clock::now() - t1).count();
     }
     rows_ += n;
   }

@@ -59,6 +59,13 @@ class SweepEngine {
   // cost, timing, operations, errors and digest, or only the spec and "refused". "image",
   // "error" and "pareto" are added later.
   std::vector<nlohmann::json> results() const;
+  // Where add() spent its time (seconds of wall clock, over every call): the untimed datapaths and
+  // statistics (Evaluator::add_batch) and the timing recurrences (TimingEngine).
+  struct Profile {
+    double evaluate_s = 0, timing_s = 0;
+  };
+  const Profile& profile() const { return profile_; }
+
   // Why configuration k (in the engine's order) was refused; empty when it runs.
   const std::string& refused(std::size_t k) const { return refused_[k]; }
 
@@ -72,6 +79,7 @@ class SweepEngine {
   std::vector<std::string> refused_;  // per configuration: why it was refused, or empty
   BatchResults batch_;
   std::uint64_t rows_ = 0;
+  Profile profile_;
 };
 
 }  // namespace glint

@@ -192,11 +192,7 @@ std::vector<Budget> parse_budgets(std::string_view text, bool scene) {
     b.limit = value.empty() ? 0 : std::strtod(value.c_str(), &end);
     if (value.empty() || end != value.c_str() + value.size() || !std::isfinite(b.limit))
       throw bad(item, fmt::format("'{}' is not a finite number", value));
-    try {
-      b.measure = measure_or_throw(name, scene, "--budget");
-    } catch (const std::invalid_argument& e) {
-      throw bad(item, e.what());
-    }
+    b.measure = measure_or_throw(name, scene, fmt::format("--budget '{}'", whole));
     out.push_back(std::move(b));
     if (comma == std::string_view::npos) break;
     text.remove_prefix(comma + 1);

@@ -60,6 +60,12 @@ void check_sweep_outputs(const SweepOutputs& outputs, const std::vector<std::str
   std::vector<fs::path> canonical;
   for (const auto& [option, path] : files) {
     check_output_path(path);
+    // The folder must be there (the plots' is made): a sweep must not run for minutes only to
+    // find it cannot write its result.
+    const fs::path parent = fs::path(path).parent_path();
+    std::error_code dir_ec;
+    if (option != "--plot" && !parent.empty() && !fs::is_directory(parent, dir_ec))
+      throw OutputError(fmt::format("{} {}: no folder {}", option, path, parent.string()));
     std::error_code ec;
     for (const std::string& in : inputs)
       if (fs::equivalent(in, path, ec))

@@ -31,15 +31,15 @@ const char* to_string(SizeObjective o) {
 }
 
 const std::vector<std::string>& default_size_grids() {
-  // Each family's main accuracy knobs at display-relevant widths: the input and output formats
-  // (8-bit displays need ~9-12 fraction bits) and the unit's own size key. 186 configurations in
-  // all; README quotes the time on traces/*.vec.
+  // Each family's main accuracy knobs at display-relevant widths: the input format (where t's
+  // rounding matters: 10 to 16 fraction bits), the output format (8-bit displays need 10-12) and
+  // the unit's own size key. 224 configurations; README quotes the time on traces/*.vec.
   static const std::vector<std::string> grids = {
-      "pow:in=uq1.10|uq1.12|uq1.15,out=uq1.10|uq1.12,log_bits=4..8/2,exp_bits=4|6",
-      "schlick:in=uq1.10|uq1.12|uq1.15,out=uq1.10|uq1.12,match=none|width|minimax",
-      "hast:in=uq1.10|uq1.12|uq1.15,out=uq1.10|uq1.12,d=2..5,match=none|minimax",
-      "horner:in=uq1.10|uq1.12|uq1.15,out=uq1.10|uq1.12,degree=2..6",
-      "lut:in=uq1.10|uq1.12|uq1.15,out=uq1.10|uq1.12,bits=4..8",
+      "pow:in=uq1.10|uq1.12|uq1.14|uq1.16,out=uq1.10|uq1.12,log_bits=4..8/2,exp_bits=4|6",
+      "schlick:in=uq1.10|uq1.12|uq1.14|uq1.16,out=uq1.10|uq1.12,match=none|width|minimax",
+      "hast:in=uq1.10|uq1.12|uq1.14|uq1.16,out=uq1.10|uq1.12,d=2..5,match=none|minimax",
+      "horner:in=uq1.10|uq1.12|uq1.14|uq1.16,out=uq1.10|uq1.12,degree=2..6",
+      "lut:in=uq1.10|uq1.12|uq1.14|uq1.16,out=uq1.10|uq1.12,bits=4..9",
   };
   return grids;
 }
