@@ -31,11 +31,15 @@ int run_merge(const MergeOptions& o) {
   if (outputs.json.empty() && outputs.csv.empty() && outputs.plot_dir.empty() && !o.json)
     throw std::invalid_argument(
         "merge: nothing to write (give -o OUT.json, --csv, --plot or --json)");
-  check_sweep_outputs(outputs, o.shards);
+  OutputSet set;
+  for (const std::string& path : o.shards) set.add_input("SHARD", path);
+  if (o.json) set.claim_stdout("--json");
+  const SweepOutputFiles files = declare_sweep_outputs(set, outputs);
   std::vector<std::pair<std::string, nlohmann::json>> shards;
   for (const std::string& path : o.shards) shards.emplace_back(path, read_sweep_report(path));
   const nlohmann::json report = merge_sweep_reports(shards);
-  write_sweep_outputs(report, outputs);
+  write_sweep_outputs(report, files);
+  set.commit();
   if (o.json) {
     print_json(report);
   } else {

@@ -57,7 +57,10 @@ int run_sweep_command(const SweepCommandOptions& o) {
     outputs.csv = o.csv;
   }
   outputs.plot_dir = o.plot;
-  check_sweep_outputs(outputs, {job.input.path});
+  OutputSet set;
+  set.add_input(o.vectors.empty() ? "--scene" : "VECTORS", job.input.path);
+  if (o.json) set.claim_stdout("--json");
+  const SweepOutputFiles files = declare_sweep_outputs(set, outputs);
   if (isatty(STDERR_FILENO))
     job.progress = [](const std::string& line) { std::fprintf(stderr, "\r%s", line.c_str()); };
 
@@ -68,7 +71,8 @@ int run_sweep_command(const SweepCommandOptions& o) {
     refuse_slots(o.slots, e);  // the input needs more slots than the chip holds
   }
   if (job.progress) std::fprintf(stderr, "\n");
-  write_sweep_outputs(report, outputs);
+  write_sweep_outputs(report, files);
+  set.commit();
   if (o.json) {
     print_json(report);
   } else {

@@ -6,7 +6,6 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "io/atomic_file.h"
 #include "sweep/plot.h"
 #include "sweep/report.h"
 
@@ -17,12 +16,6 @@ namespace fs = std::filesystem;
 
 bool ends_with(const std::string& s, const std::string& tail) {
   return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
-}
-
-void write_text(const std::string& path, const std::string& text) {
-  AtomicOutputFile f(path);
-  f.stream() << text;
-  f.commit();
 }
 
 std::string cell(const nlohmann::json& v, const char* format) {
@@ -44,45 +37,35 @@ void add_output_by_extension(SweepOutputs& outputs, const std::string& path) {
   *slot = path;
 }
 
-void check_sweep_outputs(const SweepOutputs& outputs, const std::vector<std::string>& inputs) {
-  std::vector<std::pair<std::string, std::string>> files;  // option, path
-  if (!outputs.json.empty()) files.emplace_back("-o", outputs.json);
-  if (!outputs.csv.empty()) files.emplace_back("--csv", outputs.csv);
+SweepOutputFiles declare_sweep_outputs(OutputSet& set, const SweepOutputs& outputs) {
+  SweepOutputFiles files;
+  if (!outputs.json.empty()) files.json = &set.add("-o", outputs.json);
+  if (!outputs.csv.empty()) files.csv = &set.add("--csv", outputs.csv);
   if (!outputs.plot_dir.empty()) {
-    std::error_code ec;
-    if (fs::exists(outputs.plot_dir, ec) && !fs::is_directory(outputs.plot_dir, ec))
-      throw OutputError(fmt::format("--plot {}: exists and is not a folder", outputs.plot_dir));
+    set.make_folder("--plot", outputs.plot_dir);
     for (const char* name : {"error_vs_area", "error_vs_throughput"})
-      for (const char* ext : {".svg", ".png"})
-        files.emplace_back("--plot",
-                           (fs::path(outputs.plot_dir) / (std::string(name) + ext)).string());
+      for (const char* ext : {".svg", ".png"}) {
+        const std::string file = std::string(name) + ext;
+        files.plots.emplace_back(file,
+                                 &set.add("--plot", (fs::path(outputs.plot_dir) / file).string()));
+      }
   }
-  std::vector<fs::path> canonical;
-  for (const auto& [option, path] : files) {
-    check_output_path(path);
-    // The folder must be there (the plots' is made): a sweep must not run for minutes only to
-    // find it cannot write its result.
-    const fs::path parent = fs::path(path).parent_path();
-    std::error_code dir_ec;
-    if (option != "--plot" && !parent.empty() && !fs::is_directory(parent, dir_ec))
-      throw OutputError(fmt::format("{} {}: no folder {}", option, path, parent.string()));
-    std::error_code ec;
-    for (const std::string& in : inputs)
-      if (fs::equivalent(in, path, ec))
-        throw std::invalid_argument(fmt::format("{} {}: is the input {}", option, path, in));
-    canonical.push_back(fs::weakly_canonical(fs::absolute(path)));
-  }
-  for (std::size_t i = 0; i < files.size(); ++i)
-    for (std::size_t j = i + 1; j < files.size(); ++j)
-      if (canonical[i] == canonical[j])
-        throw std::invalid_argument(fmt::format("{} and {} name the same file {}", files[i].first,
-                                                files[j].first, files[i].second));
+  return files;
 }
 
-void write_sweep_outputs(const nlohmann::json& report, const SweepOutputs& outputs) {
-  if (!outputs.json.empty()) write_text(outputs.json, report_json_text(report));
-  if (!outputs.csv.empty()) write_text(outputs.csv, report_csv_text(report));
-  if (!outputs.plot_dir.empty()) write_sweep_plots(sweep_plots(report), outputs.plot_dir);
+void write_sweep_outputs(const nlohmann::json& report, const SweepOutputFiles& files) {
+  if (files.json) files.json->stream() << report_json_text(report);
+  if (files.csv) files.csv->stream() << report_csv_text(report);
+  if (files.plots.empty()) return;
+  for (const SweepPlot& plot : sweep_plots(report)) {
+    for (const auto& [file, out] : files.plots) {
+      if (file == plot.name + ".svg") out->stream() << plot.svg;
+      if (file != plot.name + ".png") continue;
+      const std::vector<std::uint8_t> png = encode_png(plot.png);
+      out->stream().write(reinterpret_cast<const char*>(png.data()),
+                          static_cast<std::streamsize>(png.size()));
+    }
+  }
 }
 
 std::string format_sweep_summary(const nlohmann::json& report) {

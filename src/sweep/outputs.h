@@ -1,10 +1,14 @@
-// The files a sweep (or a merge of shards) writes, checked before anything runs and written at the
-// end, each atomically; and the summary it prints.
+// The files a sweep (or a merge of shards) writes, declared in an OutputSet before anything runs
+// (checked, temporaries made, the plot folder created) and committed together at the end; and the
+// summary it prints.
 #pragma once
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include "io/output_set.h"
 
 namespace glint {
 
@@ -18,13 +22,19 @@ struct SweepOutputs {
 // -o for any other extension, or when the output it names is already given.
 void add_output_by_extension(SweepOutputs& outputs, const std::string& path);
 
-// Every output path is writable in principle (not a device, FIFO or folder; the plot folder not a
-// file), none is an input and no two are the same file. Throws std::invalid_argument or
-// OutputError naming the option.
-void check_sweep_outputs(const SweepOutputs& outputs, const std::vector<std::string>& inputs);
+// The declared files of a sweep's outputs (null / empty: not asked for).
+struct SweepOutputFiles {
+  OutputFile* json = nullptr;
+  OutputFile* csv = nullptr;
+  std::vector<std::pair<std::string, OutputFile*>> plots;  // file name in the folder, file
+};
 
-// Writes every output given (JSON, CSV, plots).
-void write_sweep_outputs(const nlohmann::json& report, const SweepOutputs& outputs);
+// Declares every output given in `set` (io/output_set.h: refusals name the option; the plot folder
+// is made, and removed again if the run fails).
+SweepOutputFiles declare_sweep_outputs(OutputSet& set, const SweepOutputs& outputs);
+
+// Writes the report, the CSV and the plots into their declared files; the caller commits the set.
+void write_sweep_outputs(const nlohmann::json& report, const SweepOutputFiles& files);
 
 // What `glint sweep` prints without --json: the input, the counts and the three fronts.
 std::string format_sweep_summary(const nlohmann::json& report);

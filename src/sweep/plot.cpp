@@ -7,7 +7,6 @@
 #include <filesystem>
 #include <map>
 
-#include "io/atomic_file.h"
 #include "sweep/canvas.h"
 #include "units/catalogue.h"
 
@@ -249,20 +248,6 @@ std::vector<SweepPlot> sweep_plots(const nlohmann::json& report) {
     out.push_back(std::move(plot));
   }
   return out;
-}
-
-void write_sweep_plots(const std::vector<SweepPlot>& plots, const std::string& dir) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec)
-    throw OutputError(fmt::format("--plot {}: cannot create the folder: {}", dir, ec.message()));
-  for (const SweepPlot& p : plots) {
-    const std::string base = (std::filesystem::path(dir) / p.name).string();
-    AtomicOutputFile svg(base + ".svg");
-    svg.stream() << p.svg;
-    svg.commit();
-    write_png(base + ".png", p.png);
-  }
 }
 
 }  // namespace glint

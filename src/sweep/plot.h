@@ -23,8 +23,4 @@ struct SweepPlot {
 // Both plots of a report whose rows carry "error" and "pareto" (report.h's mark_pareto).
 std::vector<SweepPlot> sweep_plots(const nlohmann::json& report);
 
-// Writes DIR/NAME.svg and DIR/NAME.png of each plot (DIR created if missing), each file
-// atomically. Throws OutputError when a file cannot be written.
-void write_sweep_plots(const std::vector<SweepPlot>& plots, const std::string& dir);
-
 }  // namespace glint
