@@ -6,6 +6,11 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+namespace glint {
+class OutputSet;
+struct SweepOutputFiles;
+}  // namespace glint
+
 namespace glint::cli {
 
 // Exit statuses: 0 success, 1 a check failed (e.g. regression), 2 bad input or usage.
@@ -39,6 +44,10 @@ void add_sim_command(CLI::App& app, int& status);
 void add_regress_command(CLI::App& app, int& status);
 void add_render_command(CLI::App& app, int& status);
 void add_sweep_command(CLI::App& app, int& status);
+// The end of a sweep or a merge: its files written and committed, then the report (--json) or the
+// summary on stdout. Returns the exit status.
+int emit_sweep_report(const nlohmann::json& report, const SweepOutputFiles& files, OutputSet& set,
+                      bool json);
 void add_size_command(CLI::App& app, int& status);
 void add_merge_command(CLI::App& app, int& status);
 

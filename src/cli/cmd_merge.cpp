@@ -19,15 +19,7 @@ struct MergeOptions {
 };
 
 int run_merge(const MergeOptions& o) {
-  SweepOutputs outputs;
-  if (!o.out.empty()) add_output_by_extension(outputs, o.out);
-  if (!o.csv.empty()) {
-    if (!outputs.csv.empty())
-      throw std::invalid_argument(
-          fmt::format("--csv {}: -o {} already writes the CSV", o.csv, outputs.csv));
-    outputs.csv = o.csv;
-  }
-  outputs.plot_dir = o.plot;
+  const SweepOutputs outputs = sweep_outputs(o.out, o.csv, o.plot);
   if (outputs.json.empty() && outputs.csv.empty() && outputs.plot_dir.empty() && !o.json)
     throw std::invalid_argument(
         "merge: nothing to write (give -o OUT.json, --csv, --plot or --json)");
@@ -38,14 +30,7 @@ int run_merge(const MergeOptions& o) {
   std::vector<std::pair<std::string, nlohmann::json>> shards;
   for (const std::string& path : o.shards) shards.emplace_back(path, read_sweep_report(path));
   const nlohmann::json report = merge_sweep_reports(shards);
-  write_sweep_outputs(report, files);
-  set.commit();
-  if (o.json) {
-    print_json(report);
-  } else {
-    std::cout << format_sweep_summary(report);
-  }
-  return kExitOk;
+  return emit_sweep_report(report, files, set, o.json);
 }
 
 }  // namespace

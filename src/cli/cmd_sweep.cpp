@@ -48,15 +48,7 @@ int run_sweep_command(const SweepCommandOptions& o) {
   job.settings.sink = SinkReady{o.sink_ready, o.seed};
   job.error_measure = o.error_measure;
   job.image = !o.no_image;
-  SweepOutputs outputs;
-  if (!o.out.empty()) add_output_by_extension(outputs, o.out);
-  if (!o.csv.empty()) {
-    if (!outputs.csv.empty())
-      throw std::invalid_argument(
-          fmt::format("--csv {}: -o {} already writes the CSV", o.csv, outputs.csv));
-    outputs.csv = o.csv;
-  }
-  outputs.plot_dir = o.plot;
+  const SweepOutputs outputs = sweep_outputs(o.out, o.csv, o.plot);
   OutputSet set;
   set.add_input(o.vectors.empty() ? "--scene" : "VECTORS", job.input.path);
   if (o.json) set.claim_stdout("--json");
@@ -71,17 +63,22 @@ int run_sweep_command(const SweepCommandOptions& o) {
     refuse_slots(o.slots, e);  // the input needs more slots than the chip holds
   }
   if (job.progress) std::fprintf(stderr, "\n");
+  return emit_sweep_report(report, files, set, o.json);
+}
+
+}  // namespace
+
+int emit_sweep_report(const nlohmann::json& report, const SweepOutputFiles& files, OutputSet& set,
+                      bool json) {
   write_sweep_outputs(report, files);
   set.commit();
-  if (o.json) {
+  if (json) {
     print_json(report);
   } else {
     std::cout << format_sweep_summary(report);
   }
   return kExitOk;
 }
-
-}  // namespace
 
 void add_sweep_command(CLI::App& app, int& status) {
   auto o = std::make_shared<SweepCommandOptions>();

@@ -37,6 +37,20 @@ void add_output_by_extension(SweepOutputs& outputs, const std::string& path) {
   *slot = path;
 }
 
+SweepOutputs sweep_outputs(const std::string& out, const std::string& csv,
+                           const std::string& plot) {
+  SweepOutputs outputs;
+  if (!out.empty()) add_output_by_extension(outputs, out);
+  if (!csv.empty()) {
+    if (!outputs.csv.empty())
+      throw std::invalid_argument(
+          fmt::format("--csv {}: -o {} already writes the CSV", csv, outputs.csv));
+    outputs.csv = csv;
+  }
+  outputs.plot_dir = plot;
+  return outputs;
+}
+
 SweepOutputFiles declare_sweep_outputs(OutputSet& set, const SweepOutputs& outputs) {
   SweepOutputFiles files;
   if (!outputs.json.empty()) files.json = &set.add("-o", outputs.json);

@@ -18,6 +18,10 @@ struct SweepOutputs {
   std::string plot_dir;  // --plot DIR: error_vs_area.{svg,png}, error_vs_throughput.{svg,png}
 };
 
+// The outputs of -o FILE (by extension), --csv FILE and --plot DIR (each may be empty). Throws
+// std::invalid_argument when -o and --csv both name the CSV.
+SweepOutputs sweep_outputs(const std::string& out, const std::string& csv, const std::string& plot);
+
 // -o FILE: a .json file is the report, a .csv file the CSV. Throws std::invalid_argument naming
 // -o for any other extension, or when the output it names is already given.
 void add_output_by_extension(SweepOutputs& outputs, const std::string& path);
