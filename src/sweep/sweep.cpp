@@ -30,6 +30,17 @@ struct SceneRun {
   std::vector<nlohmann::json> rows;
 };
 
+// The report's "input" object as every input kind has it (a scene adds its name and size).
+nlohmann::json input_json(const char* kind, const std::string& path, const SweepEngine& engine) {
+  return {{"kind", kind},
+          {"path", path},
+          {"rows", engine.rows()},
+          {"slots", engine.slots().params.size()},
+          {"datapath_groups", engine.slots().groups.size()},
+          {"per_light_slots", engine.slots().per_light},
+          {"colour_multiply", engine.colour()}};
+}
+
 // A scene: the render layer ray-casts it and hands every tile's requests to the engine (the first
 // render only); the image-level error of each configuration is the render's own, from the final
 // 8-bit pixels, a group of configurations per render.
@@ -61,16 +72,10 @@ SceneRun sweep_scene(const SweepJob& job, const std::vector<SweepConfig>& all,
   run.rows = engine.results();
   for (std::size_t k = 0; k < mine.size(); ++k)
     if (images[k]) run.rows[k]["image"] = images[k]->to_json();
-  run.input = {{"kind", "scene"},
-               {"path", job.input.path},
-               {"scene", scene.name},
-               {"width", scene.camera.width},
-               {"height", scene.camera.height},
-               {"rows", engine.rows()},
-               {"slots", engine.slots().params.size()},
-               {"datapath_groups", engine.slots().groups.size()},
-               {"per_light_slots", engine.slots().per_light},
-               {"colour_multiply", engine.colour()}};
+  run.input = input_json("scene", job.input.path, engine);
+  run.input["scene"] = scene.name;
+  run.input["width"] = scene.camera.width;
+  run.input["height"] = scene.camera.height;
   return run;
 }
 
@@ -88,13 +93,7 @@ SceneRun sweep_vectors(const SweepJob& job, const std::vector<SweepConfig>& mine
   }
   SceneRun run;
   run.rows = engine.results();
-  run.input = {{"kind", "vectors"},
-               {"path", job.input.path},
-               {"rows", engine.rows()},
-               {"slots", engine.slots().params.size()},
-               {"datapath_groups", engine.slots().groups.size()},
-               {"per_light_slots", engine.slots().per_light},
-               {"colour_multiply", engine.colour()}};
+  run.input = input_json("vectors", job.input.path, engine);
   return run;
 }
 
