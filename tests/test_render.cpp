@@ -136,12 +136,6 @@ TEST(Render, ImageErrorMatchesThePixels) {
   EXPECT_LE(r.units.front().error.max_lsb, 2.0);  // pow: correctly rounded t^n, within 2 LSB
 }
 
-}  // namespace
-}  // namespace glint
-
-namespace glint {
-namespace {
-
 struct CliRun {
   int status = -1;
   std::string out, err;
@@ -206,12 +200,6 @@ TEST(RenderCli, OutputFolderThatIsAFileIsExitTwo) {
   EXPECT_EQ(test::read_file(dir.file("out")), "keep");
 }
 
-}  // namespace
-}  // namespace glint
-
-namespace glint {
-namespace {
-
 // --slots N: a chip of fixed capacity; a scene that needs more is refused before anything is
 // written, a larger chip costs more area and changes no pixel.
 TEST(RenderSlots, FixedCapacityChip) {
@@ -236,12 +224,6 @@ TEST(RenderSlots, FixedCapacityChip) {
   EXPECT_NE(r.err.find("--slots"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir.file("out")));
 }
-
-}  // namespace
-}  // namespace glint
-
-namespace glint {
-namespace {
 
 // Large renders get a contact sheet of reduced tiles (the files keep full size); an error is kept
 // in its reduced heat map by the block maximum.
