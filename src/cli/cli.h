@@ -5,6 +5,9 @@
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
+
+#include "units/catalogue.h"
 
 namespace glint {
 class OutputSet;
@@ -16,6 +19,22 @@ namespace glint::cli {
 // Exit statuses: 0 success, 1 a check failed (e.g. regression), 2 bad input or usage.
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitBadInput = 2;
+
+// The whole command line: parses argv (argv[0] is the program) and runs the subcommand it names;
+// returns the exit status. Messages go to stderr, results to stdout.
+int run(int argc, char** argv);
+
+// Options only (the options fuzzer, tests/fuzz/fuzz_options.cpp): every subcommand checks its
+// option values as in a real run and stops before it reads an input file or writes anything;
+// tau and fit, which read and write no file, run in full.
+void set_options_only(bool on);
+bool options_only();
+
+// At most this many --unit options (lanes) in one run: each builds and simulates a unit.
+inline constexpr std::size_t kMaxUnitOptions = 64;
+// The unit specs of --unit (default: every unit), parsed; throws std::invalid_argument naming the
+// spec, or the option when more than kMaxUnitOptions are given.
+std::vector<UnitSpec> parse_unit_options(const std::vector<std::string>& units);
 
 // Runs `body` and turns glint's exceptions into a message on stderr and an exit status:
 // InputError, OutputError and std::invalid_argument are bad input (2); anything else is an
@@ -32,6 +51,9 @@ void add_display_bits_option(CLI::App* sub, int& bits);
 void add_slots_option(CLI::App* sub, std::size_t& slots);
 // make_slots' refusal of a stream that needs more slots than --slots N, rethrown naming the option.
 [[noreturn]] void refuse_slots(std::size_t slots, const std::exception& e);
+
+// Throws std::invalid_argument naming the option unless v is finite and > 0 (NaN is refused).
+void require_finite_positive(double v, const std::string& option);
 
 // Parses "r,g,b" into three doubles; throws std::invalid_argument naming the option.
 std::array<double, 3> parse_rgb(const std::string& text, const std::string& option);

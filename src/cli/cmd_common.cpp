@@ -63,6 +63,20 @@ void refuse_slots(std::size_t slots, const std::exception& e) {
   throw std::invalid_argument(fmt::format("--slots {}: {}", slots, e.what()));
 }
 
+std::vector<UnitSpec> parse_unit_options(const std::vector<std::string>& units) {
+  if (units.size() > kMaxUnitOptions)
+    throw std::invalid_argument(fmt::format(
+        "--unit given {} times: at most {} units (lanes) per run", units.size(), kMaxUnitOptions));
+  std::vector<UnitSpec> specs;
+  for (const auto& s : units.empty() ? unit_names() : units) specs.push_back(parse_unit_spec(s));
+  return specs;
+}
+
+void require_finite_positive(double v, const std::string& option) {
+  if (!(std::isfinite(v) && v > 0))
+    throw std::invalid_argument(fmt::format("{} {}: expected a finite number > 0", option, v));
+}
+
 std::array<double, 3> parse_rgb(const std::string& text, const std::string& option) {
   std::array<double, 3> out{};
   std::size_t pos = 0;

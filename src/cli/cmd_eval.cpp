@@ -24,9 +24,8 @@ struct EvalOptions {
 };
 
 int run_eval(const EvalOptions& o) {
-  std::vector<UnitSpec> specs;
-  for (const auto& s : o.units.empty() ? unit_names() : o.units)
-    specs.push_back(parse_unit_spec(s));
+  const std::vector<UnitSpec> specs = parse_unit_options(o.units);
+  if (options_only()) return kExitOk;
   // Outputs first, before any work: checked, their temporaries made (output_set.h).
   OutputSet outputs;
   outputs.add_input("VECTORS", o.vectors);
@@ -96,7 +95,11 @@ void add_eval_command(CLI::App& app, int& status) {
       app.add_subcommand("eval", "Run the untimed bit-accurate datapaths over a vector file");
   sub->add_option("VECTORS", o->vectors, "Vector file (see traces/README.md); - for stdin")
       ->required();
-  sub->add_option("--unit", o->units, "Unit SPEC NAME[:key=value,...] (repeatable; default all)");
+  sub->add_option(
+      "--unit", o->units,
+      fmt::format("Unit SPEC NAME[:key=value,...] (repeatable, at most {}; default all; "
+                  "keys: glint units)",
+                  kMaxUnitOptions));
   sub->add_option("--dump", o->dump,
                   "Per-vector CSV (written atomically; - for stdout, then the summary goes to "
                   "stderr)");

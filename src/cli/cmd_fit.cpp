@@ -1,6 +1,7 @@
 // glint fit: polynomial fits of t^n (Öztürk et al. 2006, and our fits on [tau, 1]).
 #include <fmt/format.h>
 
+#include <cmath>
 #include <iostream>
 
 #include "cli/cli.h"
@@ -22,12 +23,17 @@ struct FitCliOptions {
 };
 
 int run_fit(const FitCliOptions& o) {
+  require_finite_positive(o.shininess, "--shininess");
+  require_finite_positive(o.eps, "--eps");
   FitOptions f;
   f.shininess = o.shininess;
   f.degree = o.degree;
   f.method = parse_fit_method(o.method);
   f.domain = parse_fit_domain(o.domain);
   const auto m = parse_rgb(o.color, "--color");
+  if (!std::isfinite(c_y(Rgb{m[0], m[1], m[2]})))
+    throw std::invalid_argument(
+        fmt::format("--color {}: c_y, the colour's luminance, overflows", o.color));
   const TauResult tau = tau_power(o.shininess, o.eps, c_y(Rgb{m[0], m[1], m[2]}));
   if (f.domain == FitDomain::kTau) {
     if (tau.always_skip)
@@ -78,8 +84,8 @@ int run_fit(const FitCliOptions& o) {
 void add_fit_command(CLI::App& app, int& status) {
   auto o = std::make_shared<FitCliOptions>();
   CLI::App* sub = app.add_subcommand("fit", "Fit a polynomial to t^n and report its error");
-  sub->add_option("--shininess", o->shininess, "Shininess exponent n (> 0)")->required();
-  sub->add_option("--degree", o->degree, "Polynomial degree p")
+  sub->add_option("--shininess", o->shininess, "Shininess exponent n (finite, > 0)")->required();
+  sub->add_option("--degree", o->degree, "Polynomial degree p, 1..10")
       ->check(CLI::Range(1, 10))
       ->capture_default_str();
   sub->add_option("--method", o->method, "ls | robust | minimax")
@@ -88,8 +94,9 @@ void add_fit_command(CLI::App& app, int& status) {
   sub->add_option("--domain", o->domain, "full: x in (0, 1] | tau: [tau, 1] in u")
       ->check(CLI::IsMember({"full", "tau"}))
       ->capture_default_str();
-  sub->add_option("--eps", o->eps, "eps for tau (domain tau)")->capture_default_str();
-  sub->add_option("--color", o->color, "Specular colour r,g,b for c_y")->capture_default_str();
+  sub->add_option("--eps", o->eps, "eps for tau (domain tau; finite, > 0)")->capture_default_str();
+  sub->add_option("--color", o->color, "Specular colour r,g,b for c_y (each finite, >= 0)")
+      ->capture_default_str();
   sub->add_flag("--constrain", o->constrain, "Force f(1) = 1 (and f(tau) = 0 on domain tau)");
   sub->add_flag("--json", o->json, "Print one JSON document on stdout");
   sub->callback([o, &status] { status = guarded([&] { return run_fit(*o); }); });

@@ -13,14 +13,15 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <utility>
 #include <vector>
 
 #include "cli/cli.h"
+#include "eval/golden.h"
 #include "eval/sim_report.h"
+#include "io/input_error.h"
 #include "io/output_set.h"
 
 namespace glint::cli {
@@ -57,12 +58,11 @@ std::string shell_quote(const std::string& s) {
   return out + "'";
 }
 
-nlohmann::json run_child(const std::string& trace, const nlohmann::json& setup) {
+nlohmann::json run_child(const std::string& trace, const Golden& setup) {
   std::string cmd = shell_quote(fs::read_symlink("/proc/self/exe").string()) + " sim " +
                     shell_quote(trace) + " --json";
-  for (const auto& u : setup.at("units")) cmd += " --unit " + shell_quote(u.get<std::string>());
-  cmd += fmt::format(" --sink-ready {:.17g} --seed {}", setup.at("sink_ready").get<double>(),
-                     setup.at("seed").get<std::uint64_t>());
+  for (const auto& u : setup.units) cmd += " --unit " + shell_quote(u);
+  cmd += fmt::format(" --sink-ready {:.17g} --seed {}", setup.sink_ready, setup.seed);
   FILE* p = popen(cmd.c_str(), "r");
   if (!p) throw std::runtime_error("cannot run " + cmd);
   std::string out;
@@ -74,36 +74,17 @@ nlohmann::json run_child(const std::string& trace, const nlohmann::json& setup) 
   return nlohmann::json::parse(out);
 }
 
-// Goldens nest four levels deep; the bound keeps a hostile file from exhausting the stack
-// (nlohmann::json's destructor and dump() recurse once per level).
-constexpr int kMaxGoldenDepth = 32;
-
-nlohmann::json read_golden(const fs::path& path) {
-  std::ifstream in(path);
-  if (!in) throw std::invalid_argument(fmt::format("{}: cannot read", path.string()));
-  const auto bounded = [&](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
-    if (depth > kMaxGoldenDepth)
-      throw std::invalid_argument(
-          fmt::format("{}: nested deeper than {} levels", path.string(), kMaxGoldenDepth));
-    return true;
-  };
-  try {
-    return nlohmann::json::parse(in, bounded);
-  } catch (const nlohmann::json::exception& e) {
-    throw std::invalid_argument(fmt::format("{}: not valid JSON: {}", path.string(), e.what()));
-  }
-}
-
 int run_regress(const RegressOptions& o) {
   const fs::path dir(o.traces), golden_dir = fs::path(o.traces) / "golden";
-  if (!fs::is_directory(dir))
-    throw std::invalid_argument(fmt::format("--traces {}: not a directory", o.traces));
   // A NaN or negative tolerance would pass every difference (every comparison with NaN is false).
   if (!(std::isfinite(o.tolerance) && o.tolerance >= 0))
     throw std::invalid_argument(
         fmt::format("--tolerance {}: expected a finite number >= 0", o.tolerance));
   // A bad spec is a usage error here, with the spec named, not a failing child per trace.
-  for (const auto& s : o.units) parse_unit_spec(s);
+  if (!o.units.empty()) parse_unit_options(o.units);
+  if (options_only()) return kExitOk;
+  if (!fs::is_directory(dir))
+    throw std::invalid_argument(fmt::format("--traces {}: not a directory", o.traces));
   std::vector<fs::path> traces;
   for (const auto& e : fs::directory_iterator(dir))
     if (e.path().extension() == ".vec") traces.push_back(e.path());
@@ -111,35 +92,53 @@ int run_regress(const RegressOptions& o) {
   // Nothing checked must not read as "nothing failed".
   if (traces.empty())
     throw std::invalid_argument(fmt::format("--traces {}: no *.vec trace in it", o.traces));
+  // Nor may a golden go unchecked because its trace is gone.
+  if (fs::is_directory(golden_dir)) {
+    for (const auto& e : fs::directory_iterator(golden_dir)) {
+      if (e.path().extension() != ".json" || !e.is_regular_file()) continue;
+      if (!fs::exists(dir / (e.path().stem().string() + ".vec")))
+        throw InputError(e.path().string(), 0, "trace",
+                         fmt::format("no trace {}.vec in {} for this golden",
+                                     e.path().stem().string(), o.traces));
+    }
+  }
   int failed = 0, checked = 0;
   nlohmann::json summary = nlohmann::json::array();
   std::vector<std::pair<fs::path, nlohmann::json>> updates;  // written once every run succeeded
   for (const auto& trace : traces) {
     const fs::path golden_path = golden_dir / (trace.stem().string() + ".json");
-    nlohmann::json golden;
+    Golden golden;
     if (fs::exists(golden_path)) {
-      golden = read_golden(golden_path);
+      golden =
+          read_golden(golden_path.string(), o.update ? GoldenUse::kUpdate : GoldenUse::kCompare);
+      if (golden.trace != trace.filename().string())
+        throw InputError(golden_path.string(), 0, "trace",
+                         fmt::format("{}, but the golden's file is named for {}",
+                                     quote_input(golden.trace), trace.filename().string()));
     } else if (o.update) {
-      golden = {{"trace", trace.filename().string()},
-                {"units", o.units.empty() ? default_specs() : o.units},
-                {"sink_ready", trace.stem() == "pixels" ? 0.7 : 1.0},
-                {"seed", 7}};
+      golden.trace = trace.filename().string();
+      golden.units = o.units.empty() ? default_specs() : o.units;
+      golden.sink_ready = trace.stem() == "pixels" ? 0.7 : 1.0;
+      golden.seed = 7;
     } else {
       std::cerr << fmt::format("{}: no golden ({}); run `glint regress --update`\n", trace.string(),
                                golden_path.string());
       ++failed;
       continue;
     }
-    if (o.update && !o.units.empty()) golden["units"] = o.units;
+    if (o.update && !o.units.empty()) golden.units = o.units;
     const nlohmann::json fresh = run_child(trace.string(), golden);
     ++checked;
     if (o.update) {
-      golden["report"] = fresh;
-      updates.emplace_back(golden_path, std::move(golden));
+      golden.report = fresh;
+      updates.emplace_back(golden_path, golden.to_json());
       summary.push_back({{"trace", trace.filename().string()}, {"updated", true}});
       continue;
     }
-    const auto diffs = diff_sim_reports(golden.at("report"), fresh, o.tolerance);
+    // A golden that lacks a field, has one this build does not write, or a value of another type
+    // is refused (exit 2) before its values are compared: it cannot pass by saying less.
+    check_report_shape(golden.report, fresh, golden_path.string());
+    const auto diffs = diff_sim_reports(golden.report, fresh, o.tolerance);
     summary.push_back({{"trace", trace.filename().string()}, {"differences", diffs}});
     if (diffs.empty()) {
       if (!o.json) std::cout << fmt::format("ok    {}\n", trace.filename().string());
@@ -183,7 +182,8 @@ void add_regress_command(CLI::App& app, int& status) {
                   "With --update: unit SPEC the goldens record (repeatable; default: each "
                   "golden's own specs, the default set for a new golden)")
       ->needs(update);
-  sub->add_option("--tolerance", o->tolerance, "Relative tolerance of float statistics")
+  sub->add_option("--tolerance", o->tolerance,
+                  "Relative tolerance of float statistics (a finite number >= 0)")
       ->capture_default_str();
   sub->add_flag("--json", o->json, "Print one JSON document on stdout");
   sub->callback([o, &status] { status = guarded([&] { return run_regress(*o); }); });

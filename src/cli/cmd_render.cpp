@@ -32,10 +32,11 @@ std::string lsb_text(double v) {
 
 int run_render(const RenderCommandOptions& o) {
   RenderOptions options;
-  for (const auto& s : o.units) options.units.push_back(parse_unit_spec(s));
+  if (!o.units.empty()) options.units = parse_unit_options(o.units);  // empty: every unit
   options.threads = o.threads > 0 ? o.threads : default_threads();
   options.slot_capacity = o.slots;
   options.progress = isatty(STDERR_FILENO);
+  if (options_only()) return kExitOk;
   // Outputs first, before any work: the folder made if missing, every file checked and its
   // temporary created; all committed together at the end, or none (output_set.h).
   OutputSet outputs;
@@ -102,14 +103,16 @@ void add_render_command(CLI::App& app, int& status) {
   CLI::App* sub = app.add_subcommand(
       "render", "Ray-cast a scene, run its shading requests through the units, write images");
   sub->add_option("SCENE", o->scene, "Scene file (JSON, see traces/scenes/README.md)")->required();
-  sub->add_option("--unit", o->units, "Unit SPEC NAME[:key=value,...] (repeatable; default all)");
+  sub->add_option(
+      "--unit", o->units,
+      fmt::format("Unit SPEC NAME[:key=value,...] (repeatable, at most {}; default all)",
+                  kMaxUnitOptions));
   sub->add_option("-o,--out", o->out_dir, "Folder for the PNG images and report.json")->required();
   sub->add_option("--write-vectors", o->vectors,
                   "Also write the scene's shading requests as a vector file (for eval, sim, "
                   "regress; - for stdout, then the summary goes to stderr)");
   sub->add_option("--threads", o->threads,
-                  "Threads (default: every core); results do not depend "
-                  "on it")
+                  "Threads, 1..256 (default: every core); results do not depend on it")
       ->check(CLI::Range(1, 256));
   add_slots_option(sub, o->slots);
   sub->add_flag("--json", o->json, "Print the report on stdout instead of the summary");

@@ -82,10 +82,9 @@ void parse_vcd_window(const std::string& text, ClockedOptions& co) {
 // Every check that needs no input: unit specs, sink, mode and VCD window, then the outputs
 // (--report, --dump, --vcd and its save file), declared in plan.outputs before simulating: each
 // checked (not a link, device or folder; its folder exists), none the input or another output, at
-// most one of them (or --json) on standard output.
+// most one of them (or --json) on standard output. Options only (the fuzzer): no output declared.
 void check_sim_options(const SimOptions& o, SimPlan& plan) {
-  for (const auto& s : o.units.empty() ? unit_names() : o.units)
-    plan.specs.push_back(parse_unit_spec(s));
+  plan.specs = parse_unit_options(o.units);
   if (!(o.sink_ready >= kMinSinkReady && o.sink_ready <= 1))
     throw std::invalid_argument(fmt::format(
         "--sink-ready must be in [{}, 1] (a run takes ~vectors / p cycles)", kMinSinkReady));
@@ -93,6 +92,7 @@ void check_sim_options(const SimOptions& o, SimPlan& plan) {
   if (!plan.clocked && !o.vcd.empty())
     throw std::invalid_argument("--vcd needs the clocked mode (--mode clocked or auto)");
   if (!o.vcd_window.empty()) parse_vcd_window(o.vcd_window, plan.clocked_options);
+  if (options_only()) return;
   OutputSet& out = plan.outputs;
   out.add_input("VECTORS", o.vectors);
   if (o.json) out.claim_stdout("--json");
@@ -256,6 +256,7 @@ void write_outputs(const SimOptions& o, SimPlan& plan, std::uint64_t rows,
 int run_sim(const SimOptions& o) {
   SimPlan plan;
   check_sim_options(o, plan);
+  if (options_only()) return kExitOk;
   // The clocked model reads the stream once per lane: standard input or a pipe is kept in an
   // anonymous temporary file (input_source.h); fast mode reads it once, as it comes.
   std::unique_ptr<RereadableInput> input;
@@ -288,20 +289,23 @@ void add_sim_command(CLI::App& app, int& status) {
   sub->add_option("VECTORS", o->vectors, "Vector file (see traces/README.md); - for stdin")
       ->required();
   sub->add_option("--unit", o->units,
-                  "Unit SPEC NAME[:key=value,...] (repeatable; default all five); timing keys: "
-                  "buffer, schlick divider");
+                  fmt::format("Unit SPEC NAME[:key=value,...] (repeatable, at most {}; default "
+                              "all five); timing keys: buffer, schlick divider",
+                              kMaxUnitOptions));
   sub->add_option("--report", o->report,
                   "Write the JSON report to this file (atomically; - for stdout)");
   sub->add_option("--dump", o->dump, "Per-result CSV with cycle stamps (atomically; - for stdout)");
   sub->add_option("--vcd", o->vcd,
                   "VCD trace (clocked mode) + GTKWave save file beside it; .fst: FST; - : VCD "
                   "on stdout (no save file)");
-  sub->add_option("--vcd-window", o->vcd_window, "FIRST:LAST vector indices to trace");
+  sub->add_option("--vcd-window", o->vcd_window,
+                  "FIRST:LAST vector indices to trace (0..2^64-1, FIRST <= LAST)");
   sub->add_option("--mode", o->mode, "fast | clocked | auto (clocked when --vcd is given)")
       ->check(CLI::IsMember({"fast", "clocked", "auto"}))
       ->capture_default_str();
   sub->add_option("--sink-ready", o->sink_ready,
-                  "Probability the sink is ready in a cycle (0.01..1)")
+                  "Probability the sink is ready in a cycle, in [0.01, 1] (a run takes ~vectors / "
+                  "P cycles)")
       ->capture_default_str();
   sub->add_option_function<std::string>(
       "--seed",
@@ -312,7 +316,7 @@ void add_sim_command(CLI::App& app, int& status) {
         o->seed = *v;
       },
       "Seed of the sink backpressure pattern (0..2^64-1, default 1)");
-  sub->add_option("--batch", o->batch, "Fast mode: requests per time quantum")
+  sub->add_option("--batch", o->batch, "Fast mode: requests per time quantum (1..16777216)")
       ->check(CLI::Range(1, 1 << 24))
       ->capture_default_str();
   add_display_bits_option(sub, o->display_bits);

@@ -18,23 +18,35 @@ struct TauOptions {
   int lights = 1;
   std::string lobe = "phong";
   double roughness = 0;
+  bool shininess_given = false, roughness_given = false;
   bool json = false;
 };
 
 int run_tau(const TauOptions& o) {
   const Lobe lobe = parse_lobe(o.lobe);
+  require_finite_positive(o.eps, "--eps");
   const auto m = parse_rgb(o.color, "--color");
   const auto i = parse_rgb(o.light, "--light");
   const double cy = c_y(Rgb{i[0], i[1], i[2]}, Rgb{m[0], m[1], m[2]});
+  // Each component is finite, their product need not be (1e200 x 1e200).
+  if (!std::isfinite(cy))
+    throw std::invalid_argument(
+        fmt::format("--color {} --light {}: c_y, the luminance of light x colour, overflows",
+                    o.color, o.light));
+  // The rules of a material in a vector file (traces/README.md): a shininess, when given, is
+  // finite and > 0; only a Gaussian lobe has a roughness.
+  if (o.shininess_given || lobe != Lobe::kGaussian)
+    require_finite_positive(o.shininess, "--shininess");
   TauResult r;
   double n = o.shininess;
   if (lobe == Lobe::kGaussian) {
     if (!(o.roughness > 0 && o.roughness <= 1))
       throw std::invalid_argument("--roughness must be in (0, 1] for gaussian (Källberg eq.7)");
     r = tau_gaussian(o.roughness, o.eps, cy, o.lights);
-    if (!(n > 0)) n = gaussian_equivalent_shininess(o.roughness);
+    if (!o.shininess_given) n = gaussian_equivalent_shininess(o.roughness);
   } else {
-    if (!(n > 0)) throw std::invalid_argument("--shininess must be > 0");
+    if (o.roughness_given)
+      throw std::invalid_argument("--roughness: only --lobe gaussian has a roughness");
     r = tau_power(n, o.eps, cy, o.lights);
   }
   const char* verdict = r.always_skip ? "always" : (r.never_skip ? "never" : "t <= tau");
@@ -63,21 +75,29 @@ void add_tau_command(CLI::App& app, int& status) {
   auto o = std::make_shared<TauOptions>();
   CLI::App* sub = app.add_subcommand(
       "tau", "Skip threshold tau = (eps/c_y)^(1/n) (Källberg eq.5; Gaussian lobes eq.9)");
-  sub->add_option("--shininess", o->shininess, "Shininess exponent n (> 0; gaussian: optional)");
-  sub->add_option("--eps", o->eps, "Perceptibility threshold eps (> 0)")->required();
-  sub->add_option("--color", o->color, "Specular colour r,g,b (c_y by Rec.709, eq.6)")
+  CLI::Option* shininess = sub->add_option(
+      "--shininess", o->shininess, "Shininess exponent n (finite, > 0; gaussian: optional)");
+  sub->add_option("--eps", o->eps, "Perceptibility threshold eps (finite, > 0)")->required();
+  sub->add_option("--color", o->color,
+                  "Specular colour r,g,b, each finite and >= 0 (c_y by Rec.709, eq.6)")
       ->capture_default_str();
-  sub->add_option("--light", o->light, "Light intensity r,g,b (per-light tau, eq.3)")
+  sub->add_option("--light", o->light,
+                  "Light intensity r,g,b, each finite and >= 0 (per-light tau, eq.3)")
       ->capture_default_str();
-  sub->add_option("--lights", o->lights, "Number of lights K: eps/K (Källberg §2)")
+  sub->add_option("--lights", o->lights, "Number of lights K, 1..1048576: eps/K (Källberg §2)")
       ->check(CLI::Range(1, 1 << 20))
       ->capture_default_str();
   sub->add_option("--lobe", o->lobe, "phong | blinn | gaussian")
       ->check(CLI::IsMember({"phong", "blinn", "gaussian"}))
       ->capture_default_str();
-  sub->add_option("--roughness", o->roughness, "Gaussian roughness omega in (0, 1]");
+  CLI::Option* roughness =
+      sub->add_option("--roughness", o->roughness, "Gaussian roughness omega in (0, 1]");
   sub->add_flag("--json", o->json, "Print one JSON document on stdout");
-  sub->callback([o, &status] { status = guarded([&] { return run_tau(*o); }); });
+  sub->callback([o, &status, shininess, roughness] {
+    o->shininess_given = shininess->count() > 0;
+    o->roughness_given = roughness->count() > 0;
+    status = guarded([&] { return run_tau(*o); });
+  });
 }
 
 }  // namespace glint::cli

@@ -105,6 +105,18 @@ void diff_value(const std::string& path, const nlohmann::json& g, const nlohmann
 std::vector<std::string> diff_sim_reports(const nlohmann::json& golden, const nlohmann::json& fresh,
                                           double rel_tol) {
   std::vector<std::string> out;
+  // The run's settings and counts (rows, slots, mode, ...) must match exactly; a field on one side
+  // only is a difference too (regress checks the golden's schema first, check_report_shape).
+  for (auto it = golden.begin(); it != golden.end(); ++it) {
+    if (it.key() == "units") continue;
+    if (!fresh.contains(it.key())) {
+      out.push_back(it.key() + ": missing in the new report");
+      continue;
+    }
+    diff_value(it.key(), it.value(), fresh.at(it.key()), true, rel_tol, out);
+  }
+  for (auto it = fresh.begin(); it != fresh.end(); ++it)
+    if (!golden.contains(it.key())) out.push_back(it.key() + ": new field (not in the golden)");
   const auto& gu = golden.at("units");
   const auto& fu = fresh.at("units");
   if (gu.size() != fu.size()) {
@@ -118,7 +130,10 @@ std::vector<std::string> diff_sim_reports(const nlohmann::json& golden, const nl
   static const char* kTolerant[] = {"errors",     "area",    "critical_path",
                                     "throughput", "latency", "elaboration"};
   for (std::size_t i = 0; i < gu.size(); ++i) {
-    const std::string name = gu[i].value("unit", std::to_string(i));
+    const std::string name =
+        gu[i].is_object() && gu[i].contains("unit") && gu[i]["unit"].is_string()
+            ? gu[i]["unit"].get<std::string>()
+            : std::to_string(i);
     for (auto it = gu[i].begin(); it != gu[i].end(); ++it) {
       const std::string path = name + "." + it.key();
       if (!fu[i].contains(it.key())) {
@@ -129,6 +144,9 @@ std::vector<std::string> diff_sim_reports(const nlohmann::json& golden, const nl
       for (const char* k : kTolerant) exact = exact && it.key() != k;
       diff_value(path, it.value(), fu[i].at(it.key()), exact, rel_tol, out);
     }
+    for (auto it = fu[i].begin(); it != fu[i].end(); ++it)
+      if (!gu[i].contains(it.key()))
+        out.push_back(name + "." + it.key() + ": new field (not in the golden)");
   }
   return out;
 }

@@ -27,6 +27,8 @@ inline constexpr std::size_t kSceneMaxLights = kVectorMaxLights;
 inline constexpr std::size_t kSceneMaxMaterials = kVectorMaxMaterials;
 inline constexpr std::size_t kSceneMaxObjects = 65536;  // entries of "objects"
 inline constexpr std::size_t kSceneMaxPlanes = 64;      // planes are not in the BVH
+inline constexpr std::size_t kSceneMaxFileBytes = std::size_t{64} << 20;  // the JSON file
+inline constexpr int kSceneMaxJsonDepth = 64;  // nested arrays and objects
 
 struct SceneCamera {
   Vec3 position, look_at, up{0, 1, 0};

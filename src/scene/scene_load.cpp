@@ -5,10 +5,10 @@
 #include <set>
 
 #include "io/input_error.h"
+#include "io/json_text.h"
 #include "io/vector_rules.h"
 #include "io/vector_syntax.h"
 #include "scene/json_node.h"
-#include "scene/json_text.h"
 #include "scene/scene.h"
 #include "scene/scene_objects.h"
 
@@ -123,7 +123,8 @@ SceneMaterial read_material(const Node& node, std::set<std::string>& names) {
 }  // namespace
 
 Scene load_scene(const std::string& path) {
-  const nlohmann::json doc = parse_scene_json(read_scene_text(path), path);
+  const nlohmann::json doc = parse_json_text(read_text_file(path, kSceneMaxFileBytes, "scene file"),
+                                             path, kSceneMaxJsonDepth);
   const Node root(doc, "", path);
   if (!doc.is_object()) root.fail(std::string("must be a JSON object, not ") + doc.type_name());
   check_version(root);

@@ -1,4 +1,4 @@
-#include "scene/json_text.h"
+#include "io/json_text.h"
 
 #include <fstream>
 #include <iterator>
@@ -19,9 +19,9 @@ std::uint64_t line_at(const std::string& text, std::size_t byte) {
 }
 
 // Brackets outside strings, counted before parsing: nlohmann's parser itself is iterative, but a
-// document nested thousands deep is never a scene, and recursive code downstream (dump, the
-// loader) should not have to care.
-void check_depth(const std::string& text, const std::string& file) {
+// document nested thousands deep is never a glint input, and recursive code downstream (dump, the
+// loaders) should not have to care.
+void check_depth(const std::string& text, const std::string& file, int max_depth) {
   int depth = 0;
   bool in_string = false;
   for (std::size_t i = 0; i < text.size(); ++i) {
@@ -35,9 +35,9 @@ void check_depth(const std::string& text, const std::string& file) {
     } else if (c == '"') {
       in_string = true;
     } else if (c == '[' || c == '{') {
-      if (++depth > kSceneMaxJsonDepth) {
+      if (++depth > max_depth) {
         throw InputError(file, line_at(text, i), "json",
-                         "nested deeper than " + std::to_string(kSceneMaxJsonDepth) + " levels");
+                         "nested deeper than " + std::to_string(max_depth) + " levels");
       }
     } else if (c == ']' || c == '}') {
       --depth;  // unbalanced brackets are the parser's to report
@@ -106,24 +106,25 @@ class PathTracker {
 
 }  // namespace
 
-std::string read_scene_text(const std::string& path, std::size_t max_bytes) {
+std::string read_text_file(const std::string& path, std::size_t max_bytes,
+                           const std::string& what) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, 0, "file", "cannot open the scene file");
+  if (!in) throw InputError(path, 0, "file", "cannot open the " + what);
   std::string text;
   char buffer[65536];
   while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
     text.append(buffer, static_cast<std::size_t>(in.gcount()));
     if (text.size() > max_bytes) {
       throw InputError(path, 0, "file",
-                       "larger than " + std::to_string(max_bytes >> 20) + " MiB: not a scene");
+                       "larger than " + std::to_string(max_bytes >> 20) + " MiB: not a " + what);
     }
   }
   if (in.bad()) throw InputError(path, 0, "file", "read error");
   return text;
 }
 
-nlohmann::json parse_scene_json(const std::string& text, const std::string& file) {
-  check_depth(text, file);
+nlohmann::json parse_json_text(const std::string& text, const std::string& file, int max_depth) {
+  check_depth(text, file, max_depth);
   PathTracker tracker;
   std::string duplicate;
   const auto callback = [&](int, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {

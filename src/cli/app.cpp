@@ -1,0 +1,69 @@
+// The glint command line as a function: every subcommand on one CLI11 app, the exit status
+// returned. main.cpp calls it; tests/fuzz/fuzz_options.cpp feeds it argument vectors.
+#include <cstdio>
+#include <string>
+
+#include "cli/cli.h"
+
+#ifndef GLINT_VERSION
+#error "GLINT_VERSION must be defined by the build (CMakeLists.txt: the project version)"
+#endif
+
+namespace glint::cli {
+
+namespace {
+
+bool g_options_only = false;
+
+// The first word after `glint` names a subcommand unless it is an option. CLI11 would report an
+// unknown one as "The following argument was not expected: WORD" (or only "A subcommand is
+// required"), which does not say that WORD was taken for a subcommand; name it and the valid ones.
+bool check_subcommand(CLI::App& app, int argc, char** argv) {
+  if (argc < 2 || argv[1][0] == '-') return true;
+  const std::string word = argv[1];
+  std::string known;
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+    if (sub->check_name(word)) return true;
+    known += (known.empty() ? "" : ", ") + sub->get_name();
+  }
+  std::fprintf(stderr, "glint: unknown subcommand '%s' (expected one of: %s; see glint --help)\n",
+               word.c_str(), known.c_str());
+  return false;
+}
+
+}  // namespace
+
+void set_options_only(bool on) {
+  g_options_only = on;
+}
+
+bool options_only() {
+  return g_options_only;
+}
+
+int run(int argc, char** argv) {
+  CLI::App app{"glint: simulator of fixed-point specular shading units (max(0,t)^n)"};
+  app.set_version_flag("--version", std::string("glint ") + GLINT_VERSION);
+  app.require_subcommand(1);
+  int status = kExitOk;
+  add_tau_command(app, status);
+  add_fit_command(app, status);
+  add_eval_command(app, status);
+  add_units_command(app, status);
+  add_sim_command(app, status);
+  add_regress_command(app, status);
+  add_render_command(app, status);
+  add_sweep_command(app, status);
+  add_size_command(app, status);
+  add_merge_command(app, status);
+  if (!check_subcommand(app, argc, argv)) return kExitBadInput;
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : kExitBadInput;
+  }
+  return status;
+}
+
+}  // namespace glint::cli

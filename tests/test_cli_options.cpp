@@ -1,0 +1,299 @@
+// Every option value of every subcommand validated (issue 11): out of range, NaN, infinities,
+// overflow and values that would make a run endless exit 2 with the option named, before any
+// input is read or output written; the limits are stated in --help. And `glint regress` cannot be
+// fooled: a golden that lacks a field, has an extra one or a value of another type is refused
+// naming the file and the field, a golden without its trace is refused, and a tampered trace fails.
+// Runs the real binary, as tests/test_cli.cpp does (its own small fixture).
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "test_support.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+const std::string kGlint = GLINT_BINARY_DIR "/glint";
+const std::string kTraces = GLINT_SOURCE_DIR "/traces";
+const std::string kPhong = kTraces + "/phong_basic.vec";
+
+struct CliRun {
+  int status = -1;
+  std::string out, err;
+};
+
+class CliOptions : public ::testing::Test {
+ protected:
+  CliRun glint(const std::string& args) {
+    const fs::path out = dir_.path() / "stdout", err = dir_.path() / "stderr";
+    const std::string cmd = "cd " + glint::test::shell_quote(dir_.path().string()) + " && " +
+                            glint::test::shell_quote(kGlint) + " " + args + " >" +
+                            glint::test::shell_quote(out.string()) + " 2>" +
+                            glint::test::shell_quote(err.string()) + " </dev/null";
+    const int raw = std::system(cmd.c_str());
+    CliRun r;
+    r.status = (raw != -1 && WIFEXITED(raw)) ? WEXITSTATUS(raw) : -1;
+    r.out = glint::test::read_file(out);
+    r.err = glint::test::read_file(err);
+    fs::remove(out);
+    fs::remove(err);
+    return r;
+  }
+  // Exit 2, the option (or text) named on stderr, nothing on stdout, nothing left in the folder.
+  void expect_refused(const std::string& args, const std::string& names) {
+    SCOPED_TRACE(args);
+    const CliRun r = glint(args);
+    EXPECT_EQ(r.status, 2) << r.out << r.err;
+    EXPECT_NE(r.err.find(names), std::string::npos) << r.err;
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(dir_.entries(), std::vector<std::string>{}) << args;
+  }
+  glint::test::TempDir dir_;
+};
+
+struct Case {
+  std::string args;
+  std::string names;  // expected on stderr
+};
+
+TEST_F(CliOptions, Tau) {
+  const std::string base = "tau --shininess 50 --eps 1e-3 ";
+  for (const Case& c : std::vector<Case>{
+           {"tau --shininess 0 --eps 1e-3", "--shininess"},
+           {"tau --shininess -3 --eps 1e-3", "--shininess"},
+           {"tau --shininess nan --eps 1e-3", "--shininess"},
+           {"tau --shininess inf --eps 1e-3", "--shininess"},
+           {"tau --shininess 1e999 --eps 1e-3", "--shininess"},
+           {"tau --eps 1e-3", "--shininess"},
+           {"tau --shininess 50 --eps 0", "--eps"},
+           {"tau --shininess 50 --eps nan", "--eps"},
+           {"tau --shininess 50 --eps inf", "--eps"},
+           {"tau --shininess 50 --eps -1", "--eps"},
+           {"tau --shininess 50", "--eps"},
+           {base + "--lights 0", "--lights"},
+           {base + "--lights 1048577", "--lights"},
+           {base + "--lights 1e30", "--lights"},
+           {base + "--lights 99999999999999999999", "--lights"},
+           {base + "--color 1,1", "--color"},
+           {base + "--color 1,nan,1", "--color"},
+           {base + "--color 1,-1,1", "--color"},
+           {base + "--light inf,1,1", "--light"},
+           {base + "--color 1e200,1e200,1e200 --light 1e200,1e200,1e200", "overflows"},
+           {base + "--lobe cosine", "--lobe"},
+           {base + "--roughness 0.5", "--roughness"},
+           {"tau --eps 1e-3 --lobe gaussian", "--roughness"},
+           {"tau --eps 1e-3 --lobe gaussian --roughness 0", "--roughness"},
+           {"tau --eps 1e-3 --lobe gaussian --roughness 1.5", "--roughness"},
+           {"tau --eps 1e-3 --lobe gaussian --roughness nan", "--roughness"},
+           {"tau --eps 1e-3 --lobe gaussian --roughness 0.3 --shininess 0", "--shininess"},
+       })
+    expect_refused(c.args, c.names);
+  // In range: a Gaussian lobe without a shininess, the largest K.
+  EXPECT_EQ(glint("tau --eps 1e-3 --lobe gaussian --roughness 0.3").status, 0);
+  EXPECT_EQ(glint(base + "--lights 1048576").status, 0);
+}
+
+TEST_F(CliOptions, Fit) {
+  for (const Case& c : std::vector<Case>{
+           {"fit --shininess 0", "--shininess"},
+           {"fit --shininess nan", "--shininess"},
+           {"fit --shininess inf", "--shininess"},
+           {"fit", "--shininess"},
+           {"fit --shininess 50 --degree 0", "--degree"},
+           {"fit --shininess 50 --degree 11", "--degree"},
+           {"fit --shininess 50 --degree 1e9", "--degree"},
+           {"fit --shininess 50 --method cubic", "--method"},
+           {"fit --shininess 50 --domain half", "--domain"},
+           {"fit --shininess 50 --eps nan --domain tau", "--eps"},
+           {"fit --shininess 50 --eps 0", "--eps"},
+           {"fit --shininess 50 --color 1,1,x", "--color"},
+       })
+    expect_refused(c.args, c.names);
+}
+
+TEST_F(CliOptions, Eval) {
+  std::string many;
+  for (int i = 0; i < 65; ++i) many += " --unit pow";
+  for (const Case& c : std::vector<Case>{
+           {"eval " + kPhong + " --display-bits 0", "--display-bits"},
+           {"eval " + kPhong + " --display-bits 17", "--display-bits"},
+           {"eval " + kPhong + " --display-bits nan", "--display-bits"},
+           {"eval " + kPhong + " --slots 0", "--slots"},
+           {"eval " + kPhong + " --slots -1", "--slots"},
+           {"eval " + kPhong + " --slots 1048577", "--slots"},
+           {"eval " + kPhong + " --slots 18446744073709551617", "--slots"},
+           {"eval " + kPhong + " --slots 1e3", "--slots"},
+           {"eval " + kPhong + " --unit pow:", "pow:"},
+           {"eval " + kPhong + " --unit pow:in=uq1.57", "pow"},
+           {"eval " + kPhong + many, "--unit"},
+       })
+    expect_refused(c.args, c.names);
+}
+
+TEST_F(CliOptions, Sim) {
+  const std::string base = "sim " + kPhong + " ";
+  for (const Case& c : std::vector<Case>{
+           // Near 0 a run takes ~vectors / P cycles: endless. The stated minimum is 0.01.
+           {base + "--sink-ready 1e-9", "--sink-ready"},
+           {base + "--sink-ready 0.00999", "--sink-ready"},
+           {base + "--sink-ready 0", "--sink-ready"},
+           {base + "--sink-ready 1.0001", "--sink-ready"},
+           {base + "--sink-ready nan", "--sink-ready"},
+           {base + "--sink-ready inf", "--sink-ready"},
+           {base + "--seed -1", "--seed"},
+           {base + "--seed 1e30", "--seed"},
+           {base + "--seed 18446744073709551616", "--seed"},
+           {base + "--seed 0x10", "--seed"},
+           {base + "--seed ''", "--seed"},
+           {base + "--vcd-window 5:4", "--vcd-window"},
+           {base + "--vcd-window 0:18446744073709551616", "--vcd-window"},
+           {base + "--vcd-window -1:3", "--vcd-window"},
+           {base + "--vcd-window 3", "--vcd-window"},
+           {base + "--batch 0", "--batch"},
+           {base + "--batch 16777217", "--batch"},
+           {base + "--batch -1", "--batch"},
+           {base + "--batch 1e30", "--batch"},
+           {base + "--mode turbo", "--mode"},
+           {base + "--display-bits 99", "--display-bits"},
+           {base + "--slots 2000000", "--slots"},
+           {base + "--mode fast --vcd t.vcd", "--vcd"},
+       })
+    expect_refused(c.args, c.names);
+  // The limits themselves are accepted.
+  EXPECT_EQ(glint(base + "--sink-ready 0.01 --seed 18446744073709551615 --batch 16777216").status,
+            0);
+}
+
+TEST_F(CliOptions, RegressAndRender) {
+  std::string many;
+  for (int i = 0; i < 65; ++i) many += " --unit pow";
+  for (const Case& c : std::vector<Case>{
+           {"regress --traces " + kTraces + " --tolerance nan", "--tolerance"},
+           {"regress --traces " + kTraces + " --tolerance -1e-9", "--tolerance"},
+           {"regress --traces " + kTraces + " --tolerance inf", "--tolerance"},
+           {"regress --traces " + kTraces + " --tolerance 1e999", "--tolerance"},
+           {"regress --traces " + kTraces + " --update" + many, "--unit"},
+           {"regress --traces no_such_dir", "--traces"},
+           {"render " + kTraces + "/scenes/small.json -o out --threads 0", "--threads"},
+           {"render " + kTraces + "/scenes/small.json -o out --threads 257", "--threads"},
+           {"render " + kTraces + "/scenes/small.json -o out --threads 1e9", "--threads"},
+           {"render " + kTraces + "/scenes/small.json -o out --slots 0", "--slots"},
+           {"render " + kTraces + "/scenes/small.json -o out --unit lut:bits=99", "bits"},
+           {"render " + kTraces + "/scenes/small.json", "--out"},
+       })
+    expect_refused(c.args, c.names);
+}
+
+// Each limit is stated in the subcommand's --help.
+TEST_F(CliOptions, HelpStatesTheLimits) {
+  struct Help {
+    const char* sub;
+    std::vector<std::string> texts;
+  };
+  for (const Help& h : std::vector<Help>{
+           {"tau", {"finite, > 0", "1..1048576", "(0, 1]", "finite and >= 0"}},
+           {"fit", {"finite, > 0", "1..10"}},
+           {"eval", {"1..16", "1..1048576", "at most 64"}},
+           {"sim", {"[0.01, 1]", "0..2^64-1", "1..16777216", "1..16", "1..1048576", "at most 64"}},
+           {"regress", {"finite number >= 0"}},
+           {"render", {"1..256", "1..1048576", "at most 64"}},
+       }) {
+    const CliRun r = glint(std::string(h.sub) + " --help");
+    EXPECT_EQ(r.status, 0) << h.sub;
+    for (const auto& t : h.texts) EXPECT_NE(r.out.find(t), std::string::npos) << h.sub << ": " << t;
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// glint regress: goldens against their schema.
+
+class RegressSchema : public CliOptions {
+ protected:
+  void SetUp() override {
+    fs::create_directories(dir_.path() / "t" / "golden");
+    fs::copy_file(kPhong, dir_.path() / "t" / "phong_basic.vec");
+    golden_ = json::parse(glint::test::read_file(kTraces + "/golden/phong_basic.json"));
+  }
+  void write_golden(const json& g) {
+    std::ofstream(dir_.path() / "t" / "golden" / "phong_basic.json") << g.dump(2);
+  }
+  CliRun regress() { return glint("regress --traces t"); }
+  json golden_;
+};
+
+TEST_F(RegressSchema, ShippedGoldenPasses) {
+  write_golden(golden_);
+  const CliRun r = regress();
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+}
+
+// A stripped golden used to pass any trace: every missing, extra or retyped field is refused.
+TEST_F(RegressSchema, StrippedExtendedOrRetypedGoldenIsRefused) {
+  struct Edit {
+    void (*apply)(json&);
+    const char* field;
+  };
+  for (const Edit& e : std::vector<Edit>{
+           {[](json& g) { g["report"]["units"][0].erase("digest"); }, "report.units[0].digest"},
+           {[](json& g) { g["report"]["units"][0]["errors"].erase("max_abs"); },
+            "report.units[0].errors.max_abs"},
+           {[](json& g) { g["report"]["units"][3]["elaboration"].erase("slot_list"); },
+            "report.units[3].elaboration.slot_list"},
+           {[](json& g) { g["report"].erase("rows"); }, "report.rows"},
+           {[](json& g) { g["report"]["units"][0]["extra"] = 1; }, "report.units[0].extra"},
+           {[](json& g) { g["report"]["units"][1]["errors"]["parts"]["x"] = 1; },
+            "report.units[1].errors.parts.x"},
+           {[](json& g) { g["report"]["units"][0]["cycles"] = "1001"; }, "report.units[0].cycles"},
+           {[](json& g) { g["report"]["units"][0]["config"]["in"] = 16; },
+            "report.units[0].config.in"},
+           {[](json& g) { g["seed"] = "7"; }, "seed"},
+           {[](json& g) { g.erase("units"); }, "units"},
+       }) {
+    json g = golden_;
+    e.apply(g);
+    write_golden(g);
+    const CliRun r = regress();
+    EXPECT_EQ(r.status, 2) << e.field << ": " << r.out << r.err;
+    EXPECT_NE(r.err.find("phong_basic.json"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(std::string("field '") + e.field + "'"), std::string::npos) << r.err;
+  }
+}
+
+// With a complete golden, a tampered trace fails (exit 1), with the field that differs.
+TEST_F(RegressSchema, TamperedTraceFails) {
+  write_golden(golden_);
+  std::string text = glint::test::read_file(kPhong);
+  const auto pos = text.rfind("\n1.000 white\n");
+  ASSERT_NE(pos, std::string::npos);
+  text.replace(pos, 13, "\n0.999 white\n");
+  std::ofstream(dir_.path() / "t" / "phong_basic.vec") << text;
+  const CliRun r = regress();
+  EXPECT_EQ(r.status, 1) << r.out << r.err;
+  EXPECT_NE(r.out.find("digest"), std::string::npos) << r.out;
+}
+
+TEST_F(RegressSchema, GoldenWithoutItsTraceOrForAnotherIsRefused) {
+  write_golden(golden_);
+  std::ofstream(dir_.path() / "t" / "golden" / "gone.json") << golden_.dump();
+  CliRun r = regress();
+  EXPECT_EQ(r.status, 2) << r.out << r.err;
+  EXPECT_NE(r.err.find("gone.json"), std::string::npos) << r.err;
+  fs::remove(dir_.path() / "t" / "golden" / "gone.json");
+  json g = golden_;
+  g["trace"] = "other.vec";
+  g["report"]["vectors_file"] = "other.vec";
+  write_golden(g);
+  r = regress();
+  EXPECT_EQ(r.status, 2) << r.out << r.err;
+  EXPECT_NE(r.err.find("field 'trace'"), std::string::npos) << r.err;
+}
+
+}  // namespace
