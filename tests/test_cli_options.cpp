@@ -192,6 +192,26 @@ TEST_F(CliOptions, RegressAndRender) {
     expect_refused(c.args, c.names);
 }
 
+// A stream beyond a run's resource limits (eval/evaluate.h) is refused against its file, naming the
+// limit, before any unit is built: here 32769 materials under two lights of different colours need
+// 65538 slots (the limit is 65536).
+TEST_F(CliOptions, StreamBeyondTheSlotLimitIsRefused) {
+  {
+    std::ofstream out(dir_.path() / "big.vec");
+    out << "glint-vectors 1\neps 1e-3\nlights 2\nlight 1 1,0.5,0.25\n";
+    for (int m = 0; m <= 32768; ++m)
+      out << "material m" << m << " specular=1,1,1 shininess=50 lobe=phong\n";
+    out << "columns t material light\ndata\n0.5 m0 1\n";
+  }
+  for (const char* sub : {"eval", "sim"}) {
+    const CliRun r = glint(std::string(sub) + " big.vec --unit pow");
+    EXPECT_EQ(r.status, 2) << sub << ": " << r.out << r.err;
+    EXPECT_NE(r.err.find("big.vec: field 'slots'"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("more than 65536 slots"), std::string::npos) << r.err;
+  }
+  EXPECT_EQ(dir_.entries(), std::vector<std::string>{"big.vec"});
+}
+
 // Each limit is stated in the subcommand's --help.
 TEST_F(CliOptions, HelpStatesTheLimits) {
   struct Help {

@@ -55,6 +55,10 @@ void add_slots_option(CLI::App* sub, std::size_t& slots);
 // Throws std::invalid_argument naming the option unless v is finite and > 0 (NaN is refused).
 void require_finite_positive(double v, const std::string& option);
 
+// A stream or scene beyond a run's resource limits (eval/evaluate.h: slots, units x slots,
+// contract work), rethrown as an InputError of `file` (field "slots").
+[[noreturn]] void refuse_size(const std::string& file, const std::exception& e);
+
 // Parses "r,g,b" into three doubles; throws std::invalid_argument naming the option.
 std::array<double, 3> parse_rgb(const std::string& text, const std::string& option);
 

@@ -63,6 +63,10 @@ void refuse_slots(std::size_t slots, const std::exception& e) {
   throw std::invalid_argument(fmt::format("--slots {}: {}", slots, e.what()));
 }
 
+void refuse_size(const std::string& file, const std::exception& e) {
+  throw InputError(file, 0, "slots", e.what());
+}
+
 std::vector<UnitSpec> parse_unit_options(const std::vector<std::string>& units) {
   if (units.size() > kMaxUnitOptions)
     throw std::invalid_argument(fmt::format(

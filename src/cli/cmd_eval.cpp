@@ -8,6 +8,7 @@
 
 #include "cli/cli.h"
 #include "eval/evaluate.h"
+#include "io/input_error.h"
 #include "io/output_set.h"
 #include "io/vectors.h"
 
@@ -37,6 +38,8 @@ int run_eval(const EvalOptions& o) {
     evaluator = std::make_unique<Evaluator>(reader.header(), specs, o.display_bits, o.slots);
   } catch (const SlotCapacityError& e) {
     refuse_slots(o.slots, e);  // the stream needs more than the chip holds
+  } catch (const ResourceLimitError& e) {
+    refuse_size(o.vectors, e);  // more slots or contract work than a run may take
   }
   Evaluator& ev = *evaluator;
 

@@ -60,6 +60,8 @@ int run_render(const RenderCommandOptions& o) {
     r = render_scene(scene, options);
   } catch (const SlotCapacityError& e) {
     refuse_slots(o.slots, e);  // the scene needs more than the chip holds
+  } catch (const ResourceLimitError& e) {
+    refuse_size(o.scene, e);  // more slots or contract work than a run may take
   }
   write_render(r, files);
   if (vectors) vectors->commit();  // flushes into its output

@@ -120,11 +120,13 @@ void make_lanes(const VectorHeader& header, const std::vector<UnitSpec>& specs, 
   } catch (const SlotCapacityError& e) {
     refuse_slots(slot_capacity, e);  // the stream needs more than the chip holds
   }
+  check_lane_slots(specs.size(), lanes.slots);
   lanes.colour = stream_is_coloured(header);
   for (const auto& s : specs) {
     lanes.owned.push_back(make_unit(s, lanes.slots));
     lanes.units.push_back(lanes.owned.back().get());
   }
+  check_contract_codes(lanes.units, lanes.slots);
   lanes.acc.reserve(lanes.units.size());
   for (const auto* u : lanes.units) lanes.acc.emplace_back(*u, lanes.slots, display_bits);
   std::vector<std::string> names;
@@ -268,7 +270,11 @@ int run_sim(const SimOptions& o) {
     reader = std::make_unique<VectorReader>(o.vectors);
   }
   SimLanes lanes;
-  make_lanes(reader->header(), plan.specs, o.display_bits, o.slots, lanes);
+  try {
+    make_lanes(reader->header(), plan.specs, o.display_bits, o.slots, lanes);
+  } catch (const ResourceLimitError& e) {
+    refuse_size(o.vectors, e);  // more slots or contract work than a run may take
+  }
   std::unique_ptr<SimDump> dump;
   if (plan.dump) dump = std::make_unique<SimDump>(*plan.dump, reader->header(), lanes);
   const bool progress = isatty(STDERR_FILENO);

@@ -93,6 +93,11 @@ SlotMap make_slots(const VectorHeader& header, std::size_t capacity) {
         map.origin[slot].lights.push_back(static_cast<int>(l));
       } else {
         slot = static_cast<std::uint32_t>(map.params.size());
+        if (map.params.size() == kMaxStreamSlots)
+          throw ResourceLimitError(fmt::format(
+              "the stream needs more than {} slots (one per material and c_y; {} materials under "
+              "{} lights), the limit per stream (about 15 KB per slot and unit)",
+              kMaxStreamSlots, materials, lights));
         ms.c_y.push_back(cy);
         ms.slot.push_back(slot);
         map.params.push_back(slot_params(header, m, cy));
@@ -181,6 +186,14 @@ bool stream_is_coloured(const VectorHeader& header) {
   for (const VectorMaterial& m : header.materials)
     if (!grey(m.specular)) return true;
   return false;
+}
+
+void check_lane_slots(std::size_t units, const SlotMap& slots) {
+  if (units * slots.params.size() > kMaxLaneSlots)
+    throw ResourceLimitError(fmt::format(
+        "{} units x {} slots exceed the limit of {} unit slots per run (the default five units on "
+        "{} slots, ~5 GB): run fewer units at a time",
+        units, slots.params.size(), kMaxLaneSlots, kMaxStreamSlots));
 }
 
 double reference_value(const SlotMap& slots, std::size_t slot, double t) {
@@ -337,7 +350,16 @@ double LaneAccumulator::code_reference(std::size_t slot, std::int64_t t_raw, dou
 void LaneAccumulator::add(std::size_t slot, const RowReference& ref, std::int64_t t_raw,
                           bool skipped, std::int64_t out_raw) {
   if (slot_state_[slot] < 0) {
-    stats_.slots.push_back(slot_contract(unit_, slot, slots_));
+    const auto [it, fresh] = contract_of_.emplace(contract_key(slot), stats_.slots.size());
+    if (fresh) {
+      stats_.slots.push_back(slot_contract(unit_, slot, slots_));
+    } else {
+      SlotContract c = stats_.slots[it->second];  // the same sweep: only who it is differs
+      c.slot = slot;
+      c.name = slots_.params[slot].name;
+      c.weight = slots_.c_y[slot];
+      stats_.slots.push_back(std::move(c));
+    }
     slot_state_[slot] = stats_.slots.back().always_skipped ? 1 : 0;
   }
   const double fixed = static_cast<double>(out_raw) * ulp_;
@@ -359,6 +381,52 @@ void LaneAccumulator::add(std::size_t slot, const RowReference& ref, std::int64_
   digest_ ^= digest_ >> 29;
 }
 
+namespace {
+
+LaneAccumulator::ContractKey key_of(const SpecularUnit& unit, const SlotMap& slots,
+                                    std::size_t slot) {
+  return {unit.datapath_of(slot),       unit.tau_raw(slot),    static_cast<int>(slots.lobe[slot]),
+          slots.params[slot].shininess, slots.roughness[slot], slots.params[slot].always_skip};
+}
+
+}  // namespace
+
+LaneAccumulator::ContractKey LaneAccumulator::contract_key(std::size_t slot) const {
+  return key_of(unit_, slots_, slot);
+}
+
+std::uint64_t contract_codes(const SpecularUnit& unit, const SlotMap& slots) {
+  const std::int64_t one = unit.in_format().raw_one();
+  const std::uint64_t per_slot_max = (std::uint64_t{1} << kExactInputBits) + 1;
+  std::uint64_t codes = 0;
+  std::set<LaneAccumulator::ContractKey> sweeps;
+  for (std::size_t s = 0; s < unit.slots(); ++s) {
+    if (!sweeps.insert(key_of(unit, slots, s)).second) continue;
+    if (slots.params[s].always_skip && unit.comparator_enabled()) continue;
+    // The codes slot_contract visits: those above the threshold, up to 1.0.
+    const std::int64_t first = std::max<std::int64_t>(std::min(unit.tau_raw(s), one) + 1, 0);
+    codes += std::min(per_slot_max, static_cast<std::uint64_t>(one - first + 1));
+  }
+  return codes;
+}
+
+void check_contract_codes(const std::vector<const SpecularUnit*>& units, const SlotMap& slots) {
+  std::uint64_t total = 0;
+  std::string shares;
+  for (const SpecularUnit* u : units) {
+    const std::uint64_t codes = contract_codes(*u, slots);
+    total += codes;
+    shares += fmt::format("{}{} {}", shares.empty() ? "" : ", ", u->name(), codes);
+  }
+  if (total > kMaxContractCodes)
+    throw ResourceLimitError(fmt::format(
+        "the accuracy contracts of this run would sweep {} input codes over the stream's {} slots "
+        "({}), more than the limit of {} (2^30, a few minutes) per run: use fewer materials or "
+        "lights, fewer units at a time, fewer input fraction bits (in=) or the comparator "
+        "(skip=on)",
+        total, slots.params.size(), shares, kMaxContractCodes));
+}
+
 void LaneAccumulator::add_scalar(std::size_t slot, const RowReference& ref, std::int64_t t_raw,
                                  bool skipped, double fixed) {
   stats_.total.add(fixed - ref.value, ref.t);
@@ -376,7 +444,11 @@ void LaneAccumulator::add_scalar(std::size_t slot, const RowReference& ref, std:
 Evaluator::Evaluator(const VectorHeader& header, const std::vector<UnitSpec>& specs,
                      int display_bits, std::size_t slot_capacity)
     : slots_(make_slots(header, slot_capacity)), display_bits_(display_bits) {
+  check_lane_slots(specs.size(), slots_);
   for (const UnitSpec& spec : specs) units_.push_back(make_unit(spec, slots_));
+  std::vector<const SpecularUnit*> built;
+  for (const auto& u : units_) built.push_back(u.get());
+  check_contract_codes(built, slots_);
   std::vector<std::string> names;
   for (const auto& u : units_) names.push_back(u->name());
   const auto labels = unit_labels(names);

@@ -5,10 +5,12 @@
 
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "eval/contract.h"
@@ -50,9 +52,41 @@ class SlotCapacityError : public std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
+// Limits that keep a run's memory and time bounded and proportional to its input (README, "Limits
+// and guarantees"); a stream or run beyond them is refused with ResourceLimitError, whose message
+// names the limit (the CLI reports it against the input file, exit 2).
+//
+// Slots of one stream, one per (material, c_y): each unit keeps ~15 KB per slot (its threshold,
+// the slot's contract, accumulators and the elaboration's entries), so 65536 slots are ~1 GB per
+// unit. The vector format's limit on materials is the same number, so only lights that change
+// many materials' c_y reach it.
+inline constexpr std::size_t kMaxStreamSlots = 65536;
+// Units x slots of one run: the default five units on the largest stream (measured: ~5 GB and
+// ~1 min for `glint eval` of 65536 distinct materials).
+inline constexpr std::size_t kMaxLaneSlots = 5 * kMaxStreamSlots;
+// Input codes the accuracy contracts of one run sweep, over every unit (contract.h: every code each
+// slot's comparator keeps, at most 2^20 + 1 per slot; slots with the same datapath, threshold and
+// lobe share one sweep): 50-160 ns per code by unit, so about 1-3 min at the limit.
+inline constexpr std::uint64_t kMaxContractCodes = std::uint64_t{1} << 30;
+
+class ResourceLimitError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+// Refuses (ResourceLimitError) a run of `units` units over `slots` beyond kMaxLaneSlots.
+void check_lane_slots(std::size_t units, const SlotMap& slots);
+
+// The input codes the contracts of `unit` sweep when every slot is used (the cost of its
+// LaneAccumulator), and the refusal (ResourceLimitError) of units whose sum exceeds
+// kMaxContractCodes, naming each unit's share. Checked before any row is read.
+std::uint64_t contract_codes(const SpecularUnit& unit, const SlotMap& slots);
+void check_contract_codes(const std::vector<const SpecularUnit*>& units, const SlotMap& slots);
+
 // The slots of a stream (above); eps is divided by the light count (Källberg §2, eps_n = eps/n).
 // capacity > 0: a chip of that many slots (--slots), which must hold the stream's slots and
-// colours (SlotCapacityError otherwise, with the counts); 0: sized to the stream.
+// colours (SlotCapacityError otherwise, with the counts); 0: sized to the stream. A stream that
+// needs more than kMaxStreamSlots slots is refused (ResourceLimitError).
 SlotMap make_slots(const VectorHeader& header, std::size_t capacity = 0);
 
 // True when some light intensity or material specular colour is not grey (r, g, b not all equal):
@@ -137,6 +171,11 @@ class LaneAccumulator {
  public:
   LaneAccumulator(const SpecularUnit& unit, const SlotMap& slots, int display_bits = 8);
 
+  // What a slot's contract depends on besides its name and weight: its datapath group, its
+  // threshold, its lobe (kind, shininess, roughness) and whether it is always skipped. Slots with
+  // one key share one contract sweep.
+  using ContractKey = std::tuple<std::size_t, std::int64_t, int, double, double, bool>;
+
   void add(std::size_t slot, const RowReference& ref, std::int64_t t_raw, bool skipped,
            std::int64_t out_raw);
   // A digest of every (skipped, out_raw) in stream order: bit-accurate regression in 64 bits.
@@ -153,6 +192,7 @@ class LaneAccumulator {
   void fold_code(std::size_t slot, std::int64_t t_raw, double fixed, double t, double r_code);
   void add_scalar(std::size_t slot, const RowReference& ref, std::int64_t t_raw, bool skipped,
                   double fixed);
+  ContractKey contract_key(std::size_t slot) const;
 
   const SpecularUnit& unit_;
   const SlotMap& slots_;
@@ -161,6 +201,9 @@ class LaneAccumulator {
   double ulp_ = 0, in_ulp_ = 0, display_ = 0;
   // Per slot: -1 not seen yet (its contract not computed), 0 computed, 1 always skipped.
   std::vector<std::int8_t> slot_state_;
+  // Contracts already swept, by what they depend on (contract_key): slots of one datapath group
+  // with the same threshold and lobe share one sweep (a file of many identical materials).
+  std::map<ContractKey, std::size_t> contract_of_;  // index into stats_.slots
   std::vector<std::vector<double>> memo_;
 };
 

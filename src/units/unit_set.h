@@ -258,6 +258,36 @@ std::vector<Datapath> build_per_group(const Config& cfg, const std::vector<Mater
   return units;
 }
 
+// What the per-group tables of one unit (every datapath group's together) may take in memory: lut's
+// t^n tables are the only ones that grow with the key's table size (bits=16: up to 256 KiB per
+// group); pow's tables are shared by the groups, the others keep a few coefficients per group.
+inline constexpr std::size_t kMaxUnitTableBytes = std::size_t{256} << 20;
+
+// build_per_group for a kind with per-group tables: `bytes(datapath)` is what one datapath keeps,
+// and the build stops (std::invalid_argument naming the limit) as soon as the groups built so far
+// exceed kMaxUnitTableBytes, so no more than the limit and one group's table is ever allocated.
+template <class Datapath, class Config, class Bytes>
+std::vector<Datapath> build_per_group_bounded(const char* unit, const Config& cfg,
+                                              const std::vector<MaterialParams>& groups,
+                                              const Bytes& bytes) {
+  std::vector<Datapath> units;
+  units.reserve(groups.size());
+  std::size_t total = 0;
+  for (const auto& m : groups) {
+    for_slot(m, [&] { units.emplace_back(cfg, m); });
+    total += bytes(units.back());
+    if (total > kMaxUnitTableBytes)
+      throw std::invalid_argument(fmt::format(
+          "{}: the tables of the first {} of {} datapath groups (one per distinct material) "
+          "already "
+          "take {:.2f} MiB, over the limit of {} MiB of tables per unit: use smaller tables or "
+          "fewer distinct materials",
+          unit, units.size(), groups.size(), static_cast<double>(total) / (1 << 20),
+          kMaxUnitTableBytes >> 20));
+  }
+  return units;
+}
+
 // Finishes a kind's build: the merge-buffer depth (auto: enough credits that a result never waits
 // for one when the sink keeps up), the canonical spec (keys in catalogue order, so it reads like
 // the `glint units` listing) and the unit.

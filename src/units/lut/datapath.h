@@ -76,6 +76,8 @@ class LutUnit {
   std::int64_t entry(std::int64_t j) const;
   std::size_t entries() const { return (std::size_t{1} << cfg_.bits) + 1; }
   std::size_t kept_entries() const { return table_.size() - 1; }
+  // Memory of the kept entries (with the padding entry): what the limit of units/unit_set.h counts.
+  std::size_t table_bytes() const { return table_.size() * sizeof(table_[0]); }
   double model(std::int64_t t_raw) const;  // the rounded entries interpolated exactly, at t_q
   double float_model(double t) const;      // exact-node interpolation at the exact t
   static double datapath_bound_ulps() { return 0.5; }

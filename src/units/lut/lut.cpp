@@ -42,7 +42,8 @@ struct Lut : UnitKindDefaults {
     const UnitTiming timing{2, 1, 0};
     // One table per datapath group, spanning from the group's smallest tau (its slots' comparators
     // let nothing lower through).
-    auto units = build_per_group<LutUnit>(c, plan.groups);
+    auto units = build_per_group_bounded<LutUnit>("lut", c, plan.groups,
+                                                  [](const LutUnit& u) { return u.table_bytes(); });
     return make_unit_set<Lut>(common, std::move(config), c, std::move(units), plan, timing);
   }
 
