@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <nlohmann/json.hpp>
@@ -245,6 +246,36 @@ TEST(UnitBuild, ManySlotsEqualOneSlotAtATime) {
       for (std::int64_t t = 0; t < kCodes; ++t) {
         ASSERT_EQ(all->eval(s, t), one->eval(0, t)) << "slot " << s << " t " << t;
       }
+    }
+  }
+}
+
+// ---- wide input formats: built or refused, promptly ------------------------------------------
+
+// Every unit at input formats up to the 62-bit registers either builds or refuses the format with
+// std::invalid_argument, in well under a second (Release). horner's guard search multiplied a
+// short span by 2^k in 64 bits until it overflowed: at in=uq1.61 the loop never ended (found by
+// the units fuzz harness's seeds, tests/fuzz/regressions/units/horner_wide_input_guard_hang).
+TEST(WideInputs, EveryUnitBuildsOrRefusesPromptly) {
+  const std::vector<MaterialParams> slots = {material(0.5, 1.0), material(50.0, 1.0),
+                                             material(5000.0, 0.2), material(20.0, 5e-4)};
+  for (const char* unit : {"pow", "schlick", "hast", "horner", "lut", "horner:domain=full",
+                           "hast:match=minimax", "lut:skip=off,bits=16"}) {
+    for (int f : {40, 52, 57, 60, 61, 62}) {
+      const std::string spec =
+          std::string(unit) +
+          (std::string(unit).find(':') == std::string::npos ? ":in=uq1." : ",in=uq1.") +
+          std::to_string(f);
+      SCOPED_TRACE(spec);
+      const auto start = std::chrono::steady_clock::now();
+      try {
+        make_unit(parse_unit_spec(spec), slots);
+      } catch (const std::invalid_argument&) {
+        // refused, naming the key or the register that cannot hold it
+      }
+      const double seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      EXPECT_LT(seconds, 10.0);
     }
   }
 }

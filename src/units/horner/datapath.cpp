@@ -47,8 +47,14 @@ int horner_max_guard(const HornerCoefficients& coeffs, const MaterialParams& m, 
   if (coeffs.tau_domain) {
     // u scaler (u_scaler.cpp): (t - root) k needs in + k_int + fh + 2 <= 62 bits, k ~ 2^F / span.
     const std::int64_t span = in.raw_one() - root_threshold_raw(m, in);
+    // In 128 bits and at most 62 doublings: with a wide input (uq1.61) and a short span, the
+    // 64-bit product overflowed, the loop never ended and the shift reached 64 (found by the
+    // units fuzz harness's seeds: tests/fuzz/regressions/units/horner_wide_input_guard_hang).
     int k_int = 1;
-    while (span > 0 && (std::int64_t{1} << (k_int + 1)) * span <= 2 * in.raw_one()) ++k_int;
+    while (span > 0 && k_int < 62 &&
+           (static_cast<__int128>(1) << (k_int + 1)) * span <=
+               2 * static_cast<__int128>(in.raw_one()))
+      ++k_int;
     fh_max = std::min(fh_max, 62 - in.width() - (k_int + 1) - 2);
   }
   return fh_max - out.frac_bits;
