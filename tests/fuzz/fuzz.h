@@ -1,0 +1,37 @@
+// libFuzzer harnesses of glint's parsers (tests/fuzz/README.md). Each harness is a function over
+// one input; built with GLINT_FUZZ_ENTRY (the fuzz_* programs of GLINT_FUZZ=ON) it is also the
+// program's LLVMFuzzerTestOneInput, and without it tests/test_fuzz_replay.cpp calls it on every
+// seed and every regression input in the normal suite.
+//
+// A harness returns 0 for any input that glint accepts or refuses the way the CLI would with exit
+// 2 (InputError, std::invalid_argument); anything else is a finding and aborts through fail():
+// another exception type (the CLI's "internal error", exit 3), a property the harness checks (a
+// round trip, an idempotent spec), and of course a sanitizer report, a timeout or running out of
+// memory.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+namespace glint::fuzz {
+
+int vectors(const std::uint8_t* data, std::size_t size);
+int units(const std::uint8_t* data, std::size_t size);
+int scene(const std::uint8_t* data, std::size_t size);
+int golden(const std::uint8_t* data, std::size_t size);
+int options(const std::uint8_t* data, std::size_t size);
+
+// Reports a finding on stderr and aborts (libFuzzer then saves the input as a crash).
+[[noreturn]] void fail(const std::string& what);
+
+}  // namespace glint::fuzz
+
+#ifdef GLINT_FUZZ_ENTRY
+#define GLINT_FUZZ_TARGET(harness)                                                    \
+  extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) { \
+    return glint::fuzz::harness(data, size);                                          \
+  }
+#else
+#define GLINT_FUZZ_TARGET(harness)
+#endif
