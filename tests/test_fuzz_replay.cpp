@@ -45,6 +45,7 @@ int replay(const std::string& kind, const std::string& name, Harness harness) {
   }
 
 GLINT_REPLAY(vectors)
+GLINT_REPLAY(specs)
 GLINT_REPLAY(units)
 GLINT_REPLAY(scene)
 GLINT_REPLAY(golden)
