@@ -23,6 +23,7 @@ int run_merge(const MergeOptions& o) {
   if (outputs.json.empty() && outputs.csv.empty() && outputs.plot_dir.empty() && !o.json)
     throw std::invalid_argument(
         "merge: nothing to write (give -o OUT.json, --csv, --plot or --json)");
+  if (options_only()) return kExitOk;
   OutputSet set;
   for (const std::string& path : o.shards) set.add_input("SHARD", path);
   if (o.json) set.claim_stdout("--json");

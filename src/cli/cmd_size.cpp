@@ -40,6 +40,7 @@ int run_size_command(const SizeOptions& o) {
   for (const std::string& g : o.grids.empty() ? default_size_grids() : o.grids)
     grids.push_back(parse_grid(g));
   expand_grids(grids);  // the cap, before any input is read
+  if (options_only()) return kExitOk;
   SweepSettings settings;
   settings.display_bits = o.display_bits;
   settings.slot_capacity = o.slots;

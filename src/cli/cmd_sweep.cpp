@@ -49,6 +49,7 @@ int run_sweep_command(const SweepCommandOptions& o) {
   job.error_measure = o.error_measure;
   job.image = !o.no_image;
   const SweepOutputs outputs = sweep_outputs(o.out, o.csv, o.plot);
+  if (options_only()) return kExitOk;
   OutputSet set;
   set.add_input(o.vectors.empty() ? "--scene" : "VECTORS", job.input.path);
   if (o.json) set.claim_stdout("--json");
