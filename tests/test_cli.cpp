@@ -6,7 +6,6 @@
 // from a copied run.
 #include <gtest/gtest.h>
 #include <stdlib.h>
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <cmath>
@@ -85,10 +84,7 @@ std::vector<double> row_ts(const std::string& path) {
   return ts;
 }
 
-struct CliRun {
-  int status = -1;  // exit status, or -1 if the process did not exit normally
-  std::string out, err;
-};
+using glint::test::CliRun;
 
 // Per-test temporary directory under /tmp, removed (with everything in it) at the end.
 class CliTest : public ::testing::Test {
@@ -106,22 +102,7 @@ class CliTest : public ::testing::Test {
 
   // Runs `glint ARGS` (ARGS already shell-quoted where needed) with the temp dir as working
   // directory.
-  CliRun glint(const std::string& args) {
-    const int n = runs_++;
-    const fs::path out = dir_ / ("stdout." + std::to_string(n));
-    const fs::path err = dir_ / ("stderr." + std::to_string(n));
-    const std::string cmd = "cd " + quote(dir_.string()) + " && " + quote(kGlint) + " " + args +
-                            " >" + quote(out.string()) + " 2>" + quote(err.string()) +
-                            " </dev/null";
-    const int raw = std::system(cmd.c_str());
-    CliRun r;
-    r.status = (raw != -1 && WIFEXITED(raw)) ? WEXITSTATUS(raw) : -1;
-    r.out = read_text(out);
-    r.err = read_text(err);
-    fs::remove(out);
-    fs::remove(err);
-    return r;
-  }
+  CliRun glint(const std::string& args) { return glint::test::run_glint(dir_, args); }
 
   // Runs glint and parses stdout as exactly one JSON document (exit status must be 0).
   json glint_json(const std::string& args) {
@@ -141,7 +122,6 @@ class CliTest : public ::testing::Test {
   }
 
   fs::path dir_;
-  int runs_ = 0;
 };
 
 double parse_labelled(const std::string& out, const std::string& label) {

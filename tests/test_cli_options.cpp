@@ -5,9 +5,7 @@
 // naming the file and the field, a golden without its trace is refused, and a tampered trace fails.
 // Runs the real binary, as tests/test_cli.cpp does (its own small fixture).
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -21,32 +19,14 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-const std::string kGlint = GLINT_BINARY_DIR "/glint";
 const std::string kTraces = GLINT_SOURCE_DIR "/traces";
 const std::string kPhong = kTraces + "/phong_basic.vec";
 
-struct CliRun {
-  int status = -1;
-  std::string out, err;
-};
+using glint::test::CliRun;
 
 class CliOptions : public ::testing::Test {
  protected:
-  CliRun glint(const std::string& args) {
-    const fs::path out = dir_.path() / "stdout", err = dir_.path() / "stderr";
-    const std::string cmd = "cd " + glint::test::shell_quote(dir_.path().string()) + " && " +
-                            glint::test::shell_quote(kGlint) + " " + args + " >" +
-                            glint::test::shell_quote(out.string()) + " 2>" +
-                            glint::test::shell_quote(err.string()) + " </dev/null";
-    const int raw = std::system(cmd.c_str());
-    CliRun r;
-    r.status = (raw != -1 && WIFEXITED(raw)) ? WEXITSTATUS(raw) : -1;
-    r.out = glint::test::read_file(out);
-    r.err = glint::test::read_file(err);
-    fs::remove(out);
-    fs::remove(err);
-    return r;
-  }
+  CliRun glint(const std::string& args) { return glint::test::run_glint(dir_.path(), args); }
   // Exit 2, the option (or text) named on stderr, nothing on stdout, nothing left in the folder.
   void expect_refused(const std::string& args, const std::string& names) {
     SCOPED_TRACE(args);

@@ -2,7 +2,6 @@
 // the small scene, only the scene's materials elaborated, the files written, and the image-level
 // error figures checked against the images themselves.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <filesystem>
 #include <fstream>
@@ -136,24 +135,10 @@ TEST(Render, ImageErrorMatchesThePixels) {
   EXPECT_LE(r.units.front().error.max_lsb, 2.0);  // pow: correctly rounded t^n, within 2 LSB
 }
 
-struct CliRun {
-  int status = -1;
-  std::string out, err;
-};
+using test::CliRun;
 
-// Runs the glint binary with `args` (shell-quoted by the caller) in `dir`.
 CliRun glint_cli(const test::TempDir& dir, const std::string& args) {
-  const std::string out = dir.file("stdout"), err = dir.file("stderr");
-  const std::string cmd = "cd '" + dir.path().string() + "' && '" GLINT_BINARY_DIR "/glint' " +
-                          args + " >'" + out + "' 2>'" + err + "' </dev/null";
-  const int raw = std::system(cmd.c_str());
-  CliRun r;
-  r.status = (raw != -1 && WIFEXITED(raw)) ? WEXITSTATUS(raw) : -1;
-  r.out = test::read_file(out);
-  r.err = test::read_file(err);
-  std::filesystem::remove(out);
-  std::filesystem::remove(err);
-  return r;
+  return test::run_glint(dir.path(), args);
 }
 
 // The scene's requests written as a vector file give `glint eval` exactly the accuracy figures

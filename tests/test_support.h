@@ -1,11 +1,13 @@
-// Small helpers shared by the test programs: a scratch directory per test, shell quoting and whole
-// file reads.
+// Small helpers shared by the test programs: a scratch directory per test, shell quoting, whole
+// file reads and runs of the glint binary.
 #pragma once
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -59,6 +61,29 @@ inline std::string read_file(const std::filesystem::path& p) {
   std::ostringstream ss;
   ss << in.rdbuf();
   return ss.str();
+}
+
+// One run of the glint binary: its exit status (-1 if it did not exit normally) and its output.
+struct CliRun {
+  int status = -1;
+  std::string out, err;
+};
+
+// Runs `glint ARGS` (ARGS shell-quoted by the caller) in `dir`, standard input from /dev/null;
+// stdout and stderr go through files in `dir`, removed again.
+inline CliRun run_glint(const std::filesystem::path& dir, const std::string& args) {
+  const std::filesystem::path out = dir / "glint.stdout", err = dir / "glint.stderr";
+  const std::string cmd =
+      "cd " + shell_quote(dir.string()) + " && " + shell_quote(GLINT_BINARY_DIR "/glint") + " " +
+      args + " >" + shell_quote(out.string()) + " 2>" + shell_quote(err.string()) + " </dev/null";
+  const int raw = std::system(cmd.c_str());
+  CliRun r;
+  r.status = (raw != -1 && WIFEXITED(raw)) ? WEXITSTATUS(raw) : -1;
+  r.out = read_file(out);
+  r.err = read_file(err);
+  std::filesystem::remove(out);
+  std::filesystem::remove(err);
+  return r;
 }
 
 }  // namespace glint::test

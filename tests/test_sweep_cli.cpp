@@ -4,11 +4,9 @@
 // sweep's rows, plots against the rows they draw.
 #include <gtest/gtest.h>
 #include <stdlib.h>
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -24,31 +22,15 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-const std::string kGlint = GLINT_BINARY_DIR "/glint";
 const std::string kTraces = GLINT_SOURCE_DIR "/traces";
 const auto quote = glint::test::shell_quote;
 const auto read_text = glint::test::read_file;
 
-struct CliRun {
-  int status = -1;
-  std::string out, err;
-};
+using glint::test::CliRun;
 
 class SweepCli : public ::testing::Test {
  protected:
-  CliRun glint(const std::string& args) {
-    const std::string out = tmp_.file("stdout"), err = tmp_.file("stderr");
-    const std::string cmd = "cd " + quote(tmp_.path().string()) + " && " + quote(kGlint) + " " +
-                            args + " >" + quote(out) + " 2>" + quote(err) + " </dev/null";
-    const int raw = std::system(cmd.c_str());
-    CliRun r;
-    r.status = (raw != -1 && WIFEXITED(raw)) ? WEXITSTATUS(raw) : -1;
-    r.out = read_text(out);
-    r.err = read_text(err);
-    fs::remove(out);
-    fs::remove(err);
-    return r;
-  }
+  CliRun glint(const std::string& args) { return glint::test::run_glint(tmp_.path(), args); }
   json glint_json(const std::string& args) {
     const CliRun r = glint(args);
     EXPECT_EQ(r.status, 0) << "glint " << args << "\n" << r.err;
