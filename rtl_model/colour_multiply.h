@@ -15,27 +15,20 @@
 
 namespace glint::rtl {
 
-class ColourMultiply : public sc_core::sc_module, public Traceable {
+class ColourMultiply : public sc_core::sc_module, public Traceable, public ClockedStage {
  public:
-  sc_core::sc_in<bool> clk;
   sc_core::sc_in<Result> in;
   sc_core::sc_signal<Result> out;
 
-  SC_HAS_PROCESS(ColourMultiply);
   // `out_frac_bits`: the result format's fraction bits, for the trace's real-valued display only.
   ColourMultiply(sc_core::sc_module_name name, int out_width, bool out_signed, bool tracing,
                  int out_frac_bits = 0)
       : sc_core::sc_module(name),
-        clk("clk"),
         in("in"),
         out("out"),
         tracing_(tracing),
         out_frac_bits_(out_frac_bits),
-        result_trace_(out_width, out_signed) {
-    SC_METHOD(tick);
-    sensitive << clk.pos();
-    dont_initialize();
-  }
+        result_trace_(out_width, out_signed) {}
 
   void add_traces(VcdWriter& vcd, const std::string& prefix) const override {
     const std::string p = prefix + ".colour.";
@@ -45,7 +38,7 @@ class ColourMultiply : public sc_core::sc_module, public Traceable {
   }
 
  private:
-  void tick() {
+  void tick() override {
     const Result& r = in.read();
     if (r.valid || active_) {
       out.write(r);

@@ -14,7 +14,6 @@ ComputePipeline::StageTrace::StageTrace(const Stage& s, const QFormat& in, int b
 ComputePipeline::ComputePipeline(sc_core::sc_module_name name, const SpecularUnit& unit,
                                  bool tracing)
     : sc_core::sc_module(name),
-      clk("clk"),
       in_valid("in_valid"),
       in_request("in_request"),
       ready("ready", true),
@@ -35,9 +34,6 @@ ComputePipeline::ComputePipeline(sc_core::sc_module_name name, const SpecularUni
       traces_.push_back(std::make_unique<StageTrace>(
           s, unit.in_format(), bits_for(static_cast<std::uint64_t>(s.last - s.first))));
   }
-  SC_METHOD(tick);
-  sensitive << clk.pos();
-  dont_initialize();
 }
 
 void ComputePipeline::tick() {

@@ -28,15 +28,13 @@
 
 namespace glint::rtl {
 
-class ComputePipeline : public sc_core::sc_module, public Traceable {
+class ComputePipeline : public sc_core::sc_module, public Traceable, public ClockedStage {
  public:
-  sc_core::sc_in<bool> clk;
   sc_core::sc_in<bool> in_valid;       // comparator: start a request at this edge
   sc_core::sc_in<Request> in_request;  // the source's request register
   sc_core::sc_signal<bool> ready;      // registered II gate
   sc_core::sc_signal<Result> out;      // output register (position L)
 
-  SC_HAS_PROCESS(ComputePipeline);
   ComputePipeline(sc_core::sc_module_name name, const SpecularUnit& unit, bool tracing);
 
   int latency() const { return latency_; }
@@ -48,6 +46,7 @@ class ComputePipeline : public sc_core::sc_module, public Traceable {
   std::uint64_t violations() const { return violations_; }
 
   void add_traces(VcdWriter& vcd, const std::string& prefix) const override;
+  void tick() override;
 
  private:
   struct Entry {
@@ -63,7 +62,6 @@ class ComputePipeline : public sc_core::sc_module, public Traceable {
     std::vector<RawBits> registers;
   };
 
-  void tick();
   void update_traces(std::size_t head);
 
   const SpecularUnit& unit_;

@@ -8,7 +8,6 @@ namespace glint::rtl {
 ResultMerge::ResultMerge(sc_core::sc_module_name name, int depth, int out_width, bool out_signed,
                          bool tracing, int out_frac_bits)
     : sc_core::sc_module(name),
-      clk("clk"),
       bypass_in("bypass_in"),
       compute_in("compute_in"),
       sink_ready("sink_ready"),
@@ -23,10 +22,6 @@ ResultMerge::ResultMerge(sc_core::sc_module_name name, int depth, int out_width,
   if (depth < 1) throw std::invalid_argument("ResultMerge: depth >= 1 required");
   SC_METHOD(comb);
   sensitive << bypass_in << compute_in << changed_;
-
-  SC_METHOD(tick);
-  sensitive << clk.pos();
-  dont_initialize();
 }
 
 void ResultMerge::comb() {

@@ -20,9 +20,8 @@
 
 namespace glint::rtl {
 
-class ResultMerge : public sc_core::sc_module, public Traceable {
+class ResultMerge : public sc_core::sc_module, public Traceable, public ClockedStage {
  public:
-  sc_core::sc_in<bool> clk;
   sc_core::sc_in<Result> bypass_in;
   sc_core::sc_in<Result> compute_in;
   sc_core::sc_in<bool> sink_ready;
@@ -43,10 +42,10 @@ class ResultMerge : public sc_core::sc_module, public Traceable {
   std::uint64_t retired() const { return next_seq_; }
 
   void add_traces(VcdWriter& vcd, const std::string& prefix) const override;
+  void tick() override;
 
  private:
   void comb();
-  void tick();
 
   std::vector<Result> entries_;
   std::uint64_t next_seq_ = 0;  // stream index of the head

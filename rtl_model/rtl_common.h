@@ -1,10 +1,11 @@
 // What every clocked module of the specular lane shares: the clock, the payloads that travel on its
 // handshake channels, and the trace helpers (raw fixed-point bits at their true, runtime width).
 //
-// Clocking convention (the one src/timing.h's recurrences are written in): every register is an
-// SC_METHOD on clk.pos(); cycle c is the c-th rising edge after the start of simulation, counted
-// from 0, at time 5 ns + c * 10 ns (so a VCD shows the reset state before cycle 0). Each module
-// counts the edges it has seen, so its own counter equals the cycle number in every process. A
+// Clocking convention (the one src/timing.h's recurrences are written in): every module's registers
+// are its tick() (ClockedStage), called at each rising edge; cycle c is the c-th rising edge after
+// the start of simulation, counted from 0, at time 5 ns + c * 10 ns (so a VCD shows the reset state
+// before cycle 0). Each module counts the edges it has seen, so its own counter equals the cycle
+// number in every process. A
 // transfer on a valid/ready channel happens at edge c when valid and ready are both 1 just before
 // it (the signal values visible to processes at edge c); a register written at edge c is visible
 // from edge c + 1.
@@ -116,6 +117,18 @@ inline int bits_for(std::uint64_t max_value) {
 
 // The traced signals of one module. Every module implements it; TraceControl (vcd_trace.h) calls
 // add_traces once when it opens the VCD file.
+// A module's registers: tick() is its rising edge. It reads only signals (their values before the
+// edge: writes land in SystemC's update phase) and the module's own state, so the ticks of one edge
+// may run in any order, and they run in one process: the clock's (clocked_sim.cpp's Top::edge, or a
+// test's driver). One SC_METHOD per register stage on an sc_clock's edge costs the kernel an event
+// fan-out and a process switch per module per cycle; calling them in one activation halves the
+// clocked mode's kernel work and changes no value or cycle.
+class ClockedStage {
+ public:
+  virtual ~ClockedStage() = default;
+  virtual void tick() = 0;
+};
+
 class Traceable {
  public:
   virtual ~Traceable() = default;

@@ -8,7 +8,6 @@ Scoreboard::Scoreboard(sc_core::sc_module_name name, const SpecularUnit& unit,
                        const SinkReady& sink, const RowRing& rows, SimControl& control,
                        Callback on_result, bool expect_none, bool tracing)
     : sc_core::sc_module(name),
-      clk("clk"),
       head_valid("head_valid"),
       head("head"),
       ready("ready", sink.ready(0)),
@@ -20,9 +19,6 @@ Scoreboard::Scoreboard(sc_core::sc_module_name name, const SpecularUnit& unit,
       tracing_(tracing),
       ready_now_(sink.ready(0)),
       result_trace_(unit.out_format().width(), unit.out_format().is_signed) {
-  SC_METHOD(tick);
-  sensitive << clk.pos();
-  dont_initialize();
   if (expect_none) {
     done_ = true;
     past_window_ = true;

@@ -23,17 +23,15 @@
 
 namespace glint::rtl {
 
-class Scoreboard : public sc_core::sc_module, public Traceable {
+class Scoreboard : public sc_core::sc_module, public Traceable, public ClockedStage {
  public:
   using Callback =
       std::function<void(const VectorRow& row, const Result& result, const ResultTiming& timing)>;
 
-  sc_core::sc_in<bool> clk;
   sc_core::sc_in<bool> head_valid;
   sc_core::sc_in<Result> head;
   sc_core::sc_signal<bool> ready;  // registered: SinkReady::ready(c) at edge c
 
-  SC_HAS_PROCESS(Scoreboard);
   // `expect_none`: the lane's stream is empty (the lane is done from the start).
   Scoreboard(sc_core::sc_module_name name, const SpecularUnit& unit, const SinkReady& sink,
              const RowRing& rows, SimControl& control, Callback on_result, bool expect_none,
@@ -45,9 +43,9 @@ class Scoreboard : public sc_core::sc_module, public Traceable {
   bool done() const { return done_; }
 
   void add_traces(VcdWriter& vcd, const std::string& prefix) const override;
+  void tick() override;
 
  private:
-  void tick();
   void retire(const Result& r, std::uint64_t cycle);
 
   const SpecularUnit& unit_;

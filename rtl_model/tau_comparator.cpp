@@ -9,7 +9,6 @@ namespace glint::rtl {
 TauComparator::TauComparator(sc_core::sc_module_name name, const SpecularUnit& unit, int credits,
                              bool tracing)
     : sc_core::sc_module(name),
-      clk("clk"),
       src_valid("src_valid"),
       src_request("src_request"),
       unit_ready("unit_ready"),
@@ -31,10 +30,6 @@ TauComparator::TauComparator(sc_core::sc_module_name name, const SpecularUnit& u
 
   SC_METHOD(comb);
   sensitive << src_valid << src_request << unit_ready << credit_return << credits_changed_;
-
-  SC_METHOD(tick);
-  sensitive << clk.pos();
-  dont_initialize();
 }
 
 void TauComparator::comb() {

@@ -27,9 +27,8 @@
 
 namespace glint::rtl {
 
-class TauComparator : public sc_core::sc_module, public Traceable {
+class TauComparator : public sc_core::sc_module, public Traceable, public ClockedStage {
  public:
-  sc_core::sc_in<bool> clk;
   sc_core::sc_in<bool> src_valid;
   sc_core::sc_in<Request> src_request;
   sc_core::sc_in<bool> unit_ready;     // compute unit can start a request at this edge
@@ -49,10 +48,10 @@ class TauComparator : public sc_core::sc_module, public Traceable {
   int credits() const { return credits_; }
 
   void add_traces(VcdWriter& vcd, const std::string& prefix) const override;
+  void tick() override;
 
  private:
   void comb();
-  void tick();
 
   const SpecularUnit& unit_;
   std::vector<std::int64_t> tau_;

@@ -11,7 +11,6 @@ VectorSource::VectorSource(sc_core::sc_module_name name, RowStream& stream,
                            const SpecularUnit& unit, const SlotMap& slots, RowRing& ring,
                            SimControl& control, bool tracing)
     : sc_core::sc_module(name),
-      clk("clk"),
       ready("ready"),
       valid("valid", false),
       request("request"),
@@ -24,9 +23,6 @@ VectorSource::VectorSource(sc_core::sc_module_name name, RowStream& stream,
       t_trace_(unit.in_format().width(), unit.in_format().is_signed),
       slot_trace_(bits_for(unit.slots() > 0 ? unit.slots() - 1 : 0), false),
       seq_trace_(32, false) {
-  SC_METHOD(tick);
-  sensitive << clk.pos();
-  dont_initialize();
   have_ahead_ = stream_.next(ahead_);
   load();
 }

@@ -36,15 +36,13 @@ class RowRing {
   std::vector<VectorRow> rows_;
 };
 
-class VectorSource : public sc_core::sc_module, public Traceable {
+class VectorSource : public sc_core::sc_module, public Traceable, public ClockedStage {
  public:
-  sc_core::sc_in<bool> clk;
   sc_core::sc_in<bool> ready;  // from the comparator
 
   sc_core::sc_signal<bool> valid;
   sc_core::sc_signal<Request> request;
 
-  SC_HAS_PROCESS(VectorSource);
   // Reads the first rows now (elaboration), so a malformed stream fails before simulation.
   VectorSource(sc_core::sc_module_name name, RowStream& stream, const SpecularUnit& unit,
                const SlotMap& slots, RowRing& ring, SimControl& control, bool tracing);
@@ -54,9 +52,9 @@ class VectorSource : public sc_core::sc_module, public Traceable {
   bool empty() const { return presented_ == 0; }
 
   void add_traces(VcdWriter& vcd, const std::string& prefix) const override;
+  void tick() override;
 
  private:
-  void tick();
   void load();  // presents the read-ahead row (or drops valid at the end) and reads the next one
 
   RowStream& stream_;

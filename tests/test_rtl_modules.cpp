@@ -26,8 +26,9 @@
 namespace glint::rtl {
 namespace {
 
-// Calls `on_edge(c)` at every rising edge c: reads what the modules present at c and writes the
-// inputs they will see at c + 1.
+// The clock's process of a test: at every rising edge c, calls `on_edge(c)`, which reads what the
+// modules present at c and writes the inputs they will see at c + 1, and ticks the modules under
+// test (ClockedStage), as the lane's clock does.
 class Driver : public sc_core::sc_module {
  public:
   sc_core::sc_in<bool> clk;
@@ -39,9 +40,15 @@ class Driver : public sc_core::sc_module {
     dont_initialize();
   }
 
+  void ticks(ClockedStage& stage) { stages_.push_back(&stage); }
+
  private:
-  void tick() { on_edge_(cycle_++); }
+  void tick() {
+    on_edge_(cycle_++);
+    for (ClockedStage* s : stages_) s->tick();
+  }
   std::function<void(std::uint64_t)> on_edge_;
+  std::vector<ClockedStage*> stages_;
   std::uint64_t cycle_ = 0;
 };
 
@@ -103,9 +110,9 @@ TEST(RtlModules, VectorSourceAdvancesOnlyOnHandshake) {
     seen.push_back({source.valid.read(), ready.read(), source.request.read()});
     ready.write(c + 1 < pattern.size() ? pattern[c + 1] : true);
   });
-  source.clk(clk);
-  source.ready(ready);
+  driver.ticks(source);
   driver.clk(clk);
+  source.ready(ready);
   run_cycles(14);
 
   ASSERT_EQ(seen.size(), 14u);
@@ -162,10 +169,10 @@ void check_pipeline(const std::string& spec, const std::vector<std::uint64_t>& s
     in_valid.write(starts_at(c + 1));
     if (starts_at(c + 1)) in_request.write(request_for(c + 1));
   });
-  pipe->clk(clk);
+  driver.ticks(*pipe);
+  driver.clk(clk);
   pipe->in_valid(in_valid);
   pipe->in_request(in_request);
-  driver.clk(clk);
   run_cycles(cycles);
 
   EXPECT_EQ(pipe->violations(), 0u);
@@ -284,12 +291,12 @@ TEST(RtlModules, TauComparatorBypassCreditsAndIIGate) {
     credit_return.write(c == 4 || c == 9);
     unit_ready.write(!(c + 1 >= 10 && c + 1 <= 12));
   });
-  cmp.clk(clk);
+  driver.ticks(cmp);
+  driver.clk(clk);
   cmp.src_valid(src_valid);
   cmp.src_request(src_request);
   cmp.unit_ready(unit_ready);
   cmp.credit_return(credit_return);
-  driver.clk(clk);
   run_cycles(20);
 
   ASSERT_EQ(next, 4u);  // request 4 never gets a credit
@@ -353,11 +360,11 @@ TEST(RtlModules, ResultMergeOrderFlowThroughBackpressure) {
     drive(compute, compute_at, c + 1);
     sink_ready.write(c + 1 != 6);
   });
-  merge.clk(clk);
+  driver.ticks(merge);
+  driver.clk(clk);
   merge.bypass_in(bypass);
   merge.compute_in(compute);
   merge.sink_ready(sink_ready);
-  driver.clk(clk);
   run_cycles(12);
 
   ASSERT_EQ(retired.size(), 4u);
@@ -422,10 +429,10 @@ TEST(RtlModules, ScoreboardHonoursSinkReady) {
       }
     }
   });
-  sb.clk(clk);
+  driver.ticks(sb);
+  driver.clk(clk);
   sb.head_valid(head_valid);
   sb.head(head);
-  driver.clk(clk);
   run_cycles(60);
 
   for (std::uint64_t c = 0; c < ready_seen.size(); ++c) EXPECT_EQ(ready_seen[c], sink.ready(c));
