@@ -379,6 +379,26 @@ TEST_F(BadScene, Limits) {
   EXPECT_EQ(load_scene(write(s)).meshes[0].faces.size(), 200u * 2 * 2 * 2);
 }
 
+// The world's extent (kSceneMaxCoordinate): a vertex at 1e308, scaled, once made the ray caster's
+// BVH bin NaNs (found by fuzz_scene); spheres and planes are held to it too.
+TEST_F(BadScene, CoordinatesBeyondTheExtent) {
+  write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 -1e8 1\nvn 0 0 1\nf 1//1 2//1 3//1\n");
+  json s = base_scene();
+  s["objects"] = {{{"type", "mesh"}, {"file", "tri.obj"}, {"material", "a"}, {"scale", 5}}};
+  EXPECT_EQ(load_scene(write(s)).meshes.size(), 1u);  // 5e8: inside
+  s["objects"][0]["scale"] = 11;
+  expect_error(s, "objects[0]", "a vertex is beyond the scene's extent");
+  s["objects"][0]["scale"] = 1;
+  s["objects"][0]["translate"] = {0, 0, 2e9};
+  expect_error(s, "objects[0]", "beyond the scene's extent");
+  s = base_scene();
+  s["objects"][1]["radius"] = 1e9;
+  expect_error(s, "objects[1]", "the sphere reaches beyond");
+  s = base_scene();
+  s["objects"][0]["point"] = {0, -1e300, 0};
+  expect_error(s, "objects[0].point", "the point is beyond");
+}
+
 // ---- OBJ meshes --------------------------------------------------------------------------------
 
 class ObjScene : public BadScene {

@@ -1,6 +1,7 @@
 #include "scene/bvh.h"
 
 #include <array>
+#include <cmath>
 #include <stdexcept>
 
 namespace glint {
@@ -43,7 +44,8 @@ Split best_split(const std::vector<Aabb>& boxes, const std::vector<Vec3>& centre
   Split best;
   for (int a = 0; a < 3; ++a) {
     const double lo = axis(centre_box.lo, a), extent = axis(centre_box.hi, a) - lo;
-    if (!(extent > 0)) continue;
+    // Finite scenes (kSceneMaxCoordinate) have finite extents; an infinite one would bin NaNs.
+    if (!(extent > 0) || !std::isfinite(extent)) continue;
     std::array<Aabb, kBins> bin_box;
     std::array<std::uint32_t, kBins> bin_count{};
     const auto bin_of = [&](std::uint32_t prim) {

@@ -27,6 +27,10 @@ inline constexpr std::size_t kSceneMaxLights = kVectorMaxLights;
 inline constexpr std::size_t kSceneMaxMaterials = kVectorMaxMaterials;
 inline constexpr std::size_t kSceneMaxObjects = 65536;  // entries of "objects"
 inline constexpr std::size_t kSceneMaxPlanes = 64;      // planes are not in the BVH
+// World coordinates of every vertex (after its object's transform) and sphere bound: far beyond
+// any scene, and far enough from DBL_MAX that the ray caster's boxes, extents and areas stay finite
+// (a vertex at 1e308 made the BVH's binning divide infinities).
+inline constexpr double kSceneMaxCoordinate = 1e9;
 inline constexpr std::size_t kSceneMaxFileBytes = std::size_t{64} << 20;  // the JSON file
 inline constexpr int kSceneMaxJsonDepth = 64;  // nested arrays and objects
 

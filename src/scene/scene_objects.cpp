@@ -1,6 +1,8 @@
 #include "scene/scene_objects.h"
 
+#include <cmath>
 #include <filesystem>
+#include <string>
 
 #include "io/input_error.h"
 #include "scene/bezier.h"
@@ -14,6 +16,19 @@ namespace glint {
 namespace {
 
 using scene_json::Node;
+
+// Every coordinate of the ball of radius r around p within kSceneMaxCoordinate (false for NaN).
+bool within_extent(Vec3 p, double r) {
+  for (const double v : {p.x, p.y, p.z}) {
+    if (!(std::abs(v) + r <= kSceneMaxCoordinate)) return false;
+  }
+  return true;
+}
+
+std::string beyond_extent(const std::string& what) {
+  return what + " beyond the scene's extent (every world coordinate within +-" +
+         std::to_string(static_cast<long long>(kSceneMaxCoordinate)) + ")";
+}
 
 class ObjectReader {
  public:
@@ -32,8 +47,10 @@ class ObjectReader {
       add_mesh(node, read_bezier(node));
     } else if (kind == "sphere") {
       node.expect_object({"type", "center", "radius", "material"});
-      scene_.spheres.push_back(
-          {node.at("center").vec3(), node.at("radius").positive(), material(node)});
+      const Vec3 c = node.at("center").vec3();
+      const double r = node.at("radius").positive();
+      if (!within_extent(c, r)) node.fail(beyond_extent("the sphere reaches"));
+      scene_.spheres.push_back({c, r, material(node)});
     } else if (kind == "plane") {
       node.expect_object({"type", "point", "normal", "material"});
       if (scene_.planes.size() == kSceneMaxPlanes) {
@@ -42,7 +59,9 @@ class ObjectReader {
       const Node normal = node.at("normal");
       const Vec3 n = normal.vec3();
       if (!(length(n) > 0)) normal.fail("must not be the zero vector");
-      scene_.planes.push_back({node.at("point").vec3(), normalize(n), material(node)});
+      const Vec3 p = node.at("point").vec3();
+      if (!within_extent(p, 0)) node.at("point").fail(beyond_extent("the point is"));
+      scene_.planes.push_back({p, normalize(n), material(node)});
     } else {
       type.fail("unknown object type " + quote_input(kind) + " (mesh, bezier, sphere or plane)");
     }
@@ -95,6 +114,9 @@ class ObjectReader {
     if (const auto name = node.find("name")) mesh.name = name->string();
     mesh.material = material(node);
     apply(read_transform(node), mesh);
+    for (const Vec3& p : mesh.positions) {
+      if (!within_extent(p, 0)) node.fail(beyond_extent("after its transform, a vertex is"));
+    }
     triangles_ += mesh.faces.size();
     scene_.meshes.push_back(std::move(mesh));
   }
