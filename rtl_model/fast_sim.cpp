@@ -4,6 +4,7 @@
 #include <exception>
 #include <systemc>
 
+#include "eval/engine.h"
 #include "rtl_model/clocked_sim.h"
 
 namespace glint {
@@ -47,7 +48,50 @@ class FastLanes : public sc_core::sc_module {
     }
   }
 
+  // Temporal decoupling: one wait per batch, by the cycles the batch spanned.
+  void advance(std::uint64_t& now_cycles) {
+    std::uint64_t end = now_cycles;
+    for (const TimingEngine& e : engines_) end = std::max(end, e.stats().cycles);
+    if (end > now_cycles) {
+      wait(sc_core::sc_time(options_.clock_period_ns * static_cast<double>(end - now_cycles),
+                            sc_core::SC_NS));
+      now_cycles = end;
+    }
+  }
+
   void work() {
+    if (accumulators_ && !accumulators_->empty() && !on_result_) {
+      work_in_engine();
+    } else {
+      work_by_row();
+    }
+    // No clock and no further events: sc_start() returns on its own (no sc_stop, whose info
+    // message would land on stdout).
+  }
+
+  void work_in_engine() {
+    std::vector<LaneAccumulator*> lanes;
+    std::vector<TimingEngine*> timing;
+    for (std::size_t l = 0; l < units_.size(); ++l) {
+      lanes.push_back(&(*accumulators_)[l]);
+      timing.push_back(&engines_[l]);
+    }
+    EngineOptions eo;
+    eo.threads = options_.threads;
+    eo.window_rows = 32768;
+    EvalEngine engine(slots_, std::move(lanes), std::move(timing), eo);
+    std::vector<VectorRow> rows(std::max<std::size_t>(1, options_.batch));
+    std::uint64_t now_cycles = 0;
+    for (;;) {
+      std::size_t n = 0;
+      while (n < rows.size() && next_row_(rows[n])) ++n;
+      if (n == 0) break;
+      engine.add(rows.data(), n);
+      advance(now_cycles);
+    }
+  }
+
+  void work_by_row() {
     const std::size_t batch = std::max<std::size_t>(1, options_.batch);
     std::vector<VectorRow> rows(batch);
     std::vector<RowReference> refs(batch);
@@ -62,7 +106,6 @@ class FastLanes : public sc_core::sc_module {
         slot[i] = slots_.slot(rows[i]);
         if (stats) refs[i] = make_reference(slots_, slot[i], rows[i].t);
       }
-      std::uint64_t end = now_cycles;
       for (std::size_t l = 0; l < units_.size(); ++l) {
         const SpecularUnit& u = *units_[l];
         TimingEngine& engine = engines_[l];
@@ -75,17 +118,9 @@ class FastLanes : public sc_core::sc_module {
           if (stats) (*accumulators_)[l].add(slot[i], refs[i], t_raw, skipped, out);
           if (on_result_) on_result_(FastResult{l, &rows[i], t_raw, skipped, out, timing});
         }
-        end = std::max(end, engine.stats().cycles);
       }
-      // Temporal decoupling: one wait per batch, by the cycles the batch spanned.
-      if (end > now_cycles) {
-        wait(sc_core::sc_time(options_.clock_period_ns * static_cast<double>(end - now_cycles),
-                              sc_core::SC_NS));
-        now_cycles = end;
-      }
+      advance(now_cycles);
     }
-    // No clock and no further events: sc_start() returns on its own (no sc_stop, whose info
-    // message would land on stdout).
   }
 
   const std::vector<const SpecularUnit*>& units_;

@@ -21,7 +21,10 @@ namespace glint {
 
 struct FastOptions {
   SinkReady sink;
-  std::size_t batch = 4096;  // requests per temporal-decoupling quantum
+  // Requests per temporal-decoupling quantum: each quantum goes through the evaluation engine
+  // (eval/engine.h) at once, so a large one keeps its threads busy.
+  std::size_t batch = 262144;
+  int threads = 1;  // the engine's threads (results do not depend on it)
   double clock_period_ns = 1.0;
   bool colour_stage = false;  // per-channel i*m stage on the computed path (+1 latency)
 };
@@ -38,6 +41,8 @@ struct FastResult {
 // Elaborates the fast-mode module for `units` (one lane each, fed the same stream), runs it to the
 // end of the stream and returns each lane's timing statistics. `accumulators` (one per lane, may be
 // empty) collect the accuracy statistics; `on_result` (may be empty) sees every result in order.
+// With accumulators and no on_result the lanes run in the evaluation engine; otherwise a row at a
+// time (the same results and cycles).
 // Elaborates SystemC: call once per process.
 std::vector<TimingStats> run_fast(const std::vector<const SpecularUnit*>& units,
                                   const SlotMap& slots,

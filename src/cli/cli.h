@@ -47,6 +47,9 @@ void print_json(const nlohmann::json& j);
 // --display-bits N: the display depth errors are counted in (LSBs of an N-bit output), 1..16.
 void add_display_bits_option(CLI::App* sub, int& bits);
 
+// --threads N: 1..256 threads (0, absent: every core); results do not depend on it.
+void add_threads_option(CLI::App* sub, int& threads);
+
 // --slots N: a chip of fixed capacity N (1..kMaxSlotCapacity); 0 (absent): sized to the stream.
 void add_slots_option(CLI::App* sub, std::size_t& slots);
 // make_slots' refusal of a stream that needs more slots than --slots N, rethrown naming the option.

@@ -41,6 +41,12 @@ void add_display_bits_option(CLI::App* sub, int& bits) {
       ->default_val(8);
 }
 
+void add_threads_option(CLI::App* sub, int& threads) {
+  sub->add_option("--threads", threads,
+                  "Threads, 1..256 (default: every core); results do not depend on it")
+      ->check(CLI::Range(1, 256));
+}
+
 void add_slots_option(CLI::App* sub, std::size_t& slots) {
   sub->add_option_function<std::string>(
          "--slots",

@@ -113,9 +113,7 @@ void add_render_command(CLI::App& app, int& status) {
   sub->add_option("--write-vectors", o->vectors,
                   "Also write the scene's shading requests as a vector file (for eval, sim, "
                   "regress; - for stdout, then the summary goes to stderr)");
-  sub->add_option("--threads", o->threads,
-                  "Threads, 1..256 (default: every core); results do not depend on it")
-      ->check(CLI::Range(1, 256));
+  add_threads_option(sub, o->threads);
   add_slots_option(sub, o->slots);
   sub->add_flag("--json", o->json, "Print the report on stdout instead of the summary");
   sub->callback([o, &status] { status = guarded([&] { return run_render(*o); }); });

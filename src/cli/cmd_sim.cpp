@@ -17,6 +17,7 @@
 #include <string_view>
 
 #include "cli/cli.h"
+#include "eval/parallel.h"
 #include "eval/sim_report.h"
 #include "io/input_source.h"
 #include "io/output_set.h"
@@ -33,7 +34,8 @@ struct SimOptions {
   std::string report, dump, vcd, vcd_window, mode = "auto";
   double sink_ready = 1.0;
   std::uint64_t seed = 1;
-  std::size_t batch = 4096;
+  std::size_t batch = 262144;
+  int threads = 0;  // --threads N; 0: every core
   int display_bits = 8;
   std::size_t slots = 0;  // --slots N; 0: sized to the stream
   bool json = false;
@@ -204,6 +206,7 @@ SimRun run_fast_mode(const SimOptions& o, VectorReader& reader, SimLanes& lanes,
   FastOptions fo;
   fo.sink = SinkReady{o.sink_ready, o.seed};
   fo.batch = o.batch;
+  fo.threads = o.threads > 0 ? o.threads : default_threads();
   fo.colour_stage = lanes.colour;
   SimRun run;
   run.timing = run_fast(lanes.units, lanes.slots, next, fo, &lanes.acc, on_result);
@@ -322,9 +325,11 @@ void add_sim_command(CLI::App& app, int& status) {
         o->seed = *v;
       },
       "Seed of the sink backpressure pattern (0..2^64-1, default 1)");
-  sub->add_option("--batch", o->batch, "Fast mode: requests per time quantum (1..16777216)")
+  sub->add_option("--batch", o->batch,
+                  "Fast mode: requests per time quantum (1..16777216), evaluated at once")
       ->check(CLI::Range(1, 1 << 24))
       ->capture_default_str();
+  add_threads_option(sub, o->threads);
   add_display_bits_option(sub, o->display_bits);
   add_slots_option(sub, o->slots);
   sub->add_flag("--json", o->json, "Print the report as one JSON document on stdout");

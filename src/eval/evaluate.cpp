@@ -11,6 +11,8 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "eval/engine.h"
+
 namespace glint {
 namespace {
 
@@ -300,88 +302,6 @@ RowReference make_reference(const SlotMap& slots, std::size_t slot, double t, in
 }
 
 namespace {
-// The memo holds r per (slot, code) for inputs up to 16 bits, up to this many codes over all slots
-// (32 MiB): beyond it every request computes its parts (a file with thousands of materials must
-// not allocate per slot what a short stream never revisits).
-constexpr std::size_t kMemoCodes = std::size_t{1} << 22;
-}  // namespace
-
-LaneAccumulator::LaneAccumulator(const SpecularUnit& unit, const SlotMap& slots, int display_bits)
-    : unit_(unit), slots_(slots) {
-  stats_.name = unit.name();
-  stats_.spec = unit.canonical_spec();
-  stats_.display_bits = display_bits;
-  ulp_ = unit.out_format().ulp();
-  stats_.out_ulp = ulp_;
-  in_ulp_ = unit.in_format().ulp();
-  display_ = display_scale(display_bits);
-  slot_state_.assign(unit.slots(), -1);
-  const int width = unit.in_format().width();
-  if (width <= 16 && unit.slots() << width <= kMemoCodes) memo_.resize(unit.slots());
-}
-
-void LaneAccumulator::fold_code(std::size_t slot, std::int64_t t_raw, double fixed, double t,
-                                double r_code) {
-  const double model = unit_.model(slot, t_raw);
-  const double ideal = unit_.float_model(slot, static_cast<double>(t_raw) * in_ulp_);
-  stats_.approximation.add(ideal - r_code, t);
-  stats_.parameter.add(model - ideal, t);
-  stats_.datapath.add(fixed - model, t);
-}
-
-double LaneAccumulator::code_reference(std::size_t slot, std::int64_t t_raw, double fixed,
-                                       double t) {
-  if (memo_.empty()) {
-    const double r = reference_value(slots_, slot, static_cast<double>(t_raw) * in_ulp_);
-    fold_code(slot, t_raw, fixed, t, r);
-    return r;
-  }
-  std::vector<double>& m = memo_[slot];
-  if (m.empty())
-    m.assign(std::size_t{1} << unit_.in_format().width(), std::numeric_limits<double>::quiet_NaN());
-  double& r = m[static_cast<std::size_t>(t_raw - unit_.in_format().raw_min())];
-  if (std::isnan(r)) {
-    r = reference_value(slots_, slot, static_cast<double>(t_raw) * in_ulp_);
-    fold_code(slot, t_raw, fixed, t, r);
-  }
-  return r;
-}
-
-void LaneAccumulator::add(std::size_t slot, const RowReference& ref, std::int64_t t_raw,
-                          bool skipped, std::int64_t out_raw) {
-  if (slot_state_[slot] < 0) {
-    const auto [it, fresh] = contract_of_.emplace(contract_key(slot), stats_.slots.size());
-    if (fresh) {
-      stats_.slots.push_back(slot_contract(unit_, slot, slots_));
-    } else {
-      SlotContract c = stats_.slots[it->second];  // the same sweep: only who it is differs
-      c.slot = slot;
-      c.name = slots_.params[slot].name;
-      c.weight = slots_.c_y[slot];
-      stats_.slots.push_back(std::move(c));
-    }
-    slot_state_[slot] = stats_.slots.back().always_skipped ? 1 : 0;
-  }
-  const double fixed = static_cast<double>(out_raw) * ulp_;
-  const double err = fixed - ref.value;
-  ++stats_.vectors;
-  stats_.skipped += skipped;
-  stats_.weighted.add(err * slots_.c_y[slot], ref.t);
-  // A lobe that never reaches eps on the pixel is counted apart: its scalar error is the whole
-  // lobe and would hide every other slot's (it stays in the weighted error and the digest).
-  if (slot_state_[slot] == 1) {
-    ++stats_.always_skipped_vectors;
-  } else {
-    add_scalar(slot, ref, t_raw, skipped, fixed);
-  }
-  // FNV-1a style over the whole result word (skip flag in bit 63), with a shift-xor so every bit
-  // of the word reaches every bit of the digest.
-  const std::uint64_t word = static_cast<std::uint64_t>(out_raw) ^ (std::uint64_t{skipped} << 63);
-  digest_ = (digest_ ^ word) * 0x100000001b3ULL;
-  digest_ ^= digest_ >> 29;
-}
-
-namespace {
 
 LaneAccumulator::ContractKey key_of(const SpecularUnit& unit, const SlotMap& slots,
                                     std::size_t slot) {
@@ -427,20 +347,6 @@ void check_contract_codes(const std::vector<const SpecularUnit*>& units, const S
         total, slots.params.size(), shares, kMaxContractCodes));
 }
 
-void LaneAccumulator::add_scalar(std::size_t slot, const RowReference& ref, std::int64_t t_raw,
-                                 bool skipped, double fixed) {
-  stats_.total.add(fixed - ref.value, ref.t);
-  if (skipped) {
-    stats_.skip.add(ref.value, ref.t);
-  } else {
-    stats_.input.add(code_reference(slot, t_raw, fixed, ref.t) - ref.value, ref.t);
-  }
-  const long ref_code = ref.display_bits == stats_.display_bits
-                            ? ref.display
-                            : std::lround(std::clamp(ref.value, 0.0, 1.0) * display_);
-  if (std::lround(std::clamp(fixed, 0.0, 1.0) * display_) != ref_code) ++stats_.mismatch;
-}
-
 Evaluator::Evaluator(const VectorHeader& header, const std::vector<UnitSpec>& specs,
                      int display_bits, std::size_t slot_capacity)
     : slots_(make_slots(header, slot_capacity)), display_bits_(display_bits) {
@@ -459,6 +365,8 @@ Evaluator::Evaluator(const VectorHeader& header, const std::vector<UnitSpec>& sp
     lanes_.back().stats().description = units_[i]->describe();
   }
 }
+
+Evaluator::~Evaluator() = default;
 
 void Evaluator::add(const VectorRow& row, const std::function<void(const EvalRecord&)>& dump) {
   const std::size_t slot = slots_.slot(row);

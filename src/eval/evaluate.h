@@ -16,6 +16,7 @@
 #include "eval/contract.h"
 #include "io/vectors.h"
 #include "reference/reference.h"
+#include "timing/timing.h"
 #include "units/catalogue.h"
 #include "units/slot_plan.h"
 
@@ -165,11 +166,49 @@ struct RowReference {
 };
 RowReference make_reference(const SlotMap& slots, std::size_t slot, double t, int display_bits = 8);
 
-// Accuracy statistics of one lane (a unit), fed one result at a time: by `glint eval`, by the fast
-// mode's batch loop and by the clocked mode's scoreboard. One accumulation for every path.
+// What the computed path of one (slot, input code) always gives: the datapath's result, the lobe
+// at the code's value r(t_c), and the parameter, approximation and datapath parts (contract.h),
+// signed. They depend on the code alone, so a lane works them out once per code for narrow inputs.
+struct CodeFacts {
+  std::int64_t out = 0;                                   // eval(slot, code)
+  double r = 0;                                           // reference_value at the code's value
+  double approximation = 0, parameter = 0, datapath = 0;  // F - r, M - F, fixed - M
+};
+
+// The statistics of a run of consecutive rows of one lane, worked out on any thread and merged
+// into the lane in stream order (LaneAccumulator::accumulate, merge). Everything here is a count
+// or a largest value with the first row that reached it, so partials merge exactly; the sum of
+// squares and the digest are sequential folds, so the partial keeps each row's term for the
+// merge to fold in order.
+struct LanePartial {
+  struct MaxAt {
+    double value, t;
+  };
+  std::uint64_t vectors = 0, skipped = 0, always_skipped = 0, mismatch = 0;
+  MaxAt total{-1, 0}, weighted{-1, 0};  // -1: no row yet (ErrorStats: its first row sets it)
+  MaxAt input{0, 0}, parameter{0, 0}, approximation{0, 0}, datapath{0, 0}, skip{0, 0};
+  std::vector<double> square;       // per row: err^2 (0 for rows in no scalar statistic)
+  std::vector<std::uint64_t> word;  // per row: the digest word (skip flag in bit 63)
+  // Memoised (slot, code) pairs whose parts these rows folded, first seen before this window.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> folded;
+};
+
+// The rows of a window, prepared once for every lane: t, slot and the float reference.
+struct RowsView {
+  const VectorRow* rows = nullptr;
+  const std::uint32_t* slot = nullptr;
+  const double* reference = nullptr;
+};
+
+// Accuracy statistics of one lane (a unit): fed one result at a time by `glint eval --dump`
+// and the clocked mode's scoreboard (add), or a run of rows at a time by the evaluation engine
+// (eval/engine.h: begin_slot, accumulate on any thread, merge in stream order). One accumulation
+// for every path: the results are the same bits either way.
 class LaneAccumulator {
  public:
   LaneAccumulator(const SpecularUnit& unit, const SlotMap& slots, int display_bits = 8);
+  LaneAccumulator(LaneAccumulator&&) noexcept;
+  ~LaneAccumulator();
 
   // What a slot's contract depends on besides its name and weight: its datapath group, its
   // threshold, its lobe (kind, shininess, roughness) and whether it is always skipped. Slots with
@@ -183,13 +222,25 @@ class LaneAccumulator {
   const UnitStats& stats() const { return stats_; }
   UnitStats& stats() { return stats_; }
 
+  // The engine's side. A slot's first use (its contract, in stream order); then rows [a, b) of a
+  // window into `p` (const: any number of threads at once, on disjoint partials), their results
+  // into raw/skipped (when not null, indexed from a); then merge() of the partials in order, each
+  // row's skip flag also through `timing` when given.
+  void begin_slot(std::size_t slot);
+  bool slot_begun(std::size_t slot) const { return slot_state_[slot] >= 0; }
+  void accumulate(const RowsView& rows, std::size_t a, std::size_t b, LanePartial& p,
+                  std::int64_t* raw, std::uint8_t* skipped) const;
+  void merge(const LanePartial& p, TimingEngine* timing);
+
  private:
-  // The lobe at a code's value, r(t_c). The parameter, approximation and datapath parts depend on
-  // the code alone (contract.h), so they are folded in at a code's first visit; a long stream
-  // revisits the same codes, and M, F and r are the costly part of the check. Memoised per
-  // (slot, code) for narrow inputs (NaN: not visited yet).
-  double code_reference(std::size_t slot, std::int64_t t_raw, double fixed, double t);
-  void fold_code(std::size_t slot, std::int64_t t_raw, double fixed, double t, double r_code);
+  struct Memo;
+  // The facts of (slot, code), from the memo for narrow inputs (filled on first use; safe from
+  // any thread), computed otherwise.
+  CodeFacts facts(std::size_t slot, std::int64_t t_raw) const;
+  template <bool kMemo>
+  void accumulate_rows(const RowsView& rows, std::size_t a, std::size_t b, LanePartial& p,
+                       std::int64_t* raw, std::uint8_t* skipped) const;
+  CodeFacts compute_facts(std::size_t slot, std::int64_t t_raw) const;
   void add_scalar(std::size_t slot, const RowReference& ref, std::int64_t t_raw, bool skipped,
                   double fixed);
   ContractKey contract_key(std::size_t slot) const;
@@ -199,12 +250,13 @@ class LaneAccumulator {
   UnitStats stats_;
   std::uint64_t digest_ = 0xcbf29ce484222325ULL;
   double ulp_ = 0, in_ulp_ = 0, display_ = 0;
+  std::vector<std::int64_t> tau_;  // each slot's comparator threshold
   // Per slot: -1 not seen yet (its contract not computed), 0 computed, 1 always skipped.
   std::vector<std::int8_t> slot_state_;
   // Contracts already swept, by what they depend on (contract_key): slots of one datapath group
   // with the same threshold and lobe share one sweep (a file of many identical materials).
   std::map<ContractKey, std::size_t> contract_of_;  // index into stats_.slots
-  std::vector<std::vector<double>> memo_;
+  std::unique_ptr<Memo> memo_;                      // null: inputs too wide to memoise
 };
 
 // One evaluated request for the optional per-vector dump.
@@ -234,21 +286,27 @@ struct BatchResults {
   std::vector<std::uint8_t> skipped;
 };
 
+class EvalEngine;
+
 class Evaluator {
  public:
   // slot_capacity: a chip of that many slots (make_slots); 0: sized to the stream.
   Evaluator(const VectorHeader& header, const std::vector<UnitSpec>& specs, int display_bits = 8,
             std::size_t slot_capacity = 0);
+  ~Evaluator();
 
   void add(const VectorRow& row, const std::function<void(const EvalRecord&)>& dump = {});
-  // The same as add() on each row in turn, the units spread over up to `threads` threads: each
-  // unit's lane still sees the rows in order, so statistics, digests and results are identical
-  // for any thread count.
+  // The same as add() on each row in turn, through the evaluation engine (eval/engine.h) on up to
+  // `threads` threads: statistics, digests and results are identical for any thread count.
   void add_batch(const VectorRow* rows, std::size_t count, BatchResults& out, int threads = 1);
+  // The same without the per-row results.
+  void add_rows(const VectorRow* rows, std::size_t count, int threads = 1);
   std::vector<UnitStats> stats() const;
   const std::string& label(std::size_t unit) const { return lanes_[unit].stats().name; }
   // The digest of unit u's results so far (LaneAccumulator::digest; sim reports it as "digest").
   std::uint64_t digest(std::size_t unit) const { return lanes_[unit].digest(); }
+  // Unit u's lane, for an engine that runs it with others (sweep/engine.h).
+  LaneAccumulator& lane(std::size_t unit) { return lanes_[unit]; }
   const std::vector<std::unique_ptr<SpecularUnit>>& units() const { return units_; }
   const SlotMap& slots() const { return slots_; }
   // The report's version, slots and units (the caller adds vectors_file and rows).
@@ -259,6 +317,9 @@ class Evaluator {
   std::vector<std::unique_ptr<SpecularUnit>> units_;
   std::vector<LaneAccumulator> lanes_;
   int display_bits_ = 8;
+  void run_engine(const VectorRow* rows, std::size_t count, BatchResults* out, int threads);
+  std::unique_ptr<EvalEngine> engine_;  // made by the first add_batch or add_rows
+  int engine_threads_ = 0;
 };
 
 // One line per unit of what the scene elaborated (slots, datapath groups, table entries, n

@@ -69,34 +69,29 @@ SweepEngine::SweepEngine(const VectorHeader& header, std::vector<SweepConfig> co
       block->timing.emplace_back(lane_timing(*unit, colour_), settings_.sink);
     blocks[b] = std::move(block);
   });
-  for (auto& b : blocks)
-    if (!b->members.empty()) blocks_.push_back(std::move(b));
+  std::vector<LaneAccumulator*> lanes;
+  std::vector<TimingEngine*> timing;
+  for (auto& b : blocks) {
+    if (b->members.empty()) continue;
+    for (std::size_t u = 0; u < b->members.size(); ++u) {
+      lanes.push_back(&b->ev->lane(u));
+      timing.push_back(&b->timing[u]);
+    }
+    blocks_.push_back(std::move(b));
+  }
+  EngineOptions options;
+  options.threads = settings_.jobs;
+  options.window_rows = settings_.chunk_rows;
+  engine_ = std::make_unique<EvalEngine>(slots_, std::move(lanes), std::move(timing), options);
 }
 
 SweepEngine::~SweepEngine() = default;
 
 void SweepEngine::add(const VectorRow* rows, std::size_t count) {
-  for (std::size_t at = 0; at < count; at += settings_.chunk_rows) {
-    const std::size_t n = std::min(settings_.chunk_rows, count - at);
-    for (auto& block : blocks_) {
-      const auto t0 = Clock::now();
-      // The untimed datapaths and statistics of every unit in the block (threads over units)...
-      block->ev->add_batch(rows + at, n, batch_, settings_.jobs);
-      const auto t1 = Clock::now();
-      // ...then each unit's skip pattern through its own timing recurrences, in stream order.
-      // Each on a local copy: neighbouring engines share cache lines, and two threads writing
-      // their statistics every row would take turns owning them (false sharing).
-      parallel_for(block->timing.size(), settings_.jobs, [&](std::size_t u) {
-        TimingEngine engine = block->timing[u];
-        const std::uint8_t* skipped = batch_.skipped.data() + u * n;
-        for (std::size_t i = 0; i < n; ++i) engine.next(skipped[i] != 0);
-        block->timing[u] = std::move(engine);
-      });
-      profile_.evaluate_s += std::chrono::duration<double>(t1 - t0).count();
-      profile_.timing_s += std::chrono::duration<double>(Clock::now() - t1).count();
-    }
-    rows_ += n;
-  }
+  const auto t0 = Clock::now();
+  engine_->add(rows, count);
+  profile_.evaluate_s += std::chrono::duration<double>(Clock::now() - t0).count();
+  rows_ += count;
 }
 
 std::vector<nlohmann::json> SweepEngine::results() const {

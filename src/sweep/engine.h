@@ -3,11 +3,10 @@
 // of them before the next is read, so memory is flat in the stream's length and many
 // configurations share one reading pass.
 //
-// Per chunk, the configurations are evaluated in blocks by eval's Evaluator::add_batch (the
-// untimed bit-accurate datapaths and the accuracy statistics `glint eval` reports, spread over
-// threads by unit) and each configuration's skip pattern then drives its own TimingEngine
-// (timing/timing.h, the recurrences `glint sim`'s fast mode runs). Issue 9's fast evaluation
-// engine replaces the body of SweepEngine::add and nothing else.
+// Every configuration is a lane of one evaluation engine (eval/engine.h, the engine under `glint
+// eval` and `glint sim`'s fast mode): the untimed bit-accurate datapaths, the accuracy statistics
+// `glint eval` reports and the timing recurrences `glint sim` runs (timing/timing.h), each
+// configuration's window of rows one task, the float reference computed once for all of them.
 #pragma once
 
 #include <cstddef>
@@ -16,6 +15,7 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "eval/engine.h"
 #include "eval/evaluate.h"
 #include "io/vectors.h"
 #include "sweep/grid.h"
@@ -28,8 +28,8 @@ struct SweepSettings {
   std::size_t slot_capacity = 0;  // --slots N: a chip of N slots; 0: sized to the stream
   int jobs = 1;                   // threads (results do not depend on it)
   SinkReady sink;                 // sink backpressure of the timing model (default: always ready)
-  // Configurations per Evaluator, and rows per chunk: the per-chunk results buffer holds
-  // block x chunk_rows results (~9 bytes each).
+  // Configurations per Evaluator (built on the threads by block), and rows per window of the
+  // engine (each thread keeps ~16 bytes per row of it).
   std::size_t block = 64;
   std::size_t chunk_rows = 16384;
 };
@@ -59,10 +59,10 @@ class SweepEngine {
   // cost, timing, operations, errors and digest, or only the spec and "refused". "image",
   // "error" and "pareto" are added later.
   std::vector<nlohmann::json> results() const;
-  // Where add() spent its time (seconds of wall clock, over every call): the untimed datapaths and
-  // statistics (Evaluator::add_batch) and the timing recurrences (TimingEngine).
+  // Where add() spent its time (seconds of wall clock, over every call): the engine's (datapaths,
+  // statistics and timing recurrences).
   struct Profile {
-    double evaluate_s = 0, timing_s = 0;
+    double evaluate_s = 0;
   };
   const Profile& profile() const { return profile_; }
 
@@ -77,7 +77,7 @@ class SweepEngine {
   bool colour_ = false;
   std::vector<std::unique_ptr<Block>> blocks_;
   std::vector<std::string> refused_;  // per configuration: why it was refused, or empty
-  BatchResults batch_;
+  std::unique_ptr<EvalEngine> engine_;
   std::uint64_t rows_ = 0;
   Profile profile_;
 };

@@ -15,7 +15,7 @@ TimingEngine::TimingEngine(const UnitTiming& timing, const SinkReady& sink)
 }
 
 ResultTiming TimingEngine::next(bool skipped) {
-  const std::size_t slot = static_cast<std::size_t>(index_ % retire_ring_.size());
+  const std::size_t slot = ring_at_;
   const std::uint64_t order = any_ ? last_issue_ + 1 : 0;
   const std::uint64_t credit = index_ >= retire_ring_.size() ? retire_ring_[slot] + 1 : 0;
   const std::uint64_t unit =
@@ -34,7 +34,8 @@ ResultTiming TimingEngine::next(bool skipped) {
   r.done = r.issue + 1 + (skipped ? 0 : static_cast<std::uint64_t>(timing_.latency));
   std::uint64_t c = std::max(r.done, any_ ? last_retire_ + 1 : 0);
   const std::uint64_t earliest = c;
-  while (!sink_.ready(c)) ++c;
+  if (sink_.probability < 1.0)
+    while (!sink_.ready(c)) ++c;
   r.retire = c;
   stats_.sink_wait += c - earliest;
 
@@ -48,6 +49,7 @@ ResultTiming TimingEngine::next(bool skipped) {
   }
   any_ = true;
   ++index_;
+  if (++ring_at_ == retire_ring_.size()) ring_at_ = 0;
 
   const std::uint64_t lat = r.retire - r.issue;
   stats_.latency_min = stats_.results ? std::min(stats_.latency_min, lat) : lat;

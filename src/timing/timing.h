@@ -88,6 +88,7 @@ class TimingEngine {
   SinkReady sink_;
   TimingStats stats_;
   std::vector<std::uint64_t> retire_ring_;  // r_{i-B} .. r_{i-1}
+  std::size_t ring_at_ = 0;                 // index_ mod B, counted: no division per request
   std::uint64_t index_ = 0;
   std::uint64_t last_issue_ = 0, last_retire_ = 0, last_compute_issue_ = 0;
   bool any_ = false, any_compute_ = false;

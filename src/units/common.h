@@ -48,9 +48,12 @@ inline double pow2(int e) {
 inline std::int64_t quantize_input(double t, const QFormat& in) {
   const double c = t <= 0.0 ? 0.0 : (t >= 1.0 ? 1.0 : t);
   if (in.frac_bits >= 0 && in.frac_bits <= 52 && in.raw_one() != 0) {
-    // c * 2^F is exact and below 2^53; nearbyint rounds half to even in the default rounding
-    // mode, which is exactly kRndConv, and 1.0 is representable so nothing saturates.
-    return static_cast<std::int64_t>(std::nearbyint(c * pow2(in.frac_bits)));
+    // c * 2^F is exact and at most 2^52, and 1.0 is representable so nothing saturates. Adding
+    // and taking away 2^52 rounds it to an integer, half to even (the sum lies in [2^52, 2^53],
+    // where doubles are the integers), in the default rounding mode, which is exactly kRndConv:
+    // what std::nearbyint does, without its library call.
+    const double x = c * pow2(in.frac_bits);
+    return static_cast<std::int64_t>((x + 0x1.0p52) - 0x1.0p52);
   }
   return Fixed::from_double(c, in, Quant::kRndConv, Overflow::kSat).raw();
 }

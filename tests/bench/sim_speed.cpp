@@ -1,9 +1,10 @@
 // Simulation speed: one run per process (SystemC elaborates once), printing figures.
 //   sim_speed [--vectors N] [--units all|SPEC[;SPEC...]] [--mode fast|clocked]
-//             [--vcd FILE] [--vcd-window FIRST:LAST]
+//             [--vcd FILE] [--vcd-window FIRST:LAST] [--threads N] [--t-min T]
 // The stream is generated on the fly (no storage, so memory stays flat in N): t uniform over
-// [-1, 1] from a fixed-seed generator, one white Blinn material n = 50, eps = 1e-3. Clocked mode
-// gives every lane its own generator (same seed, same rows); the sink is always ready. --vcd (and
+// [T, 1] (--t-min, default -1) from a fixed-seed generator, one white Blinn material n = 50, eps =
+// 1e-3. Clocked mode gives every lane its own generator (same seed, same rows); the sink is always
+// ready. --vcd (and
 // --vcd-window) trace the clocked run as `glint sim --vcd` does.
 #include <fmt/format.h>
 #include <sys/resource.h>
@@ -26,11 +27,11 @@ namespace {
 // The benchmark stream: `count` rows from a 64-bit LCG.
 class GeneratedRows {
  public:
-  explicit GeneratedRows(std::uint64_t count) : count_(count) {}
+  GeneratedRows(std::uint64_t count, double t_min) : count_(count), t_min_(t_min) {}
   bool next(glint::VectorRow& row) {
     if (produced_ == count_) return false;
     state_ = state_ * 6364136223846793005ULL + 1442695040888963407ULL;
-    row.t = static_cast<double>(state_ >> 11) * 0x1.0p-52 - 1.0;
+    row.t = t_min_ + static_cast<double>(state_ >> 11) * 0x1.0p-53 * (1.0 - t_min_);
     row.material = 0;
     row.line = ++produced_;
     return true;
@@ -38,11 +39,12 @@ class GeneratedRows {
 
  private:
   std::uint64_t count_, produced_ = 0, state_ = 0x243F6A8885A308D3ULL;
+  double t_min_;
 };
 
 class GeneratedStream final : public glint::RowStream {
  public:
-  explicit GeneratedStream(std::uint64_t count) : rows_(count) {}
+  GeneratedStream(std::uint64_t count, double t_min) : rows_(count, t_min) {}
   bool next(glint::VectorRow& row) override { return rows_.next(row); }
 
  private:
@@ -66,12 +68,16 @@ std::vector<std::string> split(const std::string& s) {
 int sc_main(int argc, char* argv[]) {
   std::uint64_t vectors = 10'000'000;
   std::string units_arg = "schlick", mode = "fast", vcd, window;
+  int threads = 1;
+  double t_min = -1.0;
   for (int i = 1; i + 1 < argc; i += 2) {
     if (!std::strcmp(argv[i], "--vectors")) vectors = std::stoull(argv[i + 1]);
     if (!std::strcmp(argv[i], "--units")) units_arg = argv[i + 1];
     if (!std::strcmp(argv[i], "--mode")) mode = argv[i + 1];
     if (!std::strcmp(argv[i], "--vcd")) vcd = argv[i + 1];
     if (!std::strcmp(argv[i], "--vcd-window")) window = argv[i + 1];
+    if (!std::strcmp(argv[i], "--threads")) threads = std::stoi(argv[i + 1]);
+    if (!std::strcmp(argv[i], "--t-min")) t_min = std::stod(argv[i + 1]);
   }
   if (!vcd.empty() && mode != "clocked") {
     std::fprintf(stderr, "--vcd needs --mode clocked\n");
@@ -99,10 +105,11 @@ int sc_main(int argc, char* argv[]) {
   const auto start = std::chrono::steady_clock::now();
   std::vector<glint::TimingStats> stats;
   if (mode == "fast") {
-    GeneratedRows rows(vectors);
+    GeneratedRows rows(vectors, t_min);
+    glint::FastOptions options;
+    options.threads = threads;
     stats = glint::run_fast(
-        units, slots, [&](glint::VectorRow& row) { return rows.next(row); }, glint::FastOptions{},
-        &acc);
+        units, slots, [&](glint::VectorRow& row) { return rows.next(row); }, options, &acc);
     for (std::size_t i = 0; i < units.size(); ++i) skipped[i] = acc[i].stats().skipped;
   } else if (mode == "clocked") {
     glint::ClockedOptions options;
@@ -112,8 +119,9 @@ int sc_main(int argc, char* argv[]) {
       options.vcd_first = std::stoull(window.substr(0, colon));
       options.vcd_last = std::stoull(window.substr(colon + 1));
     }
-    stats = glint::run_clocked(
-        units, slots, [&] { return std::make_unique<GeneratedStream>(vectors); }, options, {});
+    stats = glint::run_clocked(units, slots,
+                               [&] { return std::make_unique<GeneratedStream>(vectors, t_min); },
+                               options, {});
     for (std::size_t i = 0; i < units.size(); ++i)
       skipped[i] = stats[i].results - stats[i].computed;
   } else {
@@ -124,9 +132,11 @@ int sc_main(int argc, char* argv[]) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   rusage ru{};
   getrusage(RUSAGE_SELF, &ru);
-  fmt::print("mode {}{} units {} vectors {}: {:.3f} s, {:.2f} M vectors/s, max RSS {:.1f} MB\n",
-             mode, vcd.empty() ? "" : " (VCD)", units.size(), vectors, secs,
-             static_cast<double>(vectors) / secs / 1e6, static_cast<double>(ru.ru_maxrss) / 1024.0);
+  fmt::print(
+      "mode {}{} units {} vectors {} threads {}: {:.3f} s, {:.2f} M vectors/s, max RSS {:.1f} "
+      "MB\n",
+      mode, vcd.empty() ? "" : " (VCD)", units.size(), vectors, threads, secs,
+      static_cast<double>(vectors) / secs / 1e6, static_cast<double>(ru.ru_maxrss) / 1024.0);
   for (std::size_t i = 0; i < units.size(); ++i)
     fmt::print("  {:<8} cycles {} skipped {}\n", units[i]->name(), stats[i].cycles, skipped[i]);
   return 0;

@@ -118,9 +118,9 @@ int main(int argc, char* argv[]) {
               static_cast<unsigned long long>(engine.rows()),
               file.empty() ? "generated" : file.c_str(), jobs, total);
   std::printf(
-      "  build configurations %.2f s, stream %.2f s (datapaths + statistics %.2f s, "
-      "timing %.2f s, reading the rest), report rows %.2f s\n",
-      build_s, stream_s, engine.profile().evaluate_s, engine.profile().timing_s, rows_s);
+      "  build configurations %.2f s, stream %.2f s (engine: datapaths, statistics and timing "
+      "%.2f s; reading the rest), report rows %.2f s\n",
+      build_s, stream_s, engine.profile().evaluate_s, rows_s);
   std::printf("  %.1f M configuration-rows/s; skipped %.1f %%; peak RSS %.0f MB\n",
               work / total / 1e6, vectors_seen ? 100.0 * skipped / vectors_seen : 0.0,
               usage.ru_maxrss / 1024.0);

@@ -1,0 +1,144 @@
+#include "eval/engine.h"
+
+#include <algorithm>
+
+namespace glint {
+namespace {
+
+// Rows per run below which splitting a lane's window costs more than it brings.
+constexpr std::size_t kMinRunRows = 4096;
+
+std::size_t ceil_div(std::size_t a, std::size_t b) {
+  return (a + b - 1) / b;
+}
+
+}  // namespace
+
+EvalEngine::EvalEngine(const SlotMap& slots, std::vector<LaneAccumulator*> lanes,
+                       std::vector<TimingEngine*> timing, const EngineOptions& options)
+    : slots_(slots),
+      lanes_(std::move(lanes)),
+      timing_(std::move(timing)),
+      options_(options),
+      pool_(std::max(1, options.threads)) {
+  if (timing_.empty()) timing_.assign(lanes_.size(), nullptr);
+  options_.window_rows = std::max<std::size_t>(1, options_.window_rows);
+  slot_known_.assign(slots.params.size(), 0);
+  for (auto& p : partials_) p.resize(lanes_.size());
+}
+
+EvalEngine::~EvalEngine() = default;
+
+std::size_t EvalEngine::runs_per_lane(std::size_t count) const {
+  if (options_.run_rows > 0) return ceil_div(count, options_.run_rows);
+  const std::size_t threads = static_cast<std::size_t>(pool_.threads());
+  // Enough lanes keep every thread busy with whole windows (no partials kept across tasks).
+  if (threads == 1 || lanes_.size() >= 2 * threads) return 1;
+  const std::size_t runs = ceil_div(4 * threads, lanes_.size());
+  return std::max<std::size_t>(1, std::min(runs, count / kMinRunRows));
+}
+
+void EvalEngine::add(const VectorRow* rows, std::size_t count, BatchResults* out) {
+  if (out) {
+    out->rows = count;
+    out->reference.resize(count);
+    out->raw.resize(lanes_.size() * count);
+    out->skipped.resize(lanes_.size() * count);
+  }
+  for (std::size_t at = 0; at < count; at += options_.window_rows)
+    add_window(rows + at, std::min(options_.window_rows, count - at), at, out);
+  merge_pending();
+}
+
+void EvalEngine::merge_pending() {
+  if (!pending_) return;
+  const auto& last = partials_[1 - current_];
+  pool_.run(lanes_.size(), [&](std::size_t l) {
+    for (const LanePartial& p : last[l]) lanes_[l]->merge(p, timing_[l]);
+  });
+  pending_ = false;
+}
+
+// Each row's slot and reference, on the threads; then the slots this window uses first, begun in
+// every lane in the order of their first rows.
+void EvalEngine::prepare(const VectorRow* rows, std::size_t count, std::size_t offset,
+                         BatchResults* out) {
+  slot_.resize(count);
+  reference_.resize(count);
+  const std::size_t runs = std::max<std::size_t>(
+      1, std::min(ceil_div(count, kMinRunRows), 4 * static_cast<std::size_t>(pool_.threads())));
+  const std::size_t per_run = ceil_div(count, runs);
+  std::vector<std::vector<std::uint32_t>> fresh(runs);
+  pool_.run(runs, [&](std::size_t r) {
+    const std::size_t a = r * per_run, b = std::min(count, a + per_run);
+    std::vector<bool> listed;
+    for (std::size_t i = a; i < b; ++i) {
+      const std::uint32_t s = static_cast<std::uint32_t>(slots_.slot(rows[i]));
+      slot_[i] = s;
+      reference_[i] = reference_value(slots_, s, rows[i].t);
+      if (slot_known_[s]) continue;
+      if (listed.empty()) listed.resize(slot_known_.size());
+      if (!listed[s]) {
+        listed[s] = true;
+        fresh[r].push_back(s);
+      }
+    }
+  });
+  if (out) std::copy(reference_.begin(), reference_.end(), out->reference.begin() + offset);
+  std::vector<std::uint32_t> begun;
+  for (const auto& list : fresh)
+    for (const std::uint32_t s : list)
+      if (!slot_known_[s]) {
+        slot_known_[s] = 1;
+        begun.push_back(s);
+      }
+  if (begun.empty()) return;
+  pool_.run(lanes_.size(), [&](std::size_t l) {
+    for (const std::uint32_t s : begun) lanes_[l]->begin_slot(s);
+  });
+}
+
+void EvalEngine::add_window(const VectorRow* rows, std::size_t count, std::size_t offset,
+                            BatchResults* out) {
+  prepare(rows, count, offset, out);
+  const RowsView view{rows, slot_.data(), reference_.data()};
+  const std::size_t total = out ? out->rows : 0;
+  const auto raw = [&](std::size_t l) {
+    return out ? out->raw.data() + l * total + offset : nullptr;
+  };
+  const auto skipped = [&](std::size_t l) {
+    return out ? out->skipped.data() + l * total + offset : nullptr;
+  };
+  const std::size_t lanes = lanes_.size();
+  const std::size_t runs = runs_per_lane(count);
+  if (runs == 1) {
+    // Each lane's window is one task: accumulated and merged at once, nothing kept.
+    merge_pending();
+    pool_.run(lanes, [&](std::size_t l) {
+      thread_local LanePartial scratch;
+      lanes_[l]->accumulate(view, 0, count, scratch, raw(l), skipped(l));
+      lanes_[l]->merge(scratch, timing_[l]);
+    });
+    return;
+  }
+  // Runs on every thread; the last window's merges (tasks 0 .. merges - 1, handed out first) go
+  // alongside them.
+  auto& now = partials_[current_];
+  const auto& last = partials_[1 - current_];
+  for (auto& p : now) p.resize(runs);
+  const std::size_t per_run = ceil_div(count, runs);
+  const std::size_t merges = pending_ ? lanes : 0;
+  pool_.run(merges + lanes * runs, [&](std::size_t task) {
+    if (task < merges) {
+      for (const LanePartial& p : last[task]) lanes_[task]->merge(p, timing_[task]);
+      return;
+    }
+    const std::size_t l = (task - merges) / runs, r = (task - merges) % runs;
+    const std::size_t a = std::min(count, r * per_run), b = std::min(count, a + per_run);
+    lanes_[l]->accumulate(view, a, b, now[l][r], raw(l), skipped(l));
+  });
+  current_ = 1 - current_;
+  pending_ = true;
+}
+
+}  // namespace glint

@@ -1,0 +1,336 @@
+// LaneAccumulator: one lane's accuracy statistics, a row at a time (add) or a run of rows at a
+// time (accumulate on any thread, merge in stream order), with the same bits either way.
+#include <atomic>
+#include <cmath>
+#include <limits>
+
+#include "eval/evaluate.h"
+
+namespace glint {
+namespace {
+
+// The memo holds the facts of every (slot, code) a slot's comparator keeps for inputs up to 16
+// bits, up to this many codes over all slots: beyond it every request computes its own (a file
+// with thousands of materials must not allocate per slot what a short stream never revisits).
+constexpr std::size_t kMemoCodes = std::size_t{1} << 22;
+constexpr std::int64_t kUnset = std::numeric_limits<std::int64_t>::min();
+
+// round(clamp(v, 0, 1) * scale) as std::lround rounds (half away from zero), inline: lround is
+// a library call, and the engine asks for two display codes per row.
+inline long display_code(double v, double scale) {
+  const double y = std::clamp(v, 0.0, 1.0) * scale;
+  const long k = static_cast<long>(y);  // y >= 0: truncation is floor, and y - k is exact
+  return k + static_cast<long>(y - static_cast<double>(k) >= 0.5);
+}
+
+// Largest value, first row to reach it: strict >, so an equal value later keeps the first.
+inline void max_at(LanePartial::MaxAt& m, double value, double t) {
+  const bool more = value > m.value;
+  m.value = more ? value : m.value;
+  m.t = more ? t : m.t;
+}
+
+inline void merge_part(PartStats& s, const LanePartial::MaxAt& m) {
+  if (m.value > s.max_abs) {
+    s.max_abs = m.value;
+    s.t_at_max = m.t;
+  }
+}
+
+// ErrorStats' first row sets its maximum whatever its value (ErrorStats::add).
+inline void merge_error(ErrorStats& s, const LanePartial::MaxAt& m, std::uint64_t count) {
+  if (m.value >= 0 && (s.count == 0 || m.value > s.max_abs)) {
+    s.max_abs = m.value;
+    s.t_at_max = m.t;
+  }
+  s.count += count;
+}
+
+inline std::uint64_t fold_digest(std::uint64_t digest, std::uint64_t word) {
+  // FNV-1a style over the whole result word (skip flag in bit 63), with a shift-xor so every bit
+  // of the word reaches every bit of the digest.
+  digest = (digest ^ word) * 0x100000001b3ULL;
+  return digest ^ (digest >> 29);
+}
+
+inline std::uint64_t digest_word(std::int64_t out_raw, bool skipped) {
+  return static_cast<std::uint64_t>(out_raw) ^ (std::uint64_t{skipped} << 63);
+}
+
+}  // namespace
+
+// Per slot, the codes its comparator keeps ([first, first + size)); an entry is filled once,
+// by whichever thread needs it first: the fields, then `out` with release, which readers load
+// with acquire (a race between two fillers writes the same values). What every computed row reads
+// is kept apart from the parts, which a row reads only while its code is not yet folded, so the
+// rows' working set stays small.
+struct LaneAccumulator::Memo {
+  struct Hot {
+    std::atomic<std::int64_t> out{kUnset};
+    std::atomic<double> r{0};
+  };
+  struct Parts {
+    std::atomic<double> approximation{0}, parameter{0}, datapath{0};
+  };
+  struct Table {
+    std::int64_t first = 0;
+    std::size_t size = 0;
+    std::unique_ptr<Hot[]> hot;
+    std::unique_ptr<Parts[]> parts;
+    // Codes whose parts are in the statistics: a later visit cannot change a largest part or
+    // the first row that reached it. Set by merge, which may run beside the next window's rows:
+    // a row that misses a bit set meanwhile folds its code's parts once more, which changes
+    // nothing (the same values, at a later row).
+    std::unique_ptr<std::atomic<std::uint64_t>[]> folded;
+    bool is_folded(std::size_t c) const {
+      return (folded[c >> 6].load(std::memory_order_relaxed) >> (c & 63)) & 1;
+    }
+    void set_folded(std::size_t c) {
+      folded[c >> 6].fetch_or(std::uint64_t{1} << (c & 63), std::memory_order_relaxed);
+    }
+  };
+  std::vector<Table> tables;
+
+  static CodeFacts fill(const Table& table, std::size_t c, const CodeFacts& f) {
+    Parts& p = table.parts[c];
+    p.approximation.store(f.approximation, std::memory_order_relaxed);
+    p.parameter.store(f.parameter, std::memory_order_relaxed);
+    p.datapath.store(f.datapath, std::memory_order_relaxed);
+    table.hot[c].r.store(f.r, std::memory_order_relaxed);
+    table.hot[c].out.store(f.out, std::memory_order_release);
+    return f;
+  }
+};
+
+LaneAccumulator::LaneAccumulator(const SpecularUnit& unit, const SlotMap& slots, int display_bits)
+    : unit_(unit), slots_(slots) {
+  stats_.name = unit.name();
+  stats_.spec = unit.canonical_spec();
+  stats_.display_bits = display_bits;
+  ulp_ = unit.out_format().ulp();
+  stats_.out_ulp = ulp_;
+  in_ulp_ = unit.in_format().ulp();
+  display_ = display_scale(display_bits);
+  slot_state_.assign(unit.slots(), -1);
+  tau_.resize(unit.slots());
+  for (std::size_t s = 0; s < tau_.size(); ++s) tau_[s] = unit.tau_raw(s);
+  const int width = unit.in_format().width();
+  if (width <= 16 && unit.slots() << width <= kMemoCodes) {
+    memo_ = std::make_unique<Memo>();
+    memo_->tables.resize(unit.slots());
+  }
+}
+
+LaneAccumulator::LaneAccumulator(LaneAccumulator&&) noexcept = default;
+LaneAccumulator::~LaneAccumulator() = default;
+
+void LaneAccumulator::begin_slot(std::size_t slot) {
+  if (slot_state_[slot] >= 0) return;
+  const auto [it, fresh] = contract_of_.emplace(contract_key(slot), stats_.slots.size());
+  if (fresh) {
+    stats_.slots.push_back(slot_contract(unit_, slot, slots_));
+  } else {
+    SlotContract c = stats_.slots[it->second];  // the same sweep: only who it is differs
+    c.slot = slot;
+    c.name = slots_.params[slot].name;
+    c.weight = slots_.c_y[slot];
+    stats_.slots.push_back(std::move(c));
+  }
+  slot_state_[slot] = stats_.slots.back().always_skipped ? 1 : 0;
+  if (memo_) {
+    Memo::Table& table = memo_->tables[slot];
+    table.first = std::max<std::int64_t>(tau_[slot] + 1, 0);
+    const std::int64_t one = unit_.in_format().raw_one();
+    if (one >= table.first) {
+      table.size = static_cast<std::size_t>(one - table.first + 1);
+      table.hot.reset(new Memo::Hot[table.size]);
+      table.parts.reset(new Memo::Parts[table.size]);
+      const std::size_t words = (table.size + 63) / 64;
+      table.folded.reset(new std::atomic<std::uint64_t>[words]);
+      for (std::size_t w = 0; w < words; ++w) table.folded[w].store(0, std::memory_order_relaxed);
+    }
+  }
+}
+
+CodeFacts LaneAccumulator::compute_facts(std::size_t slot, std::int64_t t_raw) const {
+  CodeFacts f;
+  f.out = unit_.eval(slot, t_raw);
+  const double t = static_cast<double>(t_raw) * in_ulp_;
+  f.r = reference_value(slots_, slot, t);
+  const double model = unit_.model(slot, t_raw);
+  const double ideal = unit_.float_model(slot, t);
+  f.approximation = ideal - f.r;
+  f.parameter = model - ideal;
+  f.datapath = static_cast<double>(f.out) * ulp_ - model;
+  return f;
+}
+
+CodeFacts LaneAccumulator::facts(std::size_t slot, std::int64_t t_raw) const {
+  if (!memo_ || memo_->tables[slot].size == 0) return compute_facts(slot, t_raw);
+  const Memo::Table& table = memo_->tables[slot];
+  const auto c = static_cast<std::size_t>(t_raw - table.first);
+  const std::int64_t out = table.hot[c].out.load(std::memory_order_acquire);
+  if (out == kUnset) return Memo::fill(table, c, compute_facts(slot, t_raw));
+  const Memo::Parts& p = table.parts[c];
+  return CodeFacts{out, table.hot[c].r.load(std::memory_order_relaxed),
+                   p.approximation.load(std::memory_order_relaxed),
+                   p.parameter.load(std::memory_order_relaxed),
+                   p.datapath.load(std::memory_order_relaxed)};
+}
+
+void LaneAccumulator::add(std::size_t slot, const RowReference& ref, std::int64_t t_raw,
+                          bool skipped, std::int64_t out_raw) {
+  begin_slot(slot);
+  const double fixed = static_cast<double>(out_raw) * ulp_;
+  const double err = fixed - ref.value;
+  ++stats_.vectors;
+  stats_.skipped += skipped;
+  stats_.weighted.add(err * slots_.c_y[slot], ref.t);
+  // A lobe that never reaches eps on the pixel is counted apart: its scalar error is the whole
+  // lobe and would hide every other slot's (it stays in the weighted error and the digest).
+  if (slot_state_[slot] == 1) {
+    ++stats_.always_skipped_vectors;
+  } else {
+    add_scalar(slot, ref, t_raw, skipped, fixed);
+  }
+  digest_ = fold_digest(digest_, digest_word(out_raw, skipped));
+}
+
+void LaneAccumulator::add_scalar(std::size_t slot, const RowReference& ref, std::int64_t t_raw,
+                                 bool skipped, double fixed) {
+  stats_.total.add(fixed - ref.value, ref.t);
+  if (skipped) {
+    stats_.skip.add(ref.value, ref.t);
+  } else {
+    // The parts of a code are the same at every visit, so adding them at each visit keeps the
+    // first row that reached the largest, as adding them at the code's first visit would.
+    const CodeFacts f = facts(slot, t_raw);
+    stats_.approximation.add(f.approximation, ref.t);
+    stats_.parameter.add(f.parameter, ref.t);
+    stats_.datapath.add(f.datapath, ref.t);
+    stats_.input.add(f.r - ref.value, ref.t);
+  }
+  const long ref_code =
+      ref.display_bits == stats_.display_bits ? ref.display : display_code(ref.value, display_);
+  if (display_code(fixed, display_) != ref_code) ++stats_.mismatch;
+}
+
+void LaneAccumulator::accumulate(const RowsView& rows, std::size_t a, std::size_t b, LanePartial& p,
+                                 std::int64_t* raw, std::uint8_t* skipped) const {
+  if (memo_) {
+    accumulate_rows<true>(rows, a, b, p, raw, skipped);
+  } else {
+    accumulate_rows<false>(rows, a, b, p, raw, skipped);
+  }
+}
+
+template <bool kMemo>
+void LaneAccumulator::accumulate_rows(const RowsView& rows, std::size_t a, std::size_t b,
+                                      LanePartial& p, std::int64_t* raw,
+                                      std::uint8_t* skipped) const {
+  const QFormat in = unit_.in_format();
+  const std::size_t n = b - a;
+  p.vectors = n;
+  p.skipped = p.always_skipped = p.mismatch = 0;
+  p.total = p.weighted = {-1, 0};
+  p.input = p.parameter = p.approximation = p.datapath = p.skip = {0, 0};
+  p.square.resize(n);
+  p.word.resize(n);
+  p.folded.clear();
+  std::uint64_t skips = 0, always = 0, mismatch = 0;
+  const auto fold_parts = [&](const CodeFacts& f, double t) {
+    max_at(p.approximation, std::fabs(f.approximation), t);
+    max_at(p.parameter, std::fabs(f.parameter), t);
+    max_at(p.datapath, std::fabs(f.datapath), t);
+  };
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t i = a + k;
+    const std::size_t s = rows.slot[i];
+    const double t = rows.rows[i].t;
+    const double ref = rows.reference[i];
+    const std::int64_t t_raw = quantize_input(t, in);
+    const bool sk = t_raw <= tau_[s];
+    std::int64_t out = 0;
+    double r = 0;
+    if (!sk) {
+      if constexpr (kMemo) {
+        const Memo::Table& table = memo_->tables[s];
+        const auto c = static_cast<std::size_t>(t_raw - table.first);
+        out = table.hot[c].out.load(std::memory_order_acquire);
+        if (out == kUnset) {
+          const CodeFacts f = Memo::fill(table, c, compute_facts(s, t_raw));
+          out = f.out;
+          r = f.r;
+        } else {
+          r = table.hot[c].r.load(std::memory_order_relaxed);
+        }
+        if (!table.is_folded(c)) {
+          const Memo::Parts& mp = table.parts[c];
+          fold_parts(CodeFacts{out, r, mp.approximation.load(std::memory_order_relaxed),
+                               mp.parameter.load(std::memory_order_relaxed),
+                               mp.datapath.load(std::memory_order_relaxed)},
+                     t);
+          p.folded.emplace_back(static_cast<std::uint32_t>(s), static_cast<std::uint32_t>(c));
+        }
+      } else {
+        const CodeFacts f = compute_facts(s, t_raw);
+        out = f.out;
+        r = f.r;
+        fold_parts(f, t);
+      }
+    }
+    const double fixed = static_cast<double>(out) * ulp_;
+    const double err = fixed - ref;
+    skips += sk;
+    max_at(p.weighted, std::fabs(err * slots_.c_y[s]), t);
+    if (slot_state_[s] == 1) {
+      ++always;
+      p.square[k] = 0;
+    } else {
+      max_at(p.total, std::fabs(err), t);
+      p.square[k] = err * err;
+      if (sk) {
+        max_at(p.skip, std::fabs(ref), t);
+      } else {
+        max_at(p.input, std::fabs(r - ref), t);
+      }
+      mismatch += display_code(fixed, display_) != display_code(ref, display_);
+    }
+    p.word[k] = digest_word(out, sk);
+    if (raw) raw[i] = out;
+    if (skipped) skipped[i] = sk;
+  }
+  p.skipped = skips;
+  p.always_skipped = always;
+  p.mismatch = mismatch;
+}
+
+void LaneAccumulator::merge(const LanePartial& p, TimingEngine* timing) {
+  stats_.vectors += p.vectors;
+  stats_.skipped += p.skipped;
+  stats_.always_skipped_vectors += p.always_skipped;
+  stats_.mismatch += p.mismatch;
+  merge_error(stats_.total, p.total, p.vectors - p.always_skipped);
+  merge_error(stats_.weighted, p.weighted, p.vectors);
+  merge_part(stats_.input, p.input);
+  merge_part(stats_.parameter, p.parameter);
+  merge_part(stats_.approximation, p.approximation);
+  merge_part(stats_.datapath, p.datapath);
+  merge_part(stats_.skip, p.skip);
+  for (const auto& [slot, c] : p.folded) memo_->tables[slot].set_folded(c);
+  // The sequential folds, in stream order: floating-point sums and the digest do not reassociate.
+  // Rows in no scalar statistic add +0, which leaves the sum as it is.
+  double sum = stats_.total.sum_sq;
+  std::uint64_t digest = digest_;
+  const std::size_t n = p.word.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    sum += p.square[k];
+    digest = fold_digest(digest, p.word[k]);
+  }
+  stats_.total.sum_sq = sum;
+  digest_ = digest;
+  if (timing)
+    for (std::size_t k = 0; k < n; ++k) timing->next((p.word[k] >> 63) != 0);
+}
+
+}  // namespace glint

@@ -1,0 +1,166 @@
+// The evaluation engine (eval/engine.h) against the row-at-a-time path (LaneAccumulator::add and
+// TimingEngine::next per row, what `glint eval --dump` and the clocked scoreboard run): the same
+// statistics, digests and timing, bit for bit, for thread counts 1, 2, 3 and 7, uneven windows and
+// runs, on every shipped trace and on a generated stream of several materials and lights.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "eval/engine.h"
+#include "eval/evaluate.h"
+#include "io/vectors.h"
+#include "units/catalogue.h"
+#include "units/lane_cost.h"
+
+namespace glint {
+namespace {
+
+std::vector<UnitSpec> engine_specs() {
+  std::vector<UnitSpec> specs;
+  for (const std::string& name : unit_names()) specs.push_back(parse_unit_spec(name));
+  // No comparator, a narrow input, and an input too wide for the per-code memo.
+  for (const char* s : {"horner:skip=off", "lut:in=uq1.9,out=uq1.9", "hast:in=uq1.20,out=uq1.18"})
+    specs.push_back(parse_unit_spec(s));
+  return specs;
+}
+
+struct Lanes {
+  Lanes(const SlotMap& slots, const std::vector<UnitSpec>& specs) {
+    for (const UnitSpec& s : specs) units.push_back(make_unit(s, slots));
+    acc.reserve(units.size());
+    for (const auto& u : units) {
+      acc.emplace_back(*u, slots, 8);
+      timing.emplace_back(lane_timing(*u, false), SinkReady{0.7, 3});
+    }
+  }
+  std::string report() const {
+    std::string out;
+    for (std::size_t u = 0; u < acc.size(); ++u) {
+      const TimingStats& t = timing[u].stats();
+      out += acc[u].stats().to_json().dump() + " digest " + std::to_string(acc[u].digest()) +
+             " cycles " + std::to_string(t.cycles) + " stalls " + std::to_string(t.stall_credit) +
+             "/" + std::to_string(t.stall_unit) + " latency " + std::to_string(t.latency_sum) +
+             "/" + std::to_string(t.latency_min) + "/" + std::to_string(t.latency_max) + " sink " +
+             std::to_string(t.sink_wait) + "\n";
+    }
+    return out;
+  }
+  std::vector<std::unique_ptr<SpecularUnit>> units;
+  std::vector<LaneAccumulator> acc;
+  std::vector<TimingEngine> timing;
+};
+
+std::string row_by_row(const SlotMap& slots, const std::vector<VectorRow>& rows) {
+  Lanes lanes(slots, engine_specs());
+  for (const VectorRow& row : rows) {
+    const std::size_t slot = slots.slot(row);
+    const RowReference ref = make_reference(slots, slot, row.t, 8);
+    for (std::size_t u = 0; u < lanes.units.size(); ++u) {
+      const SpecularUnit& unit = *lanes.units[u];
+      const std::int64_t t_raw = quantize_input(row.t, unit.in_format());
+      const bool skipped = unit.skip(slot, t_raw);
+      lanes.acc[u].add(slot, ref, t_raw, skipped, skipped ? 0 : unit.eval(slot, t_raw));
+      lanes.timing[u].next(skipped);
+    }
+  }
+  return lanes.report();
+}
+
+// The stream through an engine, in calls of uneven sizes.
+std::string engine_run(const SlotMap& slots, const std::vector<VectorRow>& rows,
+                       const EngineOptions& options) {
+  Lanes lanes(slots, engine_specs());
+  std::vector<LaneAccumulator*> acc;
+  std::vector<TimingEngine*> timing;
+  for (std::size_t u = 0; u < lanes.acc.size(); ++u) {
+    acc.push_back(&lanes.acc[u]);
+    timing.push_back(&lanes.timing[u]);
+  }
+  EvalEngine engine(slots, acc, timing, options);
+  std::size_t at = 0, size = 1;
+  BatchResults out;
+  while (at < rows.size()) {
+    const std::size_t n = std::min(size, rows.size() - at);
+    engine.add(rows.data() + at, n, size % 2 ? &out : nullptr);
+    at += n;
+    size = size * 5 + 3;
+  }
+  return lanes.report();
+}
+
+void expect_engine_equals_rows(const VectorHeader& header, const std::vector<VectorRow>& rows) {
+  const SlotMap slots = make_slots(header);
+  const std::string expected = row_by_row(slots, rows);
+  struct Case {
+    int threads;
+    std::size_t window, run;  // run 0: the engine's choice
+  };
+  for (const Case& c : {Case{1, 65536, 0}, Case{2, 1000, 0}, Case{3, 4097, 333}, Case{7, 777, 1},
+                        Case{2, 50000, 4099}, Case{7, 65536, 0}}) {
+    EngineOptions options;
+    options.threads = c.threads;
+    options.window_rows = c.window;
+    options.run_rows = c.run;
+    EXPECT_EQ(engine_run(slots, rows, options), expected)
+        << c.threads << " threads, window " << c.window << ", runs of " << c.run;
+  }
+}
+
+std::vector<VectorRow> read_rows(const std::string& path, VectorHeader& header) {
+  VectorReader reader(path);
+  header = reader.header();
+  std::vector<VectorRow> rows;
+  VectorRow row;
+  while (reader.next(row)) rows.push_back(row);
+  return rows;
+}
+
+std::vector<std::string> shipped_traces() {
+  std::vector<std::string> names;
+  for (const auto& entry :
+       std::filesystem::directory_iterator(std::string(GLINT_SOURCE_DIR) + "/traces"))
+    if (entry.path().extension() == ".vec") names.push_back(entry.path().stem().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+class EngineTrace : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(EngineTrace, EqualsRowByRow) {
+  VectorHeader header;
+  const std::vector<VectorRow> rows =
+      read_rows(std::string(GLINT_SOURCE_DIR) + "/traces/" + GetParam() + ".vec", header);
+  expect_engine_equals_rows(header, rows);
+}
+
+INSTANTIATE_TEST_SUITE_P(Shipped, EngineTrace, ::testing::ValuesIn(shipped_traces()),
+                         [](const auto& info) { return info.param; });
+
+TEST(Engine, EqualsRowByRowOnAGeneratedStream) {
+  VectorHeader header;
+  header.eps = 1e-3;
+  header.lights = 3;
+  header.light_intensity = {{1, 1, 1}, {1, 0.5, 0.25}, {0.002, 0.002, 0.002}};
+  header.has_light = true;
+  header.materials.push_back({"shiny", {1, 1, 1}, 50, Lobe::kBlinn, 0});
+  header.materials.push_back({"gold", {1, 0.77, 0.34}, 8, Lobe::kPhong, 0});
+  header.materials.push_back({"soft", {0.5, 0.5, 0.5}, 0, Lobe::kGaussian, 0.3});
+  std::vector<VectorRow> rows(150000);
+  std::uint64_t state = 0x9E3779B97F4A7C15ULL;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    // t over [-1, 1.001], a few exact 0 and 1.
+    const double u = static_cast<double>(state >> 11) * 0x1.0p-53;
+    rows[i].t = i % 97 == 0 ? 0.0 : i % 89 == 0 ? 1.0 : -1.0 + 2.001 * u;
+    rows[i].material = static_cast<std::uint32_t>((state >> 7) % 3);
+    rows[i].light = static_cast<std::int32_t>((state >> 17) % 3);
+    rows[i].line = i + 1;
+  }
+  expect_engine_equals_rows(header, rows);
+}
+
+}  // namespace
+}  // namespace glint
