@@ -80,7 +80,7 @@ class FastLanes : public sc_core::sc_module {
     eo.threads = options_.threads;
     eo.window_rows = 32768;
     EvalEngine engine(slots_, std::move(lanes), std::move(timing), eo);
-    std::vector<VectorRow> rows(std::max<std::size_t>(1, options_.batch));
+    std::vector<VectorRow> rows(std::max(kEngineBatch, options_.batch));
     std::uint64_t now_cycles = 0;
     for (;;) {
       std::size_t n = 0;

@@ -19,11 +19,14 @@
 
 namespace glint {
 
+inline constexpr std::size_t kEngineBatch = 262144;
+
 struct FastOptions {
   SinkReady sink;
-  // Requests per temporal-decoupling quantum: each quantum goes through the evaluation engine
-  // (eval/engine.h) at once, so a large one keeps its threads busy.
-  std::size_t batch = 262144;
+  // Requests per temporal-decoupling quantum when results go out a row at a time (on_result);
+  // the evaluation engine (eval/engine.h) takes at least kEngineBatch per quantum, so that its
+  // threads stay busy.
+  std::size_t batch = 4096;
   int threads = 1;  // the engine's threads (results do not depend on it)
   double clock_period_ns = 1.0;
   bool colour_stage = false;  // per-channel i*m stage on the computed path (+1 latency)

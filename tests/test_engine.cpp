@@ -162,5 +162,18 @@ TEST(Engine, EqualsRowByRowOnAGeneratedStream) {
   expect_engine_equals_rows(header, rows);
 }
 
+// A sweep's shard may hold no configuration: the rows go through no lane.
+TEST(Engine, NoLanes) {
+  VectorHeader header;
+  header.eps = 1e-3;
+  header.materials.push_back({"m", {1, 1, 1}, 8, Lobe::kPhong, 0});
+  const SlotMap slots = make_slots(header);
+  EngineOptions options;
+  options.threads = 2;
+  EvalEngine engine(slots, {}, {}, options);
+  std::vector<VectorRow> rows(10000);
+  engine.add(rows.data(), rows.size());
+}
+
 }  // namespace
 }  // namespace glint

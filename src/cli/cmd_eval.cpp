@@ -63,16 +63,20 @@ int run_eval(const EvalOptions& o) {
     VectorRow row;
     while (reader.next(row)) ev.add(row, write);
   } else {
-    // Blocks of rows through the evaluation engine (eval/engine.h): memory stays flat.
-    std::vector<VectorRow> rows(kEvalBlockRows);
-    for (;;) {
-      std::size_t n = 0;
-      while (n < rows.size() && reader.next(rows[n])) ++n;
-      if (n == 0) break;
-      ev.add_rows(rows.data(), n, threads);
+    // Blocks of rows, parsed on the threads, through the evaluation engine (eval/engine.h):
+    // memory stays flat.
+    std::vector<VectorRow> block, rows;
+    const auto flush = [&] {
+      ev.add_rows(rows.data(), rows.size(), threads);
+      rows.clear();
       if (progress && reader.rows_read() >= 0x100000)
         std::fprintf(stderr, "\r%llu vectors", static_cast<unsigned long long>(reader.rows_read()));
+    };
+    while (reader.next_block(block, threads)) {
+      rows.insert(rows.end(), block.begin(), block.end());
+      if (rows.size() >= kEvalBlockRows) flush();
     }
+    if (!rows.empty()) flush();
   }
   if (progress && reader.rows_read() >= 0x100000) std::fprintf(stderr, "\n");
   outputs.commit();

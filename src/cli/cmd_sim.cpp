@@ -34,7 +34,7 @@ struct SimOptions {
   std::string report, dump, vcd, vcd_window, mode = "auto";
   double sink_ready = 1.0;
   std::uint64_t seed = 1;
-  std::size_t batch = 262144;
+  std::size_t batch = 4096;
   int threads = 0;  // --threads N; 0: every core
   int display_bits = 8;
   std::size_t slots = 0;  // --slots N; 0: sized to the stream
@@ -326,7 +326,8 @@ void add_sim_command(CLI::App& app, int& status) {
       },
       "Seed of the sink backpressure pattern (0..2^64-1, default 1)");
   sub->add_option("--batch", o->batch,
-                  "Fast mode: requests per time quantum (1..16777216), evaluated at once")
+                  "Fast mode: requests per time quantum (1..16777216; with --dump, else at least "
+                  "262144)")
       ->check(CLI::Range(1, 1 << 24))
       ->capture_default_str();
   add_threads_option(sub, o->threads);

@@ -64,6 +64,22 @@ bool LineReader::next_at_buffer_end(std::string_view& line) {
   }
 }
 
+bool LineReader::block(const char*& begin, const char*& end) {
+  const auto last_newline = [&]() -> const char* {
+    const std::size_t avail = static_cast<std::size_t>(end_ - pos_);
+    return avail != 0 ? static_cast<const char*>(memrchr(pos_, '\n', avail)) : nullptr;
+  };
+  const char* nl = last_newline();
+  if (nl == nullptr && !eof_ && static_cast<std::size_t>(end_ - pos_) <= kVectorMaxLineBytes + 1) {
+    refill();
+    nl = last_newline();
+  }
+  if (nl == nullptr || (nul_ != nullptr && nul_ <= nl)) return false;
+  begin = pos_;
+  end = nl + 1;
+  return true;
+}
+
 // Moves the unread tail to the front of the buffer and fills the rest from the stream.
 void LineReader::refill() {
   const std::size_t rem = static_cast<std::size_t>(end_ - pos_);

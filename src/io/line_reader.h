@@ -37,6 +37,16 @@ class LineReader {
     return true;
   }
 
+  // The whole lines already read and not yet returned, [begin, end) (end just past a "\n"),
+  // reading more first when there is none, for a caller that splits and checks them itself (the
+  // parallel row parser); skip_block() then passes over them. False when there is no such block,
+  // or a NUL byte lies in it: next() then goes on a line at a time (and reports the NUL).
+  bool block(const char*& begin, const char*& end);
+  void skip_block(const char* end, std::uint64_t lines) {
+    pos_ = end;
+    line_no_ += lines;
+  }
+
   const std::string& file() const { return file_; }
   // 1-based number of the line next() returned last (0 before the first).
   std::uint64_t line_number() const { return line_no_; }

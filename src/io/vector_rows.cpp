@@ -32,13 +32,16 @@ MaterialLookup::MaterialLookup(const std::vector<VectorMaterial>& materials) {
   }
 }
 
-RowParser::RowParser(const LineReader& lines, const VectorFileHeader& file)
-    : lines_(lines),
-      lights_(file.header.lights),
-      columns_(file.columns),
-      materials_(file.header.materials) {}
+RowParser::RowParser(const std::string& name, const VectorFileHeader& file,
+                     const MaterialLookup& materials)
+    : name_(&name), lights_(file.header.lights), columns_(file.columns), materials_(&materials) {}
 
-bool RowParser::parse(std::string_view line, VectorRow& row) {
+void RowParser::fail(const char* field, const std::string& message) const {
+  throw InputError(*name_, line_, field, message);
+}
+
+bool RowParser::parse(std::string_view line, std::uint64_t line_no, VectorRow& row) {
+  line_ = line_no;
   const char* p = line.data();
   const char* const e = p + line.size();
   while (p < e && is_blank(*p)) ++p;
@@ -63,20 +66,20 @@ bool RowParser::parse(std::string_view line, VectorRow& row) {
     while (p < e && !ends_row_field(*p)) ++p;
     const std::string_view tok(f, static_cast<std::size_t>(p - f));
     const VectorColumn c = columns_[i];
-    if (tok.empty()) lines_.fail(column_name(c), "empty field");
+    if (tok.empty()) fail(column_name(c), "empty field");
     switch (c) {
       case VectorColumn::kT: {
         double v = 0;
         const NumberStatus st = parse_number(tok, v);
         if (st != NumberStatus::kOk) fail_number(c, st, tok);
-        if (!valid_t(v)) lines_.fail("t", "t = " + std::string(tok) + " outside " + t_range_text());
+        if (!valid_t(v)) fail("t", "t = " + std::string(tok) + " outside " + t_range_text());
         row.t = v;
         break;
       }
       case VectorColumn::kMaterial: {
         std::uint32_t index = 0;
-        if (!materials_.find(tok, index)) {
-          lines_.fail("material", "unknown material " + quote_input(tok));
+        if (!materials_->find(tok, index, last_material_)) {
+          fail("material", "unknown material " + quote_input(tok));
         }
         row.material = index;
         break;
@@ -86,8 +89,8 @@ bool RowParser::parse(std::string_view line, VectorRow& row) {
         const NumberStatus st = parse_number(tok, v);
         if (st != NumberStatus::kOk) fail_number(c, st, tok);
         if (!valid_light_index(v, lights_)) {
-          lines_.fail("light", "light index " + std::string(tok) + " out of range 0.." +
-                                   std::to_string(lights_ - 1));
+          fail("light", "light index " + std::string(tok) + " out of range 0.." +
+                            std::to_string(lights_ - 1));
         }
         row.light = v;
         break;
@@ -98,7 +101,7 @@ bool RowParser::parse(std::string_view line, VectorRow& row) {
         const NumberStatus st = parse_number(tok, v);
         if (st != NumberStatus::kOk) fail_number(c, st, tok);
         if (!valid_pixel(v)) {
-          lines_.fail(column_name(c), "pixel coordinate must be >= 0, got " + std::string(tok));
+          fail(column_name(c), "pixel coordinate must be >= 0, got " + std::string(tok));
         }
         (c == VectorColumn::kX ? row.x : row.y) = v;
         break;
@@ -109,7 +112,7 @@ bool RowParser::parse(std::string_view line, VectorRow& row) {
   if (p < e && *p == ',') {
     ++p;
     while (p < e && is_blank(*p)) ++p;
-    if (p == e || *p == '#') lines_.fail("columns", "trailing ',' after the last column");
+    if (p == e || *p == '#') fail("columns", "trailing ',' after the last column");
   }
   if (p < e && *p != '#') fail_extra(std::string_view(p, static_cast<std::size_t>(e - p)));
   return true;
@@ -125,22 +128,21 @@ std::string RowParser::column_list() const {
 }
 
 void RowParser::fail_missing(std::size_t column, bool after_comma) const {
-  lines_.fail(column_name(columns_[column]),
-              after_comma
-                  ? std::string("empty field after ','")
-                  : "missing field: the row has " + std::to_string(column) + " of " +
-                        std::to_string(columns_.size()) + " columns (" + column_list() + ")");
+  fail(column_name(columns_[column]),
+       after_comma ? std::string("empty field after ','")
+                   : "missing field: the row has " + std::to_string(column) + " of " +
+                         std::to_string(columns_.size()) + " columns (" + column_list() + ")");
 }
 
 void RowParser::fail_extra(std::string_view rest) const {
   std::size_t n = 0;
   while (n < rest.size() && !ends_row_field(rest[n])) ++n;
-  lines_.fail("columns", "extra field " + quote_input(rest.substr(0, n)) + ": rows have " +
-                             std::to_string(columns_.size()) + " columns (" + column_list() + ")");
+  fail("columns", "extra field " + quote_input(rest.substr(0, n)) + ": rows have " +
+                      std::to_string(columns_.size()) + " columns (" + column_list() + ")");
 }
 
 void RowParser::fail_number(VectorColumn column, NumberStatus status, std::string_view text) const {
-  lines_.fail(column_name(column), number_problem(status, text, column != VectorColumn::kT));
+  fail(column_name(column), number_problem(status, text, column != VectorColumn::kT));
 }
 
 }  // namespace glint

@@ -26,16 +26,17 @@ class MaterialLookup {
   explicit MaterialLookup(const std::vector<VectorMaterial>& materials);
 
   // Inline, all of it: rows call it per row, and most rows of a mixed file miss the last hit.
-  bool find(std::string_view name, std::uint32_t& index) {
-    const std::string_view last = names_[last_];
-    if (name.size() == last.size() && std::memcmp(name.data(), last.data(), name.size()) == 0) {
-      index = last_;
+  // `last` is the caller's last hit (each thread that parses rows keeps its own).
+  bool find(std::string_view name, std::uint32_t& index, std::uint32_t& last) const {
+    const std::string_view hit = names_[last];
+    if (name.size() == hit.size() && std::memcmp(name.data(), hit.data(), name.size()) == 0) {
+      index = last;
       return true;
     }
     if (names_.size() <= kLinearNames) {
       for (std::uint32_t i = 0; i < names_.size(); ++i) {
         if (names_[i] == name) {
-          index = last_ = i;
+          index = last = i;
           return true;
         }
       }
@@ -43,7 +44,7 @@ class MaterialLookup {
     }
     const auto it = by_name_.find(name);
     if (it == by_name_.end()) return false;
-    index = last_ = it->second;
+    index = last = it->second;
     return true;
   }
 
@@ -53,19 +54,20 @@ class MaterialLookup {
 
   std::vector<std::string_view> names_;
   std::unordered_map<std::string_view, std::uint32_t> by_name_;
-  std::uint32_t last_ = 0;
 };
 
 // Parses row lines into VectorRows, each field by the rule of its column.
 class RowParser {
  public:
-  // Rows laid out as `file` declares. Errors name the current line of `lines`; the parser keeps
-  // references to `lines` and to the materials of `file`, which must outlive it.
-  RowParser(const LineReader& lines, const VectorFileHeader& file);
+  // Rows laid out as `file` declares, from the file called `name`. The parser keeps references to
+  // `name` and to `materials` (the names of `file`'s materials), which must outlive it. Copies
+  // parse on their own threads.
+  RowParser(const std::string& name, const VectorFileHeader& file, const MaterialLookup& materials);
 
-  // Parses `line` into `row` (all but row.line). False for a blank or comment-only line, which
-  // holds no row. Throws InputError for a malformed row.
-  bool parse(std::string_view line, VectorRow& row);
+  // Parses `line`, the file's line `line_no`, into `row` (all but row.line). False for a blank or
+  // comment-only line, which holds no row. Throws InputError naming line_no for a malformed row.
+  bool parse(std::string_view line, std::uint64_t line_no, VectorRow& row);
+  const std::string& file() const { return *name_; }
 
  private:
   [[noreturn]] __attribute__((cold)) void fail_missing(std::size_t column, bool after_comma) const;
@@ -74,10 +76,14 @@ class RowParser {
                                                       std::string_view text) const;
   std::string column_list() const;  // "t material light x y"
 
-  const LineReader& lines_;
+  [[noreturn]] __attribute__((cold)) void fail(const char* field, const std::string& message) const;
+
+  const std::string* name_;
   std::int32_t lights_;
   std::vector<VectorColumn> columns_;
-  MaterialLookup materials_;
+  const MaterialLookup* materials_;
+  std::uint32_t last_material_ = 0;
+  std::uint64_t line_ = 0;
 };
 
 }  // namespace glint

@@ -1,5 +1,7 @@
 #include "io/vector_syntax.h"
 
+#include <fast_float/fast_float.h>
+
 #include "io/input_error.h"
 #include "io/vectors.h"
 
@@ -16,6 +18,25 @@ void split_header_tokens(std::string_view line, std::vector<std::string_view>& t
     while (i < line.size() && !is_blank(line[i])) ++i;
     if (i > start) tokens.push_back(line.substr(start, i - start));
   }
+}
+
+NumberStatus parse_decimal(const char* b, const char* e, double& out) {
+  double v = 0;
+  const auto r = fast_float::from_chars(b, e, v);
+  if (r.ptr != e || r.ec != std::errc()) return NumberStatus::kNotNumber;
+  if (v == 0 || std::isinf(v)) {
+    const char* p = b + (*b == '-');
+    const bool word = p != e && ((*p | 0x20) == 'i' || (*p | 0x20) == 'n');  // inf, nan
+    if (std::isinf(v) && !word) return NumberStatus::kOutOfRange;
+    if (v == 0) {
+      // Zero from a mantissa with a non-zero digit: an underflow, as from_chars reports it.
+      for (; p != e && *p != 'e' && *p != 'E'; ++p)
+        if (*p >= '1' && *p <= '9') return NumberStatus::kOutOfRange;
+    }
+  }
+  if (!std::isfinite(v)) return NumberStatus::kNotFinite;
+  out = v;
+  return NumberStatus::kOk;
 }
 
 std::string number_problem(NumberStatus status, std::string_view text, bool integer) {

@@ -12,6 +12,7 @@
 #include "io/atomic_file.h"
 #include "io/input_source.h"
 #include "io/line_reader.h"
+#include "io/vector_blocks.h"
 #include "io/vector_header.h"
 #include "io/vector_rows.h"
 #include "io/vector_rules.h"
@@ -64,7 +65,9 @@ struct VectorReader::Impl {
   std::unique_ptr<std::istream> owned;  // the stream, when the reader owns it
   LineReader lines;
   VectorFileHeader file;  // read by the constructor
+  MaterialLookup materials;
   RowParser rows;
+  std::unique_ptr<BlockParser> blocks;  // made by the first next_block()
   std::uint64_t rows_read = 0;
   std::unique_ptr<InputError> error;  // the first row error, rethrown by every later next()
 
@@ -72,13 +75,14 @@ struct VectorReader::Impl {
       : owned(std::move(owned_file)),
         lines(in, std::move(name)),
         file(read_vector_header(lines)),
-        rows(lines, file) {}
+        materials(file.header.materials),
+        rows(lines.file(), file, materials) {}
 
   // Here rather than in RowParser so that LineReader::next() inlines into VectorReader::next().
   bool next(VectorRow& row) {
     std::string_view line;
     while (lines.next(line)) {
-      if (rows.parse(line, row)) {
+      if (rows.parse(line, lines.line_number(), row)) {
         row.line = lines.line_number();
         ++rows_read;
         return true;
@@ -86,6 +90,35 @@ struct VectorReader::Impl {
     }
     return false;
   }
+
+  bool next_block(std::vector<VectorRow>& out, int threads) {
+    out.clear();
+    while (out.empty()) {
+      const char *begin = nullptr, *end = nullptr;
+      if (!lines.block(begin, end)) {
+        // No whole line in the buffer (a line longer than it, a NUL byte, the end): one row, as
+        // next() reads it.
+        VectorRow row;
+        if (!next(row)) return false;
+        out.push_back(row);
+        return true;
+      }
+      if (!blocks || blocks_threads != threads) {
+        blocks = std::make_unique<BlockParser>(rows, threads);
+        blocks_threads = threads;
+      }
+      std::unique_ptr<InputError> failed;
+      const std::uint64_t n = blocks->parse(begin, end, lines.line_number() + 1, out, failed);
+      lines.skip_block(end, n);
+      rows_read += out.size();
+      if (failed) {
+        error = std::move(failed);
+        if (out.empty()) throw *error;
+      }
+    }
+    return true;
+  }
+  int blocks_threads = 0;
 };
 
 VectorReader::VectorReader(const std::string& path) {
@@ -132,6 +165,16 @@ bool VectorReader::next(VectorRow& row) {
     throw;
   }
 }
+bool VectorReader::next_block(std::vector<VectorRow>& rows, int threads) {
+  if (impl_->error) throw *impl_->error;
+  try {
+    return impl_->next_block(rows, threads);
+  } catch (const InputError& e) {
+    if (!impl_->error) impl_->error = std::make_unique<InputError>(e);
+    throw;
+  }
+}
+
 std::uint64_t VectorReader::rows_read() const {
   return impl_->rows_read;
 }

@@ -111,6 +111,10 @@ class VectorReader {
   // Reads the next row into `row`; false at the end of the data. Throws InputError on a malformed
   // row; after an error every further call rethrows the same error.
   bool next(VectorRow& row);
+  // The rows of the next block of input (about a megabyte of it) into `rows` (cleared first),
+  // parsed on up to `threads` threads; false at the end of the data. The rows, their line numbers
+  // and errors are next()'s: the rows before a malformed one come back, and the next call throws.
+  bool next_block(std::vector<VectorRow>& rows, int threads);
 
   std::uint64_t rows_read() const;
 
