@@ -27,6 +27,9 @@ namespace glint {
 
 class CostBuilder;
 struct LaneShape;
+namespace hdl {
+struct DatapathPorts;
+}
 
 struct UnitSpec {
   std::string name;
@@ -96,6 +99,11 @@ class SpecularUnit {
   virtual bool comparator_carries_root() const = 0;
   // Places the unit's own stages (after the comparator stage) in the cost builder.
   virtual void add_cost(CostBuilder& b, const LaneShape& lane) const = 0;
+  // The datapath as synthesizable Verilog-2005 (`glint rtl`): one module with the ports of
+  // hdl::DatapathPorts, positions 0..L of stages() as its registers, every table and constant
+  // taken from the built datapaths (src/units/<unit>/rtl.cpp). Throws std::invalid_argument when
+  // the unit (or this spec of it) has no generator.
+  virtual std::string rtl_datapath(const hdl::DatapathPorts& ports) const = 0;
 
   bool skip(std::size_t slot, std::int64_t t_raw) const { return tau_skip(t_raw, tau_raw(slot)); }
   std::int64_t eval_with_skip(std::size_t slot, std::int64_t t_raw) const {

@@ -16,6 +16,9 @@
 //   static bool carries_root(const Config&);       // optional (UnitKindDefaults: false)
 //   static std::optional<NRegister> n_register(const Config&, const std::vector<Datapath>&,
 //                                              bool fixed);   // optional: units with an n register
+//   static std::string rtl(const hdl::DatapathPorts&, const Config&, const std::vector<Datapath>&,
+//                          const StageLayout&);   // optional: its Verilog
+//                          (src/units/<unit>/rtl.cpp)
 // (deriving from UnitKindDefaults for the optional ones), and its Datapath has eval(t), run(t,
 // probe) (eval is run with NoProbe), model, float_model and datapath_bound_ulps() (its error
 // budget: |eval - model| in output ulps). build() ends with make_unit_set<Kind>(...), which also
@@ -60,6 +63,11 @@ struct UnitKindDefaults {
   template <class Config, class Datapath>
   static std::optional<NRegister> n_register(const Config&, const std::vector<Datapath>&, bool) {
     return std::nullopt;
+  }
+  template <class Config, class Datapath>
+  static std::string rtl(const hdl::DatapathPorts&, const Config&, const std::vector<Datapath>&,
+                         const StageLayout&) {
+    throw std::invalid_argument("no Verilog generator for this unit yet");
   }
 };
 
@@ -132,6 +140,9 @@ class UnitSet final : public SpecularUnit {
   bool comparator_carries_root() const override { return Kind::carries_root(cfg_); }
   void add_cost(CostBuilder& b, const LaneShape& lane) const override {
     Kind::cost(b, lane, cfg_, datapaths_);
+  }
+  std::string rtl_datapath(const hdl::DatapathPorts& ports) const override {
+    return Kind::rtl(ports, cfg_, datapaths_, layout_);
   }
   nlohmann::json describe() const override {
     nlohmann::json j;

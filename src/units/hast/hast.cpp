@@ -16,6 +16,7 @@
 #include <unordered_map>
 
 #include "units/hast/datapath.h"
+#include "units/hast/rtl.h"
 #include "units/match.h"
 #include "units/u_scaler_cost.h"
 #include "units/unit_set.h"
@@ -211,6 +212,10 @@ struct Hast : UnitKindDefaults {
             {"k_frac_bits", u.scaler().k_frac()}};
   }
   static bool carries_root(const Config&) { return true; }
+  static std::string rtl(const hdl::DatapathPorts& p, const Config& c,
+                         const std::vector<Datapath>& units, const StageLayout& layout) {
+    return hast_rtl(p, c, units, layout);
+  }
 };
 
 }  // namespace

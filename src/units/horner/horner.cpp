@@ -13,6 +13,7 @@
 #include <algorithm>
 
 #include "units/horner/datapath.h"
+#include "units/horner/rtl.h"
 #include "units/horner/slots.h"
 #include "units/u_scaler_cost.h"
 #include "units/unit_set.h"
@@ -138,6 +139,10 @@ struct Horner : UnitKindDefaults {
     }
   }
 
+  static std::string rtl(const hdl::DatapathPorts& p, const Config&,
+                         const std::vector<Datapath>& units, const StageLayout& layout) {
+    return horner_rtl(p, units, layout);
+  }
   static nlohmann::json describe_slot(const Datapath& u) {
     return {{"root_raw", u.scaler().root_raw()},
             {"k", u.scaler().k_value()},

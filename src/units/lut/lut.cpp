@@ -13,6 +13,7 @@
 #include <algorithm>
 
 #include "units/lut/datapath.h"
+#include "units/lut/rtl.h"
 #include "units/unit_set.h"
 
 namespace glint {
@@ -116,6 +117,10 @@ struct Lut : UnitKindDefaults {
             {"error_bound", u.error_bound()}};
   }
   static double error_bound(const Datapath& u) { return u.error_bound(); }
+  static std::string rtl(const hdl::DatapathPorts& p, const Config& c,
+                         const std::vector<Datapath>& units, const StageLayout& layout) {
+    return lut_rtl(p, c, units, layout);
+  }
 };
 
 }  // namespace

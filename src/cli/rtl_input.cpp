@@ -1,0 +1,84 @@
+#include "cli/rtl_input.h"
+
+#include <fmt/format.h>
+
+#include <sstream>
+
+#include "cli/cli.h"
+#include "hdl/verilog.h"
+#include "render/render.h"
+#include "scene/scene.h"
+#include "units/catalogue.h"
+
+namespace glint::cli {
+
+void add_rtl_input_options(CLI::App* sub, RtlInputOptions& o) {
+  sub->add_option("--vectors", o.vectors,
+                  "Vector file whose materials and lights give the slots (traces/README.md)");
+  sub->add_option("--scene", o.scene, "Scene whose materials and lights give the slots");
+  sub->add_option("--material", o.materials,
+                  "A material as a vector file's material line after the word `material`, e.g. "
+                  "'gold shininess=64 lobe=blinn specular=1,0.77,0.34' (repeatable)");
+  sub->add_option("--eps", o.eps, "Perceptibility threshold eps of --material (default 1e-3)");
+}
+
+void check_rtl_input(const RtlInputOptions& o) {
+  const int given = !o.vectors.empty() + !o.scene.empty() + !o.materials.empty();
+  if (given != 1)
+    throw std::invalid_argument(
+        "give the slots one way: --vectors FILE, --scene SCENE or --material ... (one of them)");
+  if (o.materials.empty() && o.eps != 1e-3)
+    throw std::invalid_argument("--eps goes with --material (files and scenes give their own)");
+  require_finite_positive(o.eps, "--eps");
+}
+
+VectorHeader rtl_header(const RtlInputOptions& o) {
+  if (!o.vectors.empty()) return VectorReader(o.vectors).header();
+  if (!o.scene.empty()) return scene_request_header(load_scene(o.scene));
+  // A vector file of the materials alone: its reader checks every field and names the line
+  // (line 3 is the first --material).
+  std::string text = fmt::format("glint-vectors 1\neps {}\n", o.eps);
+  for (const std::string& m : o.materials) {
+    if (m.find('\n') != std::string::npos)
+      throw std::invalid_argument("--material: one line per material");
+    text += "material " + m + "\n";
+  }
+  text += "columns t material\ndata\n";
+  std::istringstream in(text);
+  return VectorReader(in, "--material").header();
+}
+
+RtlDesign make_rtl_design(const UnitSpec& spec, const VectorHeader& header) {
+  RtlDesign d;
+  d.slots = make_slots(header);
+  d.unit = make_unit(spec, d.slots);
+  const SpecularUnit& u = *d.unit;
+  hdl::LaneParams& p = d.lane;
+  p.unit = u.name();
+  p.spec = u.canonical_spec();
+  p.generator = std::string("glint ") + GLINT_VERSION;
+  p.in = u.in_format();
+  p.out = u.out_format();
+  p.latency = u.timing().latency;
+  p.ii = u.timing().ii;
+  p.buffer = u.timing().buffer_depth;
+  p.comparator = u.comparator_enabled();
+  p.groups = u.datapath_groups();
+  for (std::size_t s = 0; s < u.slots(); ++s) {
+    p.threshold.push_back(u.tau_raw(s));
+    p.group.push_back(static_cast<std::uint32_t>(u.datapath_of(s)));
+    p.slot_names.push_back(s < d.slots.params.size() ? d.slots.params[s].name : "");
+  }
+  hdl::DatapathPorts ports;
+  ports.module = fmt::format("glint_{}_datapath", p.unit);
+  ports.in = p.in;
+  ports.out = p.out;
+  ports.group_bits = hdl::group_bits(p);
+  ports.groups = p.groups;
+  ports.latency = p.latency;
+  d.lane_verilog = "`timescale 1ns / 1ps\n" + hdl::lane_module(p);
+  d.datapath_verilog = "`timescale 1ns / 1ps\n" + u.rtl_datapath(ports);
+  return d;
+}
+
+}  // namespace glint::cli

@@ -1,0 +1,43 @@
+// What `glint rtl` and `glint synth` share: the slots a unit is elaborated for (a vector file's
+// header, a scene's materials and lights, or materials given on the command line) and the Verilog
+// of one lane (hdl/lane.h around the unit's own datapath, SpecularUnit::rtl_datapath).
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "eval/evaluate.h"
+#include "hdl/lane.h"
+#include "io/vectors.h"
+#include "units/unit.h"
+
+namespace glint::cli {
+
+struct RtlInputOptions {
+  std::string vectors, scene;
+  std::vector<std::string> materials;  // "NAME shininess=N [lobe=...] [specular=r,g,b]"
+  double eps = 1e-3;
+};
+// --vectors, --scene, --material, --eps. (No --slots: a chip of fixed capacity needs writable
+// tables, which the generator does not write yet; the ROMs hold the input's slots.)
+void add_rtl_input_options(CLI::App* sub, RtlInputOptions& o);
+// Exactly one input kind; throws std::invalid_argument naming the options otherwise.
+void check_rtl_input(const RtlInputOptions& o);
+
+// The header the slots come from: the vector file's, the scene's requests', or one made of the
+// --material lines (read by the vector-file reader, so its rules and messages apply).
+VectorHeader rtl_header(const RtlInputOptions& o);
+
+struct RtlDesign {
+  SlotMap slots;
+  std::unique_ptr<SpecularUnit> unit;
+  hdl::LaneParams lane;
+  std::string lane_verilog;      // glint_<unit>_lane
+  std::string datapath_verilog;  // glint_<unit>_datapath
+};
+// Builds the unit for the input's slots and writes its Verilog.
+RtlDesign make_rtl_design(const UnitSpec& spec, const VectorHeader& header);
+
+}  // namespace glint::cli

@@ -1,0 +1,163 @@
+#include "hdl/verilog.h"
+
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+namespace glint::hdl {
+
+int index_bits(std::uint64_t n) {
+  int b = 1;
+  while (b < 64 && (std::uint64_t{1} << b) < n) ++b;
+  return b;
+}
+
+int value_bits(std::uint64_t v) {
+  int b = 1;
+  while (b < 64 && (v >> b) != 0) ++b;
+  return b;
+}
+
+namespace {
+std::uint64_t bits_of(int width, std::int64_t v) {
+  if (width < 1 || width > 64) throw std::invalid_argument(fmt::format("hdl: width {}", width));
+  const std::uint64_t mask = width == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << width) - 1;
+  return static_cast<std::uint64_t>(v) & mask;
+}
+}  // namespace
+
+std::string lit(int width, std::int64_t v) {
+  const std::uint64_t b = bits_of(width, v);
+  return b <= 9 ? fmt::format("{}'d{}", width, b) : fmt::format("{}'h{:x}", width, b);
+}
+
+std::string slit(int width, std::int64_t v) {
+  const std::uint64_t b = bits_of(width, v);
+  return b <= 9 ? fmt::format("{}'sd{}", width, b) : fmt::format("{}'sh{:x}", width, b);
+}
+
+std::string range(int width) {
+  return fmt::format("[{}:0]", width - 1);
+}
+
+std::string describe(const QFormat& f) {
+  return fmt::format("{} ({} bits, {} fraction{})", f.name(), f.width(), f.frac_bits,
+                     f.is_signed ? ", two's complement" : "");
+}
+
+std::string comment(const std::string& text, int indent) {
+  std::string out;
+  const std::string pad(static_cast<std::size_t>(indent), ' ');
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t end = text.find('\n', start);
+    const std::string line =
+        text.substr(start, end == std::string::npos ? std::string::npos : end - start);
+    out += pad + (line.empty() ? "//" : "// " + line) + "\n";
+    if (end == std::string::npos) break;
+    start = end + 1;
+  }
+  return out;
+}
+
+std::string rom(const Rom& r) {
+  if (r.words.size() > (std::uint64_t{1} << r.addr_bits) || r.words.empty())
+    throw std::invalid_argument(fmt::format("hdl: ROM {}: {} words for {} address bits", r.name,
+                                            r.words.size(), r.addr_bits));
+  std::string s;
+  if (!r.comment.empty()) s += comment(r.comment);
+  s += fmt::format("  reg {}{} {};\n", r.is_signed ? "signed " : "", range(r.data_bits), r.name);
+  s += "  always @* begin\n";
+  s += fmt::format("    case ({})\n", r.addr);
+  for (std::size_t i = 0; i < r.words.size(); ++i)
+    s += fmt::format("      {}: {} = {};\n", lit(r.addr_bits, static_cast<std::int64_t>(i)), r.name,
+                     lit(r.data_bits, r.words[i]));
+  // Addresses past the contents (a ROM need not fill its address space) read `fill`.
+  if (r.words.size() < (std::uint64_t{1} << r.addr_bits))
+    s += fmt::format("      default: {} = {};\n", r.name, lit(r.data_bits, r.fill));
+  s += "    endcase\n  end\n";
+  return s;
+}
+
+std::string rom_function(const Rom& r) {
+  if (r.words.size() > (std::uint64_t{1} << r.addr_bits) || r.words.empty())
+    throw std::invalid_argument(fmt::format("hdl: ROM {}: {} words for {} address bits", r.name,
+                                            r.words.size(), r.addr_bits));
+  std::string s;
+  if (!r.comment.empty()) s += comment(r.comment);
+  s += fmt::format("  function {}{} {};\n", r.is_signed ? "signed " : "", range(r.data_bits),
+                   r.name);
+  s += fmt::format("    input {} a;\n", range(r.addr_bits));
+  s += "    case (a)\n";
+  for (std::size_t i = 0; i < r.words.size(); ++i)
+    s += fmt::format("      {}: {} = {};\n", lit(r.addr_bits, static_cast<std::int64_t>(i)), r.name,
+                     lit(r.data_bits, r.words[i]));
+  if (r.words.size() < (std::uint64_t{1} << r.addr_bits))
+    s += fmt::format("      default: {} = {};\n", r.name, lit(r.data_bits, r.fill));
+  s += "    endcase\n  endfunction\n";
+  return s;
+}
+
+std::string group_table(const std::string& name, const std::string& addr, int addr_bits, int width,
+                        const std::vector<std::int64_t>& values, const std::string& what,
+                        bool is_signed) {
+  bool same = true;
+  for (std::int64_t v : values) same = same && v == values.front();
+  if (same)
+    return fmt::format("  wire {}{} {} = {};  // {} (every group)\n", is_signed ? "signed " : "",
+                       range(width), name,
+                       is_signed ? slit(width, values.front()) : lit(width, values.front()), what);
+  Rom r;
+  r.name = name;
+  r.addr = addr;
+  r.addr_bits = addr_bits;
+  r.data_bits = width;
+  r.is_signed = is_signed;
+  r.words = values;
+  r.comment = what + " per datapath group";
+  return rom(r);
+}
+
+std::string ext(const std::string& name, int from, int to, bool is_signed) {
+  if (to == from) return name;
+  if (to < from) return fmt::format("{}[{}:0]", name, to - 1);
+  if (is_signed) return fmt::format("{{{{{}{{{}[{}]}}}}, {}}}", to - from, name, from - 1, name);
+  return fmt::format("{{{}'d0, {}}}", to - from, name);
+}
+
+std::string datapath_input_stage(const DatapathPorts& p) {
+  std::string s = comment(
+      "---- position 0, in: the compute path's comparator register (t and its "
+      "datapath group)");
+  s += fmt::format("  reg {} in_t;\n", range(p.in.width()));
+  if (p.groups > 1) {
+    s += fmt::format("  reg {} in_group;\n", range(p.group_bits));
+    s += "  always @(posedge clk) if (start) begin\n";
+    s += "    in_t <= start_t;\n    in_group <= start_group;\n  end\n";
+  } else {
+    s += "  wire [0:0] in_group = 1'b0;  // one datapath group\n";
+    s += "  wire unused_group = ^{start_group, in_group};  // (a unit may not read it)\n";
+    s += "  always @(posedge clk) if (start) in_t <= start_t;\n";
+  }
+  return s;
+}
+
+std::string datapath_header(const DatapathPorts& p, const std::string& header_comment) {
+  std::string s = comment(header_comment, 0);
+  s += fmt::format("module {} (\n", p.module);
+  s += "  input  wire clk,\n";
+  s += "  input  wire start,  // a computed request issues at this edge: load position 0\n";
+  s += fmt::format("  input  wire {} start_t,  // t, {}\n", range(p.in.width()), describe(p.in));
+  s += fmt::format("  input  wire {} start_group,  // the request's datapath group\n",
+                   range(p.group_bits));
+  s += fmt::format("  output wire {} result  // position {} (L): {}\n", range(p.out.width()),
+                   p.latency, describe(p.out));
+  s += ");\n";
+  return s;
+}
+
+std::string datapath_footer(const DatapathPorts& p) {
+  return fmt::format("endmodule  // {}\n", p.module);
+}
+
+}  // namespace glint::hdl

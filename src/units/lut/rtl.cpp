@@ -1,0 +1,145 @@
+// lut in Verilog: every constant is read from the built LutUnit of each datapath group (t0, the
+// span's shifts, the table's entries through LutUnit::entry), never recomputed here.
+#include "units/lut/rtl.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "hdl/verilog.h"
+#include "units/stage_rtl.h"
+
+namespace glint {
+
+std::string lut_rtl(const hdl::DatapathPorts& p, const LutConfig& c,
+                    const std::vector<LutUnit>& groups, const StageLayout& layout) {
+  using hdl::ext;
+  using hdl::lit;
+  using hdl::range;
+  const int wi = c.in.width(), fi = c.in.frac_bits, wo = c.out.width();
+  const int tf = c.table_frac, tw = tf + 1, bits = c.bits, wg = p.group_bits;
+  const Stage& lookup = rtl_stage(layout, "lookup");
+  const Stage& interp = rtl_stage(layout, "interp");
+  const int iw = lookup.registers[0].format.width();  // index: bits + 1
+  const int fw = lookup.registers[1].format.width();  // remainder: max(1, R)
+
+  // Per group: t0, the remainder bits r (index = (t - t0) >> r) and the padding (index << pad:
+  // inputs finer than the table's step do not exist, datapath.h), and R - r, which aligns every
+  // group's remainder to the widest R so that stage 2 rounds at one shift for all of them.
+  std::vector<std::int64_t> t0, rbits, pad, align;
+  int rmax = 0;
+  for (const LutUnit& u : groups) rmax = std::max(rmax, u.remainder_bits());
+  for (const LutUnit& u : groups) {
+    t0.push_back(u.t0_raw());
+    rbits.push_back(u.remainder_bits());
+    pad.push_back(std::max(0, bits - (fi - u.span_log2())));
+    align.push_back(rmax - u.remainder_bits());
+  }
+  const bool align_varies =
+      std::any_of(align.begin(), align.end(), [&](std::int64_t a) { return a != align.front(); });
+  const int kw = std::max(wi, iw);  // the index before its padding shift
+  const int sb = hdl::value_bits(static_cast<std::uint64_t>(std::max(fi, bits)));
+
+  std::string s = hdl::datapath_header(
+      p, fmt::format("{}: lut, a table of t^n per material + linear interpolation (the baseline "
+                     "Schlick 1994 names).\n"
+                     "Stages (lut.cpp, LutUnit::run in units/lut/datapath.h): lookup (index, "
+                     "remainder, both nodes), interp.\n"
+                     "{} datapath group(s), 2^{} + 1 entries each of {} bits (t^n rounded to {} "
+                     "fraction bits).",
+                     p.module, groups.size(), bits, tw, tf));
+  s += hdl::datapath_input_stage(p);
+
+  // ---- stage 1
+  s += rtl_stage_registers(lookup,
+                           "t - t0 split into the table index and the remainder below it; the "
+                           "two nodes around t");
+  s += "  reg lookup_short;  // t <= t0: below the table's span, result 0 (carried)\n";
+  if (align_varies) s += fmt::format("  reg {} lookup_group;  // carried to stage 2\n", range(wg));
+  s += hdl::group_table("t0", "in_group", wg, wi, t0,
+                        "t0 = 1 - 2^-span, the table's first node (LutUnit::t0_raw)");
+  s += hdl::group_table("rbits", "in_group", wg, sb, rbits,
+                        "input bits below the index (LutUnit::remainder_bits)");
+  s += hdl::group_table("pad", "in_group", wg, sb, pad,
+                        "index padding: the span holds fewer codes than the table has segments");
+  s += fmt::format("  wire {} lookup_tc = (in_t > {}) ? {} : in_t;  // t clamped to 1.0\n",
+                   range(wi), lit(wi, c.in.raw_one()), lit(wi, c.in.raw_one()));
+  s += fmt::format("  wire {} lookup_v = lookup_tc - t0;  // v = t - t0\n", range(wi));
+  s += fmt::format("  wire {} lookup_vw = {};\n", range(kw), ext("lookup_v", wi, kw));
+  s += fmt::format("  wire {} lookup_k = (lookup_vw >> rbits) << pad;  // i = (v >> r) << pad\n",
+                   range(kw));
+  s += fmt::format("  wire {} lookup_i = {};\n", range(iw), ext("lookup_k", kw, iw));
+  // v < 2^(Fi - span): the bits above the index and the remainder are 0 by construction.
+  if (kw > iw) s += fmt::format("  wire unused_k = ^lookup_k[{}:{}];\n", kw - 1, iw);
+  s += fmt::format("  wire {} lookup_i1 = lookup_i + {};\n", range(iw), lit(iw, 1));
+  s += fmt::format("  wire {} lookup_rem = lookup_v & ~({{{}{{1'b1}}}} << rbits);  // v mod 2^r\n",
+                   range(wi), wi);
+  if (wi > fw) s += fmt::format("  wire unused_rem = ^lookup_rem[{}:{}];\n", wi - 1, fw);
+  // The t^n table of every group, addressed {group, index}: entries 0..2^bits and the padding
+  // entry 2^bits + 1 (the last node again, read as node_hi at t = 1).
+  const std::int64_t stride = std::int64_t{1} << iw;
+  hdl::Rom tab;
+  tab.name = "tn_table";
+  tab.addr_bits = wg + iw;
+  tab.data_bits = tw;
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    tab.words.resize(g * static_cast<std::size_t>(stride), 0);
+    for (std::int64_t j = 0; j <= (std::int64_t{1} << bits) + 1; ++j)
+      tab.words.push_back(groups[g].entry(j));
+  }
+  tab.comment = fmt::format(
+      "t^n at the nodes t0 + j (1 - t0) 2^-{} of each group, rounded to {} fraction bits "
+      "(LutUnit::entry);\n"
+      "address {{group, j}}, j = 0..2^{} + 1 (the last entry repeats 1.0 for node_hi at t = 1)",
+      bits, tf, bits);
+  s += hdl::rom_function(tab);
+  s += "  always @(posedge clk) begin\n";
+  s += "    lookup_short <= in_t <= t0;\n";
+  if (align_varies) s += "    lookup_group <= in_group;\n";
+  s += fmt::format("    {} <= lookup_i;\n", rtl_reg(lookup, 0));
+  s += fmt::format("    {} <= {};\n", rtl_reg(lookup, 1), ext("lookup_rem", wi, fw));
+  s += fmt::format("    {} <= tn_table({{in_group, lookup_i}});\n", rtl_reg(lookup, 2));
+  s += fmt::format("    {} <= tn_table({{in_group, lookup_i1}});\n", rtl_reg(lookup, 3));
+  s += "  end\n";
+
+  // ---- stage 2: y = (a << r) + (b - a) rem, exact, then one rounding (half up) and the clamp.
+  s += rtl_stage_registers(interp,
+                           "(a << r) + (b - a) r formed exactly, rounded once to the "
+                           "output (round half up), clamped to 1.0");
+  const int shift = rmax + tf - c.out.frac_bits;  // the same for every group once aligned
+  const int dw = tw + 1;                          // b - a, signed
+  const int yw = tw + rmax + 3;                   // y, signed, with room for the rounding half
+  s += fmt::format(
+      "  wire signed {} interp_lo = {};\n", range(yw),
+      rmax > 0 ? fmt::format("{{{}'d0, {}, {}'d0}}", yw - tw - rmax, rtl_reg(lookup, 2), rmax)
+               : ext(rtl_reg(lookup, 2), tw, yw));
+  if (rmax > 0) {
+    s += hdl::group_table("align", "lookup_group", wg, sb, align,
+                          fmt::format("R - r: the remainder aligned to R = {} bits", rmax));
+    s += fmt::format("  wire {} interp_rem = {} << align;\n", range(fw), rtl_reg(lookup, 1));
+    s += fmt::format("  wire signed {} interp_diff = {} - {};  // b - a\n", range(dw),
+                     ext(rtl_reg(lookup, 3), tw, dw), ext(rtl_reg(lookup, 2), tw, dw));
+    const int pw = dw + fw + 1;
+    s += fmt::format("  wire signed {} interp_prod = {} * $signed({});\n", range(pw),
+                     ext("interp_diff", dw, pw, true), ext("interp_rem", fw, pw));
+    s += fmt::format("  wire signed {} interp_y = interp_lo + {};\n", range(yw),
+                     ext("interp_prod", pw, yw, true));
+  } else {
+    s += fmt::format("  wire unused_interp = ^{{{}, {}}};  // no input bits below the index\n",
+                     rtl_reg(lookup, 1), rtl_reg(lookup, 3));
+    s += fmt::format("  wire signed {} interp_y = interp_lo;\n", range(yw));
+  }
+  s += fmt::format("  wire unused_index = ^{};  // the index register shows the address read\n",
+                   rtl_reg(lookup, 0));
+  s += fmt::format("  wire signed {} interp_q = (interp_y + {}) >>> {};  // round_nearest\n",
+                   range(yw), hdl::slit(yw, shift > 0 ? std::int64_t{1} << (shift - 1) : 0), shift);
+  const std::int64_t one = c.out.raw_one();
+  s += "  always @(posedge clk)\n";
+  s += fmt::format("    {} <= lookup_short ? {} : (interp_q > {}) ? {} : {};\n", rtl_reg(interp, 0),
+                   lit(wo, 0), hdl::slit(yw, one), lit(wo, one), ext("interp_q", yw, wo));
+  s += fmt::format("  assign result = {};\n", rtl_reg(interp, 0));
+  s += hdl::datapath_footer(p);
+  return s;
+}
+
+}  // namespace glint

@@ -1,0 +1,17 @@
+// The u scaler (units/u_scaler.h) in Verilog, shared by hast's and horner's generators.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "units/u_scaler.h"
+
+namespace glint {
+
+// Combinational u = min(1, round((min(t, 1) - root) k)), 0 at t <= root, as UScaler::apply: the
+// wire `scaler_u` (fh + 1 bits) from the datapath's position 0 (in_t, in_group), with each group's
+// root and k read from its built UScaler.
+std::string u_scaler_rtl(const std::vector<const UScaler*>& groups, const QFormat& in,
+                         int group_bits, int fh);
+
+}  // namespace glint

@@ -1,0 +1,15 @@
+# The co-simulation cases of ctest label `rtl`: NAME|SPEC|glint rtl input options. Every unit at
+# its default and at least two other specs; the testbench runs every input code of every slot and,
+# with --vectors, the trace's rows, under the sink pattern of --sink-ready.
+set(GLINT_RTL_CASES
+  "lut.default|lut|--vectors traces/phong_basic.vec --sink-ready 0.6"
+  "lut.bits4|lut:bits=4,table_frac=20|--vectors traces/multi_light.vec --sink-ready 0.3 --seed 5"
+  "lut.narrow_skip_off|lut:bits=9,in=uq1.7,out=uq1.10,skip=off|--vectors traces/eight_lights.vec --sink-ready 0.8"
+  "hast.default|hast|--vectors traces/phong_basic.vec --sink-ready 0.6"
+  "hast.d3_materials|hast:d=3|--vectors traces/blinn_colored.vec"
+  "hast.auto_d|hast:d=auto,match=minimax|--vectors traces/multi_light.vec --sink-ready 0.5"
+  "hast.d1_narrow|hast:d=1,in=uq1.9,out=uq1.8,guard=0|--vectors traces/gaussian.vec --sink-ready 0.4"
+  "horner.default|horner|--vectors traces/phong_basic.vec --sink-ready 0.7"
+  "horner.full_ls|horner:degree=2,domain=full,method=ls|--vectors traces/blinn_colored.vec"
+  "horner.deg6_lights|horner:degree=6,guard=8|--vectors traces/eight_lights.vec --sink-ready 0.9 --seed 3"
+)

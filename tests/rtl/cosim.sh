@@ -1,0 +1,24 @@
+#!/bin/sh
+# Co-simulation of one generated lane (ctest label `rtl`): `glint rtl` writes the Verilog, the
+# testbench and its vectors; `verilator --lint-only -Wall` must find nothing in the design; the
+# testbench, built by Verilator, must report PASS: every result equal to glint's C++ datapath and
+# accepted and retired at the edges glint's timing model says.
+# Usage: cosim.sh GLINT WORKDIR SPEC [glint rtl options...]
+set -eu
+glint=$1
+work=$2
+spec=$3
+shift 3
+unit=${spec%%:*}
+rm -rf "$work"
+mkdir -p "$work"
+"$glint" rtl "$spec" "$@" -o "$work"
+design="$work/glint_${unit}_lane.v $work/glint_${unit}_datapath.v"
+# shellcheck disable=SC2086 # two file names
+verilator --lint-only -Wall --top-module "glint_${unit}_lane" $design
+# -O1 C++: the model runs a few hundred thousand cycles, so compiling it fast matters more.
+# shellcheck disable=SC2086
+verilator --binary --top-module "glint_${unit}_tb" -Mdir "$work/obj" -CFLAGS -O1 \
+  -o tb $design "$work/glint_${unit}_tb.v" > "$work/verilator.log"
+"$work/obj/tb" +vectors="$work/glint_${unit}_tb.vec" | tee "$work/tb.log"
+grep -q '^PASS' "$work/tb.log"
