@@ -80,5 +80,6 @@ int emit_sweep_report(const nlohmann::json& report, const SweepOutputFiles& file
 void add_size_command(CLI::App& app, int& status);
 void add_merge_command(CLI::App& app, int& status);
 void add_rtl_command(CLI::App& app, int& status);
+void add_synth_command(CLI::App& app, int& status);
 
 }  // namespace glint::cli

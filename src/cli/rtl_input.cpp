@@ -18,7 +18,8 @@ void add_rtl_input_options(CLI::App* sub, RtlInputOptions& o) {
   sub->add_option("--scene", o.scene, "Scene whose materials and lights give the slots");
   sub->add_option("--material", o.materials,
                   "A material as a vector file's material line after the word `material`, e.g. "
-                  "'gold shininess=64 lobe=blinn specular=1,0.77,0.34' (repeatable)");
+                  "'gold shininess=64 lobe=blinn specular=1,0.77,0.34' (repeatable; specular "
+                  "defaults to 1,1,1, lobe to phong)");
   sub->add_option("--eps", o.eps, "Perceptibility threshold eps of --material (default 1e-3)");
 }
 
@@ -36,12 +37,16 @@ VectorHeader rtl_header(const RtlInputOptions& o) {
   if (!o.vectors.empty()) return VectorReader(o.vectors).header();
   if (!o.scene.empty()) return scene_request_header(load_scene(o.scene));
   // A vector file of the materials alone: its reader checks every field and names the line
-  // (line 3 is the first --material).
-  std::string text = fmt::format("glint-vectors 1\neps {}\n", o.eps);
+  // (line 4 is the first --material).
+  std::string text = fmt::format("glint-vectors 1\neps {}\nlights 1\n", o.eps);
   for (const std::string& m : o.materials) {
     if (m.find('\n') != std::string::npos)
       throw std::invalid_argument("--material: one line per material");
-    text += "material " + m + "\n";
+    // White and Phong unless given: the colour changes only the material's c_y (its tau).
+    text += "material " + m;
+    if (m.find("specular=") == std::string::npos) text += " specular=1,1,1";
+    if (m.find("lobe=") == std::string::npos) text += " lobe=phong";
+    text += "\n";
   }
   text += "columns t material\ndata\n";
   std::istringstream in(text);

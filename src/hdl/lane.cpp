@@ -141,7 +141,9 @@ std::string lane_module(const LaneParams& p) {
       "its place in the merge buffer was reserved at issue)",
       L));
   s += fmt::format("  reg {} cmp_valid;\n", range(L + 1));
-  s += fmt::format("  reg {} cmp_tag [0:{}];\n", range(tb), L);
+  // One register a position (not an array: a shift register, which Yosys would otherwise first
+  // read as a memory).
+  for (int k = 0; k <= L; ++k) s += fmt::format("  reg {} cmp_tag{};\n", range(tb), k);
   s += fmt::format("  wire {} dp_result;\n", range(wo));
   s += fmt::format("  glint_{}_datapath datapath (\n", p.unit);
   s += "    .clk(clk),\n    .start(start),\n    .start_t(in_t),\n    .start_group(group),\n";
@@ -158,7 +160,7 @@ std::string lane_module(const LaneParams& p) {
   s += fmt::format("  reg {} ent_result [0:{}];\n", range(wo), p.buffer - 1);
   s += fmt::format("  reg {} head;\n", range(tb));
   s += "  wire byp_at_head = byp_valid & (byp_tag == head);\n";
-  s += fmt::format("  wire cmp_at_head = cmp_valid[{}] & (cmp_tag[{}] == head);\n", L, L);
+  s += fmt::format("  wire cmp_at_head = cmp_valid[{}] & (cmp_tag{} == head);\n", L, L);
   s += "  assign out_valid = ent_valid[head] | byp_at_head | cmp_at_head;\n";
   s += fmt::format(
       "  assign out_result = ent_valid[head] ? ent_result[head] : (cmp_at_head ? dp_result : "
@@ -193,15 +195,15 @@ std::string lane_module(const LaneParams& p) {
   s += "        ent_valid[byp_tag] <= 1'b1;\n        ent_skipped[byp_tag] <= 1'b1;\n";
   s += fmt::format("        ent_result[byp_tag] <= {};\n      end\n", lit(wo, 0));
   s += fmt::format("      if (cmp_valid[{}] & ~(retire & cmp_at_head)) begin\n", L);
-  s += fmt::format("        ent_valid[cmp_tag[{}]] <= 1'b1;\n", L);
-  s += fmt::format("        ent_skipped[cmp_tag[{}]] <= 1'b0;\n", L);
-  s += fmt::format("        ent_result[cmp_tag[{}]] <= dp_result;\n      end\n", L);
+  s += fmt::format("        ent_valid[cmp_tag{}] <= 1'b1;\n", L);
+  s += fmt::format("        ent_skipped[cmp_tag{}] <= 1'b0;\n", L);
+  s += fmt::format("        ent_result[cmp_tag{}] <= dp_result;\n      end\n", L);
   s += "      if (retire & ent_valid[head]) ent_valid[head] <= 1'b0;\n";
   s += "    end\n";
   s += "    // data registers need no reset: a valid bit guards each\n";
   s += "    if (issue) byp_tag <= issue_tag;\n";
-  s += "    cmp_tag[0] <= issue_tag;\n";
-  for (int k = 1; k <= L; ++k) s += fmt::format("    cmp_tag[{}] <= cmp_tag[{}];\n", k, k - 1);
+  s += "    cmp_tag0 <= issue_tag;\n";
+  for (int k = 1; k <= L; ++k) s += fmt::format("    cmp_tag{} <= cmp_tag{};\n", k, k - 1);
   s += "  end\n";
   s += fmt::format("endmodule  // glint_{}_lane\n", p.unit);
   return s;

@@ -60,42 +60,44 @@ std::string comment(const std::string& text, int indent) {
   return out;
 }
 
-std::string rom(const Rom& r) {
+namespace {
+
+// The comment, the declaration line(s) `head` and the case statement on `selector` shared by both
+// ROM forms; `tail` closes the block.
+std::string rom_text(const Rom& r, const std::string& head, const std::string& selector,
+                     const std::string& tail) {
   if (r.words.size() > (std::uint64_t{1} << r.addr_bits) || r.words.empty())
     throw std::invalid_argument(fmt::format("hdl: ROM {}: {} words for {} address bits", r.name,
                                             r.words.size(), r.addr_bits));
   std::string s;
   if (!r.comment.empty()) s += comment(r.comment);
-  s += fmt::format("  reg {}{} {};\n", r.is_signed ? "signed " : "", range(r.data_bits), r.name);
-  s += "  always @* begin\n";
-  s += fmt::format("    case ({})\n", r.addr);
+  s += head;
+  s += fmt::format("    case ({})\n", selector);
   for (std::size_t i = 0; i < r.words.size(); ++i)
     s += fmt::format("      {}: {} = {};\n", lit(r.addr_bits, static_cast<std::int64_t>(i)), r.name,
                      lit(r.data_bits, r.words[i]));
   // Addresses past the contents (a ROM need not fill its address space) read `fill`.
   if (r.words.size() < (std::uint64_t{1} << r.addr_bits))
     s += fmt::format("      default: {} = {};\n", r.name, lit(r.data_bits, r.fill));
-  s += "    endcase\n  end\n";
+  s += "    endcase\n" + tail;
   return s;
 }
 
+}  // namespace
+
+std::string rom(const Rom& r) {
+  return rom_text(r,
+                  fmt::format("  reg {}{} {};\n  always @* begin\n", r.is_signed ? "signed " : "",
+                              range(r.data_bits), r.name),
+                  r.addr, "  end\n");
+}
+
 std::string rom_function(const Rom& r) {
-  if (r.words.size() > (std::uint64_t{1} << r.addr_bits) || r.words.empty())
-    throw std::invalid_argument(fmt::format("hdl: ROM {}: {} words for {} address bits", r.name,
-                                            r.words.size(), r.addr_bits));
-  std::string s;
-  if (!r.comment.empty()) s += comment(r.comment);
-  s += fmt::format("  function {}{} {};\n", r.is_signed ? "signed " : "", range(r.data_bits),
-                   r.name);
-  s += fmt::format("    input {} a;\n", range(r.addr_bits));
-  s += "    case (a)\n";
-  for (std::size_t i = 0; i < r.words.size(); ++i)
-    s += fmt::format("      {}: {} = {};\n", lit(r.addr_bits, static_cast<std::int64_t>(i)), r.name,
-                     lit(r.data_bits, r.words[i]));
-  if (r.words.size() < (std::uint64_t{1} << r.addr_bits))
-    s += fmt::format("      default: {} = {};\n", r.name, lit(r.data_bits, r.fill));
-  s += "    endcase\n  endfunction\n";
-  return s;
+  return rom_text(
+      r,
+      fmt::format("  function {}{} {};\n    input {} a;\n", r.is_signed ? "signed " : "",
+                  range(r.data_bits), r.name, range(r.addr_bits)),
+      "a", "  endfunction\n");
 }
 
 std::string group_table(const std::string& name, const std::string& addr, int addr_bits, int width,

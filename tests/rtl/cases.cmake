@@ -12,4 +12,10 @@ set(GLINT_RTL_CASES
   "horner.default|horner|--vectors traces/phong_basic.vec --sink-ready 0.7"
   "horner.full_ls|horner:degree=2,domain=full,method=ls|--vectors traces/blinn_colored.vec"
   "horner.deg6_lights|horner:degree=6,guard=8|--vectors traces/eight_lights.vec --sink-ready 0.9 --seed 3"
+  "pow.default|pow|--vectors traces/phong_basic.vec --sink-ready 0.6"
+  "pow.small_tables|pow:log_bits=6,exp_bits=4,in=uq1.16,out=uq1.10|--vectors traces/multi_light.vec --sink-ready 0.5"
+  "pow.n_wide|pow:n=uq14.6,y_frac=16,log_frac=20|--vectors traces/contract_cases.vec --sink-ready 0.9 --seed 11"
+  "schlick.default|schlick|--vectors traces/phong_basic.vec --sink-ready 0.7"
+  "schlick.iterative|schlick:divider=iterative,n=uq10.2|--vectors traces/gaussian.vec"
+  "schlick.minimax_narrow|schlick:match=minimax,in=uq1.12,out=uq1.10|--vectors traces/hard_cases.vec --sink-ready 0.4"
 )

@@ -13,6 +13,9 @@ unit=${spec%%:*}
 rm -rf "$work"
 mkdir -p "$work"
 "$glint" rtl "$spec" "$@" -o "$work"
+# Deterministic: a second run writes the same bytes.
+"$glint" rtl "$spec" "$@" -o "$work/again" > /dev/null
+for f in "$work"/glint_*; do cmp "$f" "$work/again/${f##*/}"; done
 design="$work/glint_${unit}_lane.v $work/glint_${unit}_datapath.v"
 # shellcheck disable=SC2086 # two file names
 verilator --lint-only -Wall --top-module "glint_${unit}_lane" $design
@@ -21,4 +24,16 @@ verilator --lint-only -Wall --top-module "glint_${unit}_lane" $design
 verilator --binary --top-module "glint_${unit}_tb" -Mdir "$work/obj" -CFLAGS -O1 \
   -o tb $design "$work/glint_${unit}_tb.v" > "$work/verilator.log"
 "$work/obj/tb" +vectors="$work/glint_${unit}_tb.vec" | tee "$work/tb.log"
-grep -q '^PASS' "$work/tb.log"
+grep -q "^PASS" "$work/tb.log"
+# The testbench must see a wrong result and a wrong retire edge: the first request's expectations
+# changed in a copy of the vectors, each run must fail.
+for field in 4 6; do
+  awk -v f=$field 'NR == 2 { $f = ($f == "3") ? "4" : "3" } 1' "$work/glint_${unit}_tb.vec" \
+    > "$work/tampered.vec"
+  if "$work/obj/tb" +vectors="$work/tampered.vec" > "$work/tampered.log" 2>&1; then
+    echo "FAIL: the testbench passed a tampered field $field"
+    exit 1
+  fi
+  grep -q '^FAIL' "$work/tampered.log"
+done
+echo "PASS: tampered vectors are caught"

@@ -14,6 +14,7 @@
 #include <optional>
 
 #include "units/pow/datapath.h"
+#include "units/pow/rtl.h"
 #include "units/unit_set.h"
 
 namespace glint {
@@ -181,6 +182,10 @@ struct Pow : UnitKindDefaults {
     b.stage("stage 5", p5);
   }
 
+  static std::string rtl(const hdl::DatapathPorts& p, const Config&,
+                         const std::vector<Datapath>& units, const StageLayout& layout) {
+    return pow_rtl(p, units, layout);
+  }
   static nlohmann::json describe_slot(const Datapath& u) {
     return {{"n", u.shininess_q()},
             {"table_bits", u.table_bits()},

@@ -20,6 +20,7 @@
 #include <unordered_map>
 
 #include "units/schlick/datapath.h"
+#include "units/schlick/rtl.h"
 #include "units/unit_set.h"
 
 namespace glint {
@@ -175,6 +176,10 @@ struct Schlick : UnitKindDefaults {
     b.stage(fmt::format("stage {}", q + 2), {rnd, clamp});
   }
 
+  static std::string rtl(const hdl::DatapathPorts& p, const Config& c,
+                         const std::vector<Datapath>& units, const StageLayout& layout) {
+    return schlick_rtl(p, units, c.iterative, layout);
+  }
   static nlohmann::json describe_slot(const Datapath& u) {
     // n: the material's shininess; n_prime: what Schlick's formula uses for it (exact), n_q: the
     // register's value of n_prime.

@@ -1,0 +1,405 @@
+// glint synth: the Verilog of `glint rtl` through Yosys, with a documented flow (README, "glint
+// synth"), reported as JSON: cells by type, gate equivalents (CMOS transistors / 4, Yosys' `stat
+// -tech cmos`) or a cell library's area (--liberty), flip-flops, and the logic depth (gates on the
+// longest path) into each stage's registers, computed here from Yosys' JSON netlist.
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <unordered_map>
+
+#include "cli/cli.h"
+#include "cli/rtl_input.h"
+#include "io/input_error.h"
+#include "io/output_set.h"
+#include "io/signal_cleanup.h"
+#include "units/catalogue.h"
+
+extern char** environ;
+
+namespace glint::cli {
+namespace {
+
+struct SynthOptions {
+  std::string spec;
+  RtlInputOptions input;
+  std::string liberty;
+  std::string report;
+  bool json = false;
+};
+
+// A private work folder (mkdtemp) and the files in it, removed at the end and by a termination
+// signal's handler (signal_cleanup.h).
+class WorkFolder {
+ public:
+  WorkFolder() {
+    const char* tmp = std::getenv("TMPDIR");
+    std::string pattern = std::string(tmp && *tmp ? tmp : "/tmp") + "/glint-synth.XXXXXX";
+    if (::mkdtemp(pattern.data()) == nullptr)
+      throw OutputError(fmt::format("synth: cannot make a work folder {}", pattern));
+    dir_ = pattern;
+    handles_.push_back(register_cleanup(CleanupKind::kFolder, dir_));
+  }
+  ~WorkFolder() {
+    for (const std::string& f : files_) ::unlink(f.c_str());
+    ::rmdir(dir_.c_str());
+    for (int h : handles_) release_cleanup(h);
+  }
+  WorkFolder(const WorkFolder&) = delete;
+  WorkFolder& operator=(const WorkFolder&) = delete;
+  // A file in the folder, registered before it exists.
+  std::string file(const std::string& name) {
+    files_.push_back(dir_ + "/" + name);
+    handles_.push_back(register_cleanup(CleanupKind::kFile, files_.back()));
+    return files_.back();
+  }
+
+ private:
+  std::string dir_;
+  std::vector<std::string> files_;
+  std::vector<int> handles_;
+};
+
+void write_text(const std::string& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  if (!out.flush()) throw OutputError("synth: cannot write " + path);
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Runs `yosys -q -l LOG -s SCRIPT`; throws with the log's last lines when it fails, and a clear
+// message when yosys is not installed.
+void run_yosys(const std::string& script, const std::string& log, bool user_library) {
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+  std::string a0 = "yosys", a1 = "-q", a2 = "-l", a3 = log, a4 = "-s", a5 = script;
+  char* argv[] = {a0.data(), a1.data(), a2.data(), a3.data(), a4.data(), a5.data(), nullptr};
+  pid_t pid = -1;
+  const int err = ::posix_spawnp(&pid, "yosys", &actions, nullptr, argv, environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (err != 0)
+    throw std::invalid_argument(
+        "synth needs Yosys: `yosys` is not on PATH (Debian package yosys; .ci/bootstrap installs "
+        "it)");
+  const int handle = register_cleanup_process(pid);
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  release_cleanup(handle);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    std::string text = read_text(log);
+    if (text.size() > 2000) text = "..." + text.substr(text.size() - 2000);
+    // With --liberty the library is the likely cause (no buffer, no flip-flop ABC can use): bad
+    // input. On the generic flow a failure is glint's own: an internal error.
+    if (user_library)
+      throw std::invalid_argument("--liberty: yosys could not map onto this library:\n" + text);
+    throw std::runtime_error("synth: yosys failed:\n" + text);
+  }
+}
+
+// The generic flow: Yosys' own `synth` (coarse and fine optimisation, techmap to its internal gate
+// library, ABC on those gates), flattened so that depth is measured across the lane. With a
+// liberty file: flip-flops mapped by dfflibmap and logic by ABC onto its cells.
+std::string yosys_script(const std::string& top, const std::vector<std::string>& sources,
+                         const std::string& liberty, const std::string& stat,
+                         const std::string& netlist) {
+  std::string s;
+  // The library's cells as blackboxes: the netlist then knows their ports' directions.
+  if (!liberty.empty()) s += "read_liberty -lib " + liberty + "\n";
+  for (const std::string& f : sources) s += "read_verilog " + f + "\n";
+  s += "synth -flatten -top " + top + "\n";
+  if (!liberty.empty()) {
+    s += "dfflibmap -liberty " + liberty + "\n";
+    s += "abc -liberty " + liberty + "\n";
+  }
+  s += "opt_clean -purge\n";
+  s += "tee -q -o " + stat + " stat " +
+       (liberty.empty() ? std::string("-tech cmos") : "-liberty " + liberty) + "\n";
+  s += "write_json " + netlist + "\n";
+  return s;
+}
+
+// The sequential cells of a liberty file: those whose group holds an ff( or latch( group.
+std::set<std::string> liberty_registers(const std::string& text) {
+  std::set<std::string> out;
+  static const std::regex cell(R"(cell\s*\(\s*\"?([A-Za-z0-9_$.\[\]]+)\"?\s*\))");
+  std::vector<std::pair<std::size_t, std::string>> cells;
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), cell); it != std::sregex_iterator();
+       ++it)
+    cells.emplace_back(static_cast<std::size_t>(it->position(0)), (*it)[1].str());
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    const std::size_t end = i + 1 < cells.size() ? cells[i + 1].first : text.size();
+    const std::string body = text.substr(cells[i].first, end - cells[i].first);
+    if (std::regex_search(body, std::regex(R"(\b(ff|latch|ff_bank|latch_bank)\s*\()")))
+      out.insert(cells[i].second);
+  }
+  return out;
+}
+
+// Yosys' own flip-flops and latches ($_DFF_P_, $_SDFFE_PP0P_, $_DLATCH_P_, ...) or a library's.
+bool is_register(const std::string& type, const std::set<std::string>& library_registers) {
+  if (!type.empty() && type[0] == '$')
+    return type.find("DFF") != std::string::npos || type.find("LATCH") != std::string::npos;
+  return library_registers.count(type) > 0;
+}
+
+// The stage a register belongs to: `datapath.<stage>_<name>` (or in_t/in_group: "in") of the
+// unit's layout; every other register is the lane's (comparator, credits, merge buffer).
+std::string stage_of(const std::string& net, const StageLayout& layout) {
+  const std::string prefix = "datapath.";
+  if (net.compare(0, prefix.size(), prefix) != 0) return "lane";
+  const std::string name = net.substr(prefix.size());
+  std::string best = "datapath (carried)";
+  std::size_t best_len = 0;
+  for (const Stage& s : layout.stages())
+    if (name.size() > s.name.size() && name.compare(0, s.name.size(), s.name) == 0 &&
+        name[s.name.size()] == '_' && s.name.size() > best_len) {
+      best = s.name;
+      best_len = s.name.size();
+    }
+  return best;
+}
+
+struct DepthReport {
+  nlohmann::json stages = nlohmann::json::array();
+  int max_depth = 0;
+  long flip_flops = 0;
+  std::map<std::string, long> cell_types;
+  long cells = 0;
+};
+
+// Logic depth from Yosys' JSON netlist: every combinational cell adds one level; register outputs,
+// module inputs and constants are level 0. Per stage: the deepest input of its registers.
+DepthReport analyse_netlist(const nlohmann::json& netlist, const std::string& top,
+                            const StageLayout& layout,
+                            const std::set<std::string>& library_registers) {
+  const nlohmann::json& m = netlist.at("modules").at(top);
+  struct Cell {
+    std::vector<long> inputs, outputs;
+    bool reg = false;
+    std::string type;
+  };
+  std::vector<Cell> cells;
+  std::unordered_map<long, std::size_t> driver;  // bit -> combinational cell
+  DepthReport r;
+  for (const auto& [name, c] : m.at("cells").items()) {
+    Cell cell;
+    cell.type = c.at("type").get<std::string>();
+    cell.reg = is_register(cell.type, library_registers);
+    if (!c.contains("port_directions"))
+      throw std::runtime_error("synth: cell type " + cell.type + " has no port directions");
+    const nlohmann::json& dirs = c.at("port_directions");
+    for (const auto& [port, bits] : c.at("connections").items()) {
+      const bool out = dirs.at(port) == "output";
+      for (const auto& b : bits) {
+        if (!b.is_number()) continue;  // a constant "0"/"1"/"x"
+        (out ? cell.outputs : cell.inputs).push_back(b.get<long>());
+      }
+      // (A register's clock is an input of depth 0: it changes no depth.)
+    }
+    ++r.cell_types[cell.type];
+    ++r.cells;
+    if (cell.reg) ++r.flip_flops;
+    if (!cell.reg)
+      for (long b : cell.outputs) driver[b] = cells.size();
+    cells.push_back(std::move(cell));
+  }
+  std::unordered_map<long, int> depth;
+  // Iterative depth-first evaluation (a deep adder chain would overflow a recursive one).
+  const auto depth_of = [&](long bit) {
+    std::vector<std::pair<long, bool>> stack{{bit, false}};
+    while (!stack.empty()) {
+      auto [b, expanded] = stack.back();
+      stack.pop_back();
+      if (depth.count(b)) continue;
+      const auto it = driver.find(b);
+      if (it == driver.end()) {
+        depth[b] = 0;
+        continue;
+      }
+      const Cell& c = cells[it->second];
+      if (!expanded) {
+        stack.push_back({b, true});
+        for (long in : c.inputs)
+          if (!depth.count(in)) stack.push_back({in, false});
+        continue;
+      }
+      int d = 0;
+      for (long in : c.inputs) d = std::max(d, depth.count(in) ? depth[in] : 0);
+      for (long out : c.outputs) depth[out] = d + 1;
+    }
+    return depth[bit];
+  };
+  // Register names: the public net names of their output bits.
+  std::unordered_map<long, std::string> name_of;
+  for (const auto& [name, n] : m.at("netnames").items()) {
+    if (n.value("hide_name", 0) != 0) continue;
+    for (const auto& b : n.at("bits"))
+      if (b.is_number()) name_of.emplace(b.get<long>(), name);
+  }
+  std::map<std::string, std::pair<long, int>> per_stage;  // flip-flops, depth
+  for (const Cell& c : cells) {
+    if (!c.reg) continue;
+    int d = 0;
+    for (long in : c.inputs) d = std::max(d, depth_of(in));
+    std::string stage = "lane";
+    for (long out : c.outputs) {
+      const auto it = name_of.find(out);
+      if (it != name_of.end()) {
+        stage = stage_of(it->second, layout);
+        break;
+      }
+    }
+    auto& e = per_stage[stage];
+    ++e.first;
+    e.second = std::max(e.second, d);
+  }
+  // The lane's outputs (the merge buffer's head is flow-through).
+  int out_depth = 0;
+  for (const auto& [name, port] : m.at("ports").items())
+    if (port.at("direction") == "output")
+      for (const auto& b : port.at("bits"))
+        if (b.is_number()) out_depth = std::max(out_depth, depth_of(b.get<long>()));
+  for (const Stage& s : layout.stages()) {
+    const auto it = per_stage.find(s.name);
+    if (it == per_stage.end()) continue;
+    r.stages.push_back({{"stage", s.name},
+                        {"positions", {s.first, s.last}},
+                        {"flip_flops", it->second.first},
+                        {"depth", it->second.second}});
+    r.max_depth = std::max(r.max_depth, it->second.second);
+    per_stage.erase(it);
+  }
+  for (const auto& [stage, e] : per_stage) {
+    r.stages.push_back({{"stage", stage}, {"flip_flops", e.first}, {"depth", e.second}});
+    r.max_depth = std::max(r.max_depth, e.second);
+  }
+  r.stages.push_back({{"stage", "lane outputs"}, {"flip_flops", 0}, {"depth", out_depth}});
+  r.max_depth = std::max(r.max_depth, out_depth);
+  return r;
+}
+
+int run_synth(const SynthOptions& o) {
+  const UnitSpec spec = parse_unit_spec(o.spec);
+  check_rtl_input(o.input);
+  if (options_only()) return kExitOk;
+  OutputSet out;
+  if (!o.input.vectors.empty()) out.add_input("--vectors", o.input.vectors);
+  if (!o.input.scene.empty()) out.add_input("--scene", o.input.scene);
+  if (!o.liberty.empty()) {
+    out.add_input("--liberty", o.liberty);
+    if (::access(o.liberty.c_str(), R_OK) != 0)
+      throw InputError(o.liberty, 0, "file", "cannot be read");
+  }
+  if (o.json) out.claim_stdout("--json");
+  OutputFile* report = o.report.empty() ? nullptr : &out.add("--report", o.report);
+  const bool progress = isatty(STDERR_FILENO);
+
+  const RtlDesign d = make_rtl_design(spec, rtl_header(o.input));
+  const std::string top = "glint_" + d.unit->name() + "_lane";
+  WorkFolder work;
+  const std::string lane = work.file(top + ".v");
+  const std::string datapath = work.file("glint_" + d.unit->name() + "_datapath.v");
+  const std::string script = work.file("synth.ys"), log = work.file("yosys.log");
+  const std::string stat = work.file("stat.txt"), netlist = work.file("netlist.json");
+  write_text(lane, d.lane_verilog);
+  write_text(datapath, d.datapath_verilog);
+  std::string liberty = o.liberty;
+  if (!liberty.empty() && liberty.front() != '/') {
+    char cwd[4096];
+    if (::getcwd(cwd, sizeof cwd) != nullptr) liberty = std::string(cwd) + "/" + liberty;
+  }
+  write_text(script, yosys_script(top, {lane, datapath}, liberty, stat, netlist));
+  if (progress)
+    std::fprintf(stderr, "synth: yosys on %s (%s)...\n", d.unit->canonical_spec().c_str(),
+                 liberty.empty() ? "generic gates" : liberty.c_str());
+  const auto t0 = std::chrono::steady_clock::now();
+  run_yosys(script, log, !liberty.empty());
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (progress) std::fprintf(stderr, "synth: done in %.1f s; reading the netlist\n", seconds);
+
+  const std::string stat_text = read_text(stat);
+  const DepthReport dr = analyse_netlist(
+      nlohmann::json::parse(read_text(netlist)), top, d.unit->stages(),
+      liberty.empty() ? std::set<std::string>{} : liberty_registers(read_text(liberty)));
+  nlohmann::json j{{"glint_synth_report", 1},
+                   {"unit", d.unit->name()},
+                   {"spec", d.unit->canonical_spec()},
+                   {"flow", liberty.empty() ? "generic" : "liberty"},
+                   {"yosys_seconds", seconds},
+                   {"cells", dr.cells},
+                   {"cell_types", dr.cell_types},
+                   {"flip_flops", dr.flip_flops},
+                   {"depth", dr.max_depth},
+                   {"stages", dr.stages}};
+  std::smatch match;
+  if (liberty.empty()) {
+    static const std::regex transistors(R"(Estimated number of transistors:\s+([0-9]+))");
+    if (!std::regex_search(stat_text, match, transistors))
+      throw std::runtime_error("synth: no transistor estimate in Yosys' stat -tech cmos output");
+    const double t = std::stod(match[1]);
+    j["transistors"] = t;
+    j["ge"] = t / 4;
+  } else {
+    j["liberty"] = o.liberty;
+    static const std::regex area(R"(Chip area for (?:top )?module '[^']*':\s+([0-9.eE+-]+))");
+    if (std::regex_search(stat_text, match, area)) j["area"] = std::stod(match[1]);
+  }
+  if (report) report->stream() << j.dump(2) << "\n";
+  out.commit();
+  if (o.json) {
+    print_json(j);
+    return kExitOk;
+  }
+  std::cout << fmt::format("{}: {} cells, {} flip-flops, {}, logic depth {} (yosys {:.1f} s)\n",
+                           j["spec"].get<std::string>(), dr.cells, dr.flip_flops,
+                           liberty.empty()      ? fmt::format("{:.0f} GE", j["ge"].get<double>())
+                           : j.contains("area") ? fmt::format("area {}", j["area"].dump())
+                                                : std::string("area ?"),
+                           dr.max_depth, seconds);
+  for (const auto& s : dr.stages)
+    std::cout << fmt::format("  {:<20} {:>6} flip-flops  depth {:>4}\n",
+                             s["stage"].get<std::string>(), s["flip_flops"].get<long>(),
+                             s["depth"].get<int>());
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_synth_command(CLI::App& app, int& status) {
+  auto o = std::make_shared<SynthOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "synth",
+      "Synthesize one lane of a unit with Yosys: cells, gate equivalents, flip-flops and "
+      "logic depth per stage");
+  sub->add_option("SPEC", o->spec, "Unit SPEC NAME[:key=value,...] (keys: glint units)")
+      ->required();
+  add_rtl_input_options(sub, o->input);
+  sub->add_option("--liberty", o->liberty,
+                  "Map onto this cell library (dfflibmap, abc -liberty) and report its area");
+  sub->add_option("--report", o->report, "Also write the JSON report to this file");
+  sub->add_flag("--json", o->json, "Print the report as one JSON document on stdout");
+  sub->callback([o, &status] { status = guarded([&] { return run_synth(*o); }); });
+}
+
+}  // namespace glint::cli
