@@ -30,7 +30,8 @@ grep -q "^PASS" "$work/tb.log"
 for field in 4 6; do
   awk -v f=$field 'NR == 2 { $f = ($f == "3") ? "4" : "3" } 1' "$work/glint_${unit}_tb.vec" \
     > "$work/tampered.vec"
-  if "$work/obj/tb" +vectors="$work/tampered.vec" > "$work/tampered.log" 2>&1; then
+  # (the subshell's stderr: the shell's note that the testbench aborted, as $fatal does)
+  if ("$work/obj/tb" +vectors="$work/tampered.vec" > "$work/tampered.log" 2>&1) 2> /dev/null; then
     echo "FAIL: the testbench passed a tampered field $field"
     exit 1
   fi
