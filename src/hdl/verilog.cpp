@@ -19,21 +19,35 @@ int value_bits(std::uint64_t v) {
 }
 
 namespace {
-std::uint64_t bits_of(int width, std::int64_t v) {
-  if (width < 1 || width > 64) throw std::invalid_argument(fmt::format("hdl: width {}", width));
-  const std::uint64_t mask = width == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << width) - 1;
-  return static_cast<std::uint64_t>(v) & mask;
+// The two's-complement bits of v in `width` bits (1..127: products of the wide datapaths exceed
+// 64), as hexadecimal digits, or nothing when they are 0..9 (written in decimal).
+std::string hex_bits(int width, std::int64_t v, unsigned& small) {
+  if (width < 1 || width > 127) throw std::invalid_argument(fmt::format("hdl: width {}", width));
+  const unsigned __int128 mask = (static_cast<unsigned __int128>(1) << width) - 1;
+  unsigned __int128 b = static_cast<unsigned __int128>(static_cast<__int128>(v)) & mask;
+  if (b <= 9) {
+    small = static_cast<unsigned>(b);
+    return "";
+  }
+  std::string digits;
+  while (b != 0) {
+    digits.insert(digits.begin(), "0123456789abcdef"[static_cast<unsigned>(b & 15)]);
+    b >>= 4;
+  }
+  return digits;
 }
 }  // namespace
 
 std::string lit(int width, std::int64_t v) {
-  const std::uint64_t b = bits_of(width, v);
-  return b <= 9 ? fmt::format("{}'d{}", width, b) : fmt::format("{}'h{:x}", width, b);
+  unsigned small = 0;
+  const std::string h = hex_bits(width, v, small);
+  return h.empty() ? fmt::format("{}'d{}", width, small) : fmt::format("{}'h{}", width, h);
 }
 
 std::string slit(int width, std::int64_t v) {
-  const std::uint64_t b = bits_of(width, v);
-  return b <= 9 ? fmt::format("{}'sd{}", width, b) : fmt::format("{}'sh{:x}", width, b);
+  unsigned small = 0;
+  const std::string h = hex_bits(width, v, small);
+  return h.empty() ? fmt::format("{}'sd{}", width, small) : fmt::format("{}'sh{}", width, h);
 }
 
 std::string range(int width) {

@@ -11,6 +11,7 @@ set(GLINT_RTL_CASES
   "hast.d1_narrow|hast:d=1,in=uq1.9,out=uq1.8,guard=0|--vectors traces/gaussian.vec --sink-ready 0.4"
   "horner.default|horner|--vectors traces/phong_basic.vec --sink-ready 0.7"
   "horner.full_ls|horner:degree=2,domain=full,method=ls|--vectors traces/blinn_colored.vec"
+  "horner.wide|horner:degree=10,guard=12|--vectors traces/phong_basic.vec --sink-ready 0.5"
   "horner.deg6_lights|horner:degree=6,guard=8|--vectors traces/eight_lights.vec --sink-ready 0.9 --seed 3"
   "pow.default|pow|--vectors traces/phong_basic.vec --sink-ready 0.6"
   "pow.small_tables|pow:log_bits=6,exp_bits=4,in=uq1.16,out=uq1.10|--vectors traces/multi_light.vec --sink-ready 0.5"
