@@ -24,6 +24,7 @@ EvalEngine::EvalEngine(const SlotMap& slots, std::vector<LaneAccumulator*> lanes
   if (timing_.empty()) timing_.assign(lanes_.size(), nullptr);
   options_.window_rows = std::max<std::size_t>(1, options_.window_rows);
   slot_known_.assign(slots.params.size(), 0);
+  deferred_t_ = deferred_t(slots);
   for (auto& p : partials_) p.resize(lanes_.size());
 }
 
@@ -51,12 +52,16 @@ void EvalEngine::add(const VectorRow* rows, std::size_t count, BatchResults* out
   merge_pending();
 }
 
+void EvalEngine::merge(const std::vector<LanePartial>& runs, std::size_t l) {
+  for (const LanePartial& p : runs) lanes_[l]->merge(p);
+  if (timing_[l])
+    for (const LanePartial& p : runs) LaneAccumulator::merge_timing(p, *timing_[l]);
+}
+
 void EvalEngine::merge_pending() {
   if (!pending_) return;
   const auto& last = partials_[1 - current_];
-  pool_.run(lanes_.size(), [&](std::size_t l) {
-    for (const LanePartial& p : last[l]) lanes_[l]->merge(p, timing_[l]);
-  });
+  pool_.run(lanes_.size(), [&](std::size_t l) { merge(last[l], l); });
   pending_ = false;
 }
 
@@ -64,6 +69,7 @@ void EvalEngine::merge_pending() {
 // every lane in the order of their first rows.
 void EvalEngine::prepare(const VectorRow* rows, std::size_t count, std::size_t offset,
                          BatchResults* out) {
+  t_.resize(count);
   slot_.resize(count);
   reference_.resize(count);
   const std::size_t runs = std::max<std::size_t>(
@@ -75,8 +81,13 @@ void EvalEngine::prepare(const VectorRow* rows, std::size_t count, std::size_t o
     std::vector<bool> listed;
     for (std::size_t i = a; i < b; ++i) {
       const std::uint32_t s = static_cast<std::uint32_t>(slots_.slot(rows[i]));
+      const double t = rows[i].t;
+      t_[i] = t;
       slot_[i] = s;
-      reference_[i] = reference_value(slots_, s, rows[i].t);
+      // A reference far below what any statistic can see is left to the lane that needs it
+      // (LaneAccumulator::accumulate): on a stream of mostly skipped requests, most of them.
+      reference_[i] = !out && t > 0.0 && t <= deferred_t_[s] ? kDeferredReference
+                                                             : reference_value(slots_, s, t);
       if (slot_known_[s]) continue;
       if (listed.empty()) listed.resize(slot_known_.size());
       if (!listed[s]) {
@@ -102,7 +113,7 @@ void EvalEngine::prepare(const VectorRow* rows, std::size_t count, std::size_t o
 void EvalEngine::add_window(const VectorRow* rows, std::size_t count, std::size_t offset,
                             BatchResults* out) {
   prepare(rows, count, offset, out);
-  const RowsView view{rows, slot_.data(), reference_.data()};
+  const RowsView view{t_.data(), slot_.data(), reference_.data()};
   const std::size_t total = out ? out->rows : 0;
   const auto raw = [&](std::size_t l) {
     return out ? out->raw.data() + l * total + offset : nullptr;
@@ -118,20 +129,26 @@ void EvalEngine::add_window(const VectorRow* rows, std::size_t count, std::size_
     pool_.run(lanes, [&](std::size_t l) {
       thread_local LanePartial scratch;
       lanes_[l]->accumulate(view, 0, count, scratch, raw(l), skipped(l));
-      lanes_[l]->merge(scratch, timing_[l]);
+      lanes_[l]->merge(scratch);
+      if (timing_[l]) LaneAccumulator::merge_timing(scratch, *timing_[l]);
     });
     return;
   }
-  // Runs on every thread; the last window's merges (tasks 0 .. merges - 1, handed out first) go
-  // alongside them.
+  // Runs on every thread; the last window's merges (tasks 0 .. merges - 1, handed out first: a
+  // lane's statistics, then its timing, two sequential folds on two threads) go alongside them.
   auto& now = partials_[current_];
   const auto& last = partials_[1 - current_];
   for (auto& p : now) p.resize(runs);
   const std::size_t per_run = ceil_div(count, runs);
-  const std::size_t merges = pending_ ? lanes : 0;
+  const std::size_t merges = pending_ ? 2 * lanes : 0;
   pool_.run(merges + lanes * runs, [&](std::size_t task) {
     if (task < merges) {
-      for (const LanePartial& p : last[task]) lanes_[task]->merge(p, timing_[task]);
+      const std::size_t l = task / 2;
+      if (task % 2 == 0) {
+        for (const LanePartial& p : last[l]) lanes_[l]->merge(p);
+      } else if (timing_[l]) {
+        for (const LanePartial& p : last[l]) LaneAccumulator::merge_timing(p, *timing_[l]);
+      }
       return;
     }
     const std::size_t l = (task - merges) / runs, r = (task - merges) % runs;

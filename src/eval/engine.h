@@ -46,6 +46,7 @@ class EvalEngine {
   void prepare(const VectorRow* rows, std::size_t count, std::size_t offset, BatchResults* out);
   std::size_t runs_per_lane(std::size_t count) const;
   void merge_pending();
+  void merge(const std::vector<LanePartial>& runs, std::size_t lane);
 
   const SlotMap& slots_;
   std::vector<LaneAccumulator*> lanes_;
@@ -53,6 +54,8 @@ class EvalEngine {
   EngineOptions options_;
   ThreadPool pool_;
   std::vector<std::uint8_t> slot_known_;  // slots begun in every lane
+  std::vector<double> deferred_t_;        // per slot (deferred_t)
+  std::vector<double> t_;
   std::vector<std::uint32_t> slot_;
   std::vector<double> reference_;
   // Per lane, per run: the partials of this window and (when merges overlap) of the last one.

@@ -193,12 +193,21 @@ struct LanePartial {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> folded;
 };
 
-// The rows of a window, prepared once for every lane: t, slot and the float reference.
+// The rows of a window, prepared once for every lane: t, slot and the float reference, or
+// kDeferredReference where the lobe is at most kDeferredBound and no lane may need its value (a
+// lane computes it when it does: LaneAccumulator::accumulate).
 struct RowsView {
-  const VectorRow* rows = nullptr;
+  const double* t = nullptr;
   const std::uint32_t* slot = nullptr;
   const double* reference = nullptr;
 };
+inline constexpr double kDeferredReference = -1.0;
+inline constexpr double kDeferredBound = 0x1.0p-40;
+
+// Per slot, the largest t at or below which the slot's reference is surely at most
+// kDeferredBound (libm's pow within an ulp, a margin beside); 0 for lobes it does not bound
+// (Gaussian ones).
+std::vector<double> deferred_t(const SlotMap& slots);
 
 // Accuracy statistics of one lane (a unit): fed one result at a time by `glint eval --dump`
 // and the clocked mode's scoreboard (add), or a run of rows at a time by the evaluation engine
@@ -224,13 +233,15 @@ class LaneAccumulator {
 
   // The engine's side. A slot's first use (its contract, in stream order); then rows [a, b) of a
   // window into `p` (const: any number of threads at once, on disjoint partials), their results
-  // into raw/skipped (when not null, indexed from a); then merge() of the partials in order, each
-  // row's skip flag also through `timing` when given.
+  // into raw/skipped (when not null, indexed from a); then merge() of the partials in order.
   void begin_slot(std::size_t slot);
   bool slot_begun(std::size_t slot) const { return slot_state_[slot] >= 0; }
   void accumulate(const RowsView& rows, std::size_t a, std::size_t b, LanePartial& p,
                   std::int64_t* raw, std::uint8_t* skipped) const;
-  void merge(const LanePartial& p, TimingEngine* timing);
+  void merge(const LanePartial& p);
+  // The partial's skip pattern through a lane's timing recurrences: a sequential fold of its own,
+  // so the engine runs it beside merge().
+  static void merge_timing(const LanePartial& p, TimingEngine& timing);
 
  private:
   struct Memo;

@@ -237,19 +237,43 @@ void LaneAccumulator::accumulate_rows(const RowsView& rows, std::size_t a, std::
   p.square.resize(n);
   p.word.resize(n);
   p.folded.clear();
-  std::uint64_t skips = 0, always = 0, mismatch = 0;
+  std::uint64_t skips = 0, always_rows = 0, mismatch = 0;
   const auto fold_parts = [&](const CodeFacts& f, double t) {
     max_at(p.approximation, std::fabs(f.approximation), t);
     max_at(p.parameter, std::fabs(f.parameter), t);
     max_at(p.datapath, std::fabs(f.datapath), t);
   };
+  // Locals: the loop stores through p, which the compiler cannot tell from the members.
+  const std::int64_t* const tau = tau_.data();
+  const std::int8_t* const state = slot_state_.data();
+  const double* const c_y = slots_.c_y.data();
+  const double ulp = ulp_, display = display_;
+  // A skipped row whose reference was deferred (at most kDeferredBound) changes nothing once
+  // earlier rows of this run are larger in every maximum it enters, and one squared error is
+  // at least 2^-26, which puts kDeferredBound^2 below half an ulp of the running sum (it is at
+  // least that row's square: sums of non-negative terms round monotonically). Else it is computed.
+  constexpr double kSumFloor = 0x1.0p-13;  // an error whose square is 2^-26
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t i = a + k;
     const std::size_t s = rows.slot[i];
-    const double t = rows.rows[i].t;
-    const double ref = rows.reference[i];
+    const double t = rows.t[i];
+    double ref = rows.reference[i];
     const std::int64_t t_raw = quantize_input(t, in);
-    const bool sk = t_raw <= tau_[s];
+    const bool sk = t_raw <= tau[s];
+    const bool always = state[s] == 1;
+    if (ref < 0.0) {
+      if (sk && (always || (p.total.value >= kSumFloor && p.skip.value > kDeferredBound)) &&
+          p.weighted.value > kDeferredBound * c_y[s]) {
+        skips += 1;
+        always_rows += always;
+        p.square[k] = 0;
+        p.word[k] = digest_word(0, true);
+        if (raw) raw[i] = 0;
+        if (skipped) skipped[i] = 1;
+        continue;
+      }
+      ref = reference_value(slots_, s, t);
+    }
     std::int64_t out = 0;
     double r = 0;
     if (!sk) {
@@ -279,12 +303,12 @@ void LaneAccumulator::accumulate_rows(const RowsView& rows, std::size_t a, std::
         fold_parts(f, t);
       }
     }
-    const double fixed = static_cast<double>(out) * ulp_;
+    const double fixed = static_cast<double>(out) * ulp;
     const double err = fixed - ref;
     skips += sk;
-    max_at(p.weighted, std::fabs(err * slots_.c_y[s]), t);
-    if (slot_state_[s] == 1) {
-      ++always;
+    max_at(p.weighted, std::fabs(err * c_y[s]), t);
+    if (always) {
+      ++always_rows;
       p.square[k] = 0;
     } else {
       max_at(p.total, std::fabs(err), t);
@@ -294,18 +318,18 @@ void LaneAccumulator::accumulate_rows(const RowsView& rows, std::size_t a, std::
       } else {
         max_at(p.input, std::fabs(r - ref), t);
       }
-      mismatch += display_code(fixed, display_) != display_code(ref, display_);
+      mismatch += display_code(fixed, display) != display_code(ref, display);
     }
     p.word[k] = digest_word(out, sk);
     if (raw) raw[i] = out;
     if (skipped) skipped[i] = sk;
   }
   p.skipped = skips;
-  p.always_skipped = always;
+  p.always_skipped = always_rows;
   p.mismatch = mismatch;
 }
 
-void LaneAccumulator::merge(const LanePartial& p, TimingEngine* timing) {
+void LaneAccumulator::merge(const LanePartial& p) {
   stats_.vectors += p.vectors;
   stats_.skipped += p.skipped;
   stats_.always_skipped_vectors += p.always_skipped;
@@ -329,8 +353,10 @@ void LaneAccumulator::merge(const LanePartial& p, TimingEngine* timing) {
   }
   stats_.total.sum_sq = sum;
   digest_ = digest;
-  if (timing)
-    for (std::size_t k = 0; k < n; ++k) timing->next((p.word[k] >> 63) != 0);
+}
+
+void LaneAccumulator::merge_timing(const LanePartial& p, TimingEngine& timing) {
+  for (const std::uint64_t word : p.word) timing.next((word >> 63) != 0);
 }
 
 }  // namespace glint
