@@ -78,17 +78,27 @@ void EvalEngine::prepare(const VectorRow* rows, std::size_t count, std::size_t o
   std::vector<std::vector<std::uint32_t>> fresh(runs);
   pool_.run(runs, [&](std::size_t r) {
     const std::size_t a = r * per_run, b = std::min(count, a + per_run);
+    // Locals: the stores below would otherwise reload every member on every row.
+    double* const t_out = t_.data();
+    std::uint32_t* const slot_out = slot_.data();
+    double* const ref_out = reference_.data();
+    const double* const deferred = deferred_t_.data();
+    const std::uint8_t* const known = slot_known_.data();
+    const bool defer = out == nullptr;
     std::vector<bool> listed;
     for (std::size_t i = a; i < b; ++i) {
       const std::uint32_t s = static_cast<std::uint32_t>(slots_.slot(rows[i]));
       const double t = rows[i].t;
-      t_[i] = t;
-      slot_[i] = s;
-      // A reference far below what any statistic can see is left to the lane that needs it
-      // (LaneAccumulator::accumulate): on a stream of mostly skipped requests, most of them.
-      reference_[i] = !out && t > 0.0 && t <= deferred_t_[s] ? kDeferredReference
-                                                             : reference_value(slots_, s, t);
-      if (slot_known_[s]) continue;
+      t_out[i] = t;
+      slot_out[i] = s;
+      // deferred[s] > 0: a power lobe, which is 0 at t <= 0. A reference far below what any
+      // statistic can see is left to the lane that needs it (LaneAccumulator::accumulate): on a
+      // stream of mostly skipped requests, most of them.
+      const double cut = deferred[s];
+      ref_out[i] = cut > 0.0 && t <= 0.0          ? 0.0
+                   : defer && t > 0.0 && t <= cut ? kDeferredReference
+                                                  : reference_value(slots_, s, t);
+      if (known[s]) continue;
       if (listed.empty()) listed.resize(slot_known_.size());
       if (!listed[s]) {
         listed[s] = true;

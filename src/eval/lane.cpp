@@ -1,5 +1,6 @@
 // LaneAccumulator: one lane's accuracy statistics, a row at a time (add) or a run of rows at a
 // time (accumulate on any thread, merge in stream order), with the same bits either way.
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <limits>
@@ -228,26 +229,27 @@ template <bool kMemo>
 void LaneAccumulator::accumulate_rows(const RowsView& rows, std::size_t a, std::size_t b,
                                       LanePartial& p, std::int64_t* raw,
                                       std::uint8_t* skipped) const {
-  const QFormat in = unit_.in_format();
+  const InputQuantizer quantize(unit_.in_format());
   const std::size_t n = b - a;
-  p.vectors = n;
-  p.skipped = p.always_skipped = p.mismatch = 0;
-  p.total = p.weighted = {-1, 0};
-  p.input = p.parameter = p.approximation = p.datapath = p.skip = {0, 0};
   p.square.resize(n);
   p.word.resize(n);
   p.folded.clear();
-  std::uint64_t skips = 0, always_rows = 0, mismatch = 0;
-  const auto fold_parts = [&](const CodeFacts& f, double t) {
-    max_at(p.approximation, std::fabs(f.approximation), t);
-    max_at(p.parameter, std::fabs(f.parameter), t);
-    max_at(p.datapath, std::fabs(f.datapath), t);
-  };
-  // Locals: the loop stores through p, which the compiler cannot tell from the members.
+  // Locals, the statistics too: the loop stores through pointers the compiler cannot tell from
+  // the members, which would send every maximum through memory on every row.
   const std::int64_t* const tau = tau_.data();
   const std::int8_t* const state = slot_state_.data();
   const double* const c_y = slots_.c_y.data();
   const double ulp = ulp_, display = display_;
+  double* const square = p.square.data();
+  std::uint64_t* const word = p.word.data();
+  LanePartial::MaxAt total{-1, 0}, weighted{-1, 0}, input{0, 0}, skip{0, 0};
+  LanePartial::MaxAt approximation{0, 0}, parameter{0, 0}, datapath{0, 0};
+  std::uint64_t skips = 0, always_rows = 0, mismatch = 0;
+  const auto fold_parts = [&](const CodeFacts& f, double t) {
+    max_at(approximation, std::fabs(f.approximation), t);
+    max_at(parameter, std::fabs(f.parameter), t);
+    max_at(datapath, std::fabs(f.datapath), t);
+  };
   // A skipped row whose reference was deferred (at most kDeferredBound) changes nothing once
   // earlier rows of this run are larger in every maximum it enters, and one squared error is
   // at least 2^-26, which puts kDeferredBound^2 below half an ulp of the running sum (it is at
@@ -258,75 +260,92 @@ void LaneAccumulator::accumulate_rows(const RowsView& rows, std::size_t a, std::
     const std::size_t s = rows.slot[i];
     const double t = rows.t[i];
     double ref = rows.reference[i];
-    const std::int64_t t_raw = quantize_input(t, in);
+    const std::int64_t t_raw = quantize(t);
     const bool sk = t_raw <= tau[s];
     const bool always = state[s] == 1;
-    if (ref < 0.0) {
-      if (sk && (always || (p.total.value >= kSumFloor && p.skip.value > kDeferredBound)) &&
-          p.weighted.value > kDeferredBound * c_y[s]) {
-        skips += 1;
-        always_rows += always;
-        p.square[k] = 0;
-        p.word[k] = digest_word(0, true);
-        if (raw) raw[i] = 0;
-        if (skipped) skipped[i] = 1;
-        continue;
+    if (sk) {
+      skips += 1;
+      word[k] = digest_word(0, true);
+      if (raw) raw[i] = 0;
+      if (skipped) skipped[i] = 1;
+      if (ref < 0.0) {
+        if ((always || (total.value >= kSumFloor && skip.value > kDeferredBound)) &&
+            weighted.value > kDeferredBound * c_y[s]) {
+          always_rows += always;
+          square[k] = 0;
+          continue;
+        }
+        ref = reference_value(slots_, s, t);
       }
-      ref = reference_value(slots_, s, t);
+      // The result is 0: the error is -ref, of magnitude ref (a lobe is never negative).
+      max_at(weighted, ref * c_y[s], t);
+      if (always) {
+        ++always_rows;
+        square[k] = 0;
+      } else {
+        max_at(total, ref, t);
+        square[k] = ref * ref;
+        max_at(skip, ref, t);
+        // The result's display code is 0; the reference's is not when it rounds up from 0.5.
+        mismatch += std::min(ref, 1.0) * display >= 0.5;
+      }
+      continue;
     }
+    if (ref < 0.0) ref = reference_value(slots_, s, t);
     std::int64_t out = 0;
     double r = 0;
-    if (!sk) {
-      if constexpr (kMemo) {
-        const Memo::Table& table = memo_->tables[s];
-        const auto c = static_cast<std::size_t>(t_raw - table.first);
-        out = table.hot[c].out.load(std::memory_order_acquire);
-        if (out == kUnset) {
-          const CodeFacts f = Memo::fill(table, c, compute_facts(s, t_raw));
-          out = f.out;
-          r = f.r;
-        } else {
-          r = table.hot[c].r.load(std::memory_order_relaxed);
-        }
-        if (!table.is_folded(c)) {
-          const Memo::Parts& mp = table.parts[c];
-          fold_parts(CodeFacts{out, r, mp.approximation.load(std::memory_order_relaxed),
-                               mp.parameter.load(std::memory_order_relaxed),
-                               mp.datapath.load(std::memory_order_relaxed)},
-                     t);
-          p.folded.emplace_back(static_cast<std::uint32_t>(s), static_cast<std::uint32_t>(c));
-        }
-      } else {
-        const CodeFacts f = compute_facts(s, t_raw);
+    if constexpr (kMemo) {
+      const Memo::Table& table = memo_->tables[s];
+      const auto c = static_cast<std::size_t>(t_raw - table.first);
+      out = table.hot[c].out.load(std::memory_order_acquire);
+      if (out == kUnset) {
+        const CodeFacts f = Memo::fill(table, c, compute_facts(s, t_raw));
         out = f.out;
         r = f.r;
-        fold_parts(f, t);
+      } else {
+        r = table.hot[c].r.load(std::memory_order_relaxed);
       }
+      if (!table.is_folded(c)) {
+        const Memo::Parts& mp = table.parts[c];
+        fold_parts(CodeFacts{out, r, mp.approximation.load(std::memory_order_relaxed),
+                             mp.parameter.load(std::memory_order_relaxed),
+                             mp.datapath.load(std::memory_order_relaxed)},
+                   t);
+        p.folded.emplace_back(static_cast<std::uint32_t>(s), static_cast<std::uint32_t>(c));
+      }
+    } else {
+      const CodeFacts f = compute_facts(s, t_raw);
+      out = f.out;
+      r = f.r;
+      fold_parts(f, t);
     }
     const double fixed = static_cast<double>(out) * ulp;
     const double err = fixed - ref;
-    skips += sk;
-    max_at(p.weighted, std::fabs(err * c_y[s]), t);
+    max_at(weighted, std::fabs(err * c_y[s]), t);
     if (always) {
       ++always_rows;
-      p.square[k] = 0;
+      square[k] = 0;
     } else {
-      max_at(p.total, std::fabs(err), t);
-      p.square[k] = err * err;
-      if (sk) {
-        max_at(p.skip, std::fabs(ref), t);
-      } else {
-        max_at(p.input, std::fabs(r - ref), t);
-      }
+      max_at(total, std::fabs(err), t);
+      square[k] = err * err;
+      max_at(input, std::fabs(r - ref), t);
       mismatch += display_code(fixed, display) != display_code(ref, display);
     }
-    p.word[k] = digest_word(out, sk);
+    word[k] = digest_word(out, false);
     if (raw) raw[i] = out;
-    if (skipped) skipped[i] = sk;
+    if (skipped) skipped[i] = 0;
   }
+  p.vectors = n;
   p.skipped = skips;
   p.always_skipped = always_rows;
   p.mismatch = mismatch;
+  p.total = total;
+  p.weighted = weighted;
+  p.input = input;
+  p.skip = skip;
+  p.approximation = approximation;
+  p.parameter = parameter;
+  p.datapath = datapath;
 }
 
 void LaneAccumulator::merge(const LanePartial& p) {

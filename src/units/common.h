@@ -34,9 +34,6 @@ struct MaterialParams {
 inline constexpr QFormat kDefaultIn = uq(1, 15);
 inline constexpr QFormat kDefaultOut = uq(1, 15);
 
-// Front end: t = r.v or n.h arrives as a float in [-1, 1 + 1e-3]. The unit computes max(0, t)^n, so
-// negative t is clamped to 0 (Källberg eq.1), and t > 1 (normalisation noise of unit vectors) to
-// 1. The clamped value is rounded to nearest-even into the input format.
 // 2^e for -1022 <= e <= 1023, built from its bits: exact, and cheaper than ldexp in hot loops.
 inline double pow2(int e) {
   const std::uint64_t bits = static_cast<std::uint64_t>(e + 1023) << 52;
@@ -45,17 +42,39 @@ inline double pow2(int e) {
   return d;
 }
 
-inline std::int64_t quantize_input(double t, const QFormat& in) {
-  const double c = t <= 0.0 ? 0.0 : (t >= 1.0 ? 1.0 : t);
-  if (in.frac_bits >= 0 && in.frac_bits <= 52 && in.raw_one() != 0) {
-    // c * 2^F is exact and at most 2^52, and 1.0 is representable so nothing saturates. Adding
-    // and taking away 2^52 rounds it to an integer, half to even (the sum lies in [2^52, 2^53],
-    // where doubles are the integers), in the default rounding mode, which is exactly kRndConv:
-    // what std::nearbyint does, without its library call.
-    const double x = c * pow2(in.frac_bits);
-    return static_cast<std::int64_t>((x + 0x1.0p52) - 0x1.0p52);
+// Front end: t = r.v or n.h arrives as a float in [-1, 1 + 1e-3]. The unit computes max(0, t)^n, so
+// negative t is clamped to 0 (Källberg eq.1), and t > 1 (normalisation noise of unit vectors) to
+// 1. The clamped value is rounded to nearest-even into the input format.
+class InputQuantizer {
+ public:
+  explicit InputQuantizer(const QFormat& in)
+      : in_(in),
+        exact_(in.frac_bits >= 0 && in.frac_bits <= 52 && in.raw_one() != 0),
+        scale_(exact_ ? pow2(in.frac_bits) : 0.0) {}
+
+  std::int64_t operator()(double t) const {
+    const double c = t <= 0.0 ? 0.0 : (t >= 1.0 ? 1.0 : t);
+    if (exact_) {
+      // c * 2^F is exact and at most 2^52, and 1.0 is representable so nothing saturates.
+      // Adding and taking away 2^52 rounds it to an integer, half to even (the sum lies in
+      // [2^52, 2^53], where doubles are the integers), in the default rounding mode, which is
+      // exactly kRndConv: what std::nearbyint does, without its library call.
+      const double x = c * scale_;
+      return static_cast<std::int64_t>((x + 0x1.0p52) - 0x1.0p52);
+    }
+    return Fixed::from_double(c, in_, Quant::kRndConv, Overflow::kSat).raw();
   }
-  return Fixed::from_double(c, in, Quant::kRndConv, Overflow::kSat).raw();
+
+ private:
+  QFormat in_;
+  bool exact_;
+  double scale_;
+};
+
+// One t through a format's front end; loops over many rows keep an InputQuantizer instead (its
+// format's checks and scale worked out once).
+inline std::int64_t quantize_input(double t, const QFormat& in) {
+  return InputQuantizer(in)(t);
 }
 inline double input_value(std::int64_t raw, const QFormat& in) {
   return std::ldexp(static_cast<double>(raw), -in.frac_bits);
