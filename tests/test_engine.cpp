@@ -6,11 +6,13 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "eval/engine.h"
 #include "eval/evaluate.h"
+#include "io/thread_pool.h"
 #include "io/vectors.h"
 #include "units/catalogue.h"
 #include "units/lane_cost.h"
@@ -160,6 +162,23 @@ TEST(Engine, EqualsRowByRowOnAGeneratedStream) {
     rows[i].line = i + 1;
   }
   expect_engine_equals_rows(header, rows);
+}
+
+// The engine's pool: every task once per run, over many short runs, and a task's exception
+// rethrown by run() with the pool still usable.
+TEST(ThreadPool, RunsEveryTaskOnceAndRethrows) {
+  ThreadPool pool(3);
+  std::vector<int> hits(257, 0);
+  for (int round = 0; round < 200; ++round)
+    pool.run(hits.size(), [&](std::size_t i) { hits[i] += 1; });
+  for (const int h : hits) EXPECT_EQ(h, 200);
+  EXPECT_THROW(pool.run(100,
+                        [](std::size_t i) {
+                          if (i == 37) throw std::runtime_error("task 37");
+                        }),
+               std::runtime_error);
+  pool.run(hits.size(), [&](std::size_t i) { hits[i] += 1; });
+  for (const int h : hits) EXPECT_EQ(h, 201);
 }
 
 // A sweep's shard may hold no configuration: the rows go through no lane.
