@@ -8,6 +8,7 @@
 #include "eval/evaluate.h"
 #include "eval/parallel.h"
 #include "io/vectors.h"
+#include "test_support.h"
 #include "units/catalogue.h"
 
 namespace glint {
@@ -20,21 +21,12 @@ std::vector<UnitSpec> every_unit() {
   return specs;
 }
 
-std::vector<VectorRow> read_rows(const std::string& path, VectorHeader& header) {
-  VectorReader reader(path);
-  header = reader.header();
-  std::vector<VectorRow> rows;
-  VectorRow row;
-  while (reader.next(row)) rows.push_back(row);
-  return rows;
-}
-
 class BatchEval : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(BatchEval, EqualsRowByRowForAnyThreadCount) {
   VectorHeader header;
   const std::vector<VectorRow> rows =
-      read_rows(std::string(GLINT_SOURCE_DIR) + "/traces/" + GetParam(), header);
+      test::read_rows(std::string(GLINT_SOURCE_DIR) + "/traces/" + GetParam(), header);
   ASSERT_FALSE(rows.empty());
   Evaluator serial(header, every_unit());
   for (const VectorRow& row : rows) serial.add(row);

@@ -14,6 +14,7 @@
 #include "eval/evaluate.h"
 #include "io/thread_pool.h"
 #include "io/vectors.h"
+#include "test_support.h"
 #include "units/catalogue.h"
 #include "units/lane_cost.h"
 
@@ -111,15 +112,6 @@ void expect_engine_equals_rows(const VectorHeader& header, const std::vector<Vec
   }
 }
 
-std::vector<VectorRow> read_rows(const std::string& path, VectorHeader& header) {
-  VectorReader reader(path);
-  header = reader.header();
-  std::vector<VectorRow> rows;
-  VectorRow row;
-  while (reader.next(row)) rows.push_back(row);
-  return rows;
-}
-
 std::vector<std::string> shipped_traces() {
   std::vector<std::string> names;
   for (const auto& entry :
@@ -134,7 +126,7 @@ class EngineTrace : public ::testing::TestWithParam<std::string> {};
 TEST_P(EngineTrace, EqualsRowByRow) {
   VectorHeader header;
   const std::vector<VectorRow> rows =
-      read_rows(std::string(GLINT_SOURCE_DIR) + "/traces/" + GetParam() + ".vec", header);
+      test::read_rows(std::string(GLINT_SOURCE_DIR) + "/traces/" + GetParam() + ".vec", header);
   expect_engine_equals_rows(header, rows);
 }
 
