@@ -17,6 +17,7 @@
 
 #include "io/atomic_file.h"
 #include "io/input_error.h"
+#include "io/line_reader.h"
 #include "io/vectors.h"
 #include "test_support.h"
 
@@ -596,6 +597,92 @@ TEST(VectorErrors, LongLines) {
   expect_error(h2 + "0.5 " + std::string(5000, '9') + "\n", 7, "line");
   // A huge line without any newline is rejected from the first buffer, not read to the end.
   expect_error(h2 + "0.5 white\n" + std::string(3u << 20, 'x'), 8, "line");
+}
+
+// The reader's buffer starts at 64 KiB and doubles at each refill up to 1 MiB. Lines of every
+// length up to the longest fall across each of those boundaries: LineReader gives back every byte
+// of every line, line by line and a block at a time, and the rows and their line numbers are the
+// same through next() and next_block().
+std::string random_lines(std::size_t bytes, std::vector<std::string>& lines) {
+  std::minstd_rand rng(11);
+  std::string text;
+  while (text.size() < bytes) {
+    std::string line(rng() % (kVectorMaxLineBytes + 1), ' ');
+    for (char& c : line) c = static_cast<char>('!' + rng() % 94);
+    text += line + (rng() % 2 ? "\r\n" : "\n");
+    lines.push_back(std::move(line));
+  }
+  return text;
+}
+
+TEST(LineReaderTest, EveryByteAcrossEveryBufferBoundary) {
+  std::vector<std::string> lines;
+  const std::string text = random_lines(std::size_t{5} << 20, lines);
+  {
+    std::istringstream in(text + "tail");
+    LineReader reader(in, "lines.txt");
+    std::string_view line;
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+      ASSERT_TRUE(reader.next(line)) << i;
+      ASSERT_EQ(line, lines[i]) << "line " << i + 1;
+      ASSERT_EQ(reader.line_number(), i + 1);
+    }
+    ASSERT_TRUE(reader.next(line));
+    EXPECT_EQ(line, "tail");
+    EXPECT_FALSE(reader.next(line));
+  }
+  {
+    std::istringstream in(text);
+    LineReader reader(in, "lines.txt");
+    std::string joined;
+    const char *begin, *end;
+    while (reader.block(begin, end)) {
+      joined.append(begin, end);
+      reader.skip_block(end, static_cast<std::uint64_t>(std::count(begin, end, '\n')));
+    }
+    EXPECT_EQ(joined, text);
+    EXPECT_EQ(reader.line_number(), lines.size());
+  }
+  // A NUL byte is reported on its own line: in the first buffer's unfinished last line (carried
+  // into the grown buffer), and megabytes on.
+  for (std::size_t at : {std::size_t{65535}, std::size_t{3} << 20}) {
+    while (text[at] == '\r' || text[at] == '\n') ++at;  // in a line, not its end
+    std::string with_nul = text;
+    with_nul[at] = '\0';
+    const auto line = 1 + static_cast<std::uint64_t>(std::count(
+                              text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
+    std::istringstream in(with_nul);
+    LineReader reader(in, "nul.txt");
+    std::string_view view;
+    try {
+      while (reader.next(view)) {
+      }
+      ADD_FAILURE() << "no error for a NUL at byte " << at;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.line(), line) << at;
+    }
+  }
+}
+
+TEST(VectorRows, NextBlockAcrossEveryBufferBoundary) {
+  const std::string head = kPre + kMat + "columns t material\ndata\n";
+  std::string text = head;
+  std::minstd_rand rng(5);
+  while (text.size() < (std::size_t{3} << 20))
+    text +=
+        std::to_string(rng() % 1000 / 1000.0) + " white #" + std::string(rng() % 4000, 'c') + "\n";
+  const std::vector<VectorRow> by_line = parse(text);
+  for (int threads : {1, 2}) {
+    std::istringstream in(text);
+    VectorReader reader(in, "blocks.vec");
+    std::vector<VectorRow> by_block, block;
+    while (reader.next_block(block, threads))
+      by_block.insert(by_block.end(), block.begin(), block.end());
+    expect_same_rows(by_line, by_block);
+    ASSERT_EQ(by_line.size(), by_block.size());
+    for (std::size_t i = 0; i < by_line.size(); ++i)
+      ASSERT_EQ(by_block[i].line, by_line[i].line) << i;
+  }
 }
 
 TEST(VectorErrors, ErrorsAreStickyAndWhatIsFormatted) {

@@ -1,5 +1,5 @@
-// LineReader: the physical lines of a vector file, read from a stream in fixed 1 MiB chunks so
-// memory stays constant whatever the input, and the current position for error messages.
+// LineReader: the physical lines of a vector file, read from a stream in chunks of at most 1 MiB
+// so memory stays constant whatever the input, and the current position for error messages.
 //
 // It enforces the rules that hold for every line, header or row: at most kVectorMaxLineBytes
 // bytes (without "\n" / "\r\n"), no NUL byte. Errors are glint::InputError "FILE:LINE: field".
@@ -89,6 +89,8 @@ class LineReader {
   std::ios_base::iostate saved_exceptions_;
 
   std::unique_ptr<char[]> buf_;
+  std::size_t capacity_ = 0;   // bytes of buf_
+  bool filled_ = false;        // refill() has run: the next one grows a small buffer
   const char* pos_;            // start of the next line
   char* end_;                  // end of the bytes read so far
   const char* nul_ = nullptr;  // the first NUL byte in [pos_, end_), if any
