@@ -40,14 +40,15 @@ class Lane : public sc_core::sc_module {
     const QFormat out = unit.out_format();
     source_ =
         std::make_unique<VectorSource>("source", *stream_, unit, slots, ring_, control, tracing);
-    comparator_ =
-        std::make_unique<TauComparator>("comparator", unit, unit.timing().buffer_depth, tracing);
+    comparator_ = std::make_unique<TauComparator>("comparator", unit, unit.timing().buffer_depth,
+                                                  tracing, CombMode::kSettledByClock);
     compute_ = std::make_unique<ComputePipeline>("compute", unit, tracing);
     if (options.colour_stage)
       colour_ = std::make_unique<ColourMultiply>("colour", out.width(), out.is_signed, tracing,
                                                  out.frac_bits);
     merge_ = std::make_unique<ResultMerge>("merge", unit.timing().buffer_depth, out.width(),
-                                           out.is_signed, tracing, out.frac_bits);
+                                           out.is_signed, tracing, out.frac_bits,
+                                           CombMode::kSettledByClock);
     Scoreboard::Callback cb;
     if (on_result_) {
       cb = [this](const VectorRow& row, const Result& r, const ResultTiming& t) {
@@ -79,6 +80,10 @@ class Lane : public sc_core::sc_module {
     out.insert(out.end(), {source_.get(), comparator_.get(), compute_.get()});
     if (colour_) out.push_back(colour_.get());
     out.insert(out.end(), {merge_.get(), sink_.get()});
+  }
+  // Its combinational parts, settled after the ticks (they read registers only, so in any order).
+  void combinational(std::vector<Combinational*>& out) const {
+    out.insert(out.end(), {comparator_.get(), merge_.get()});
   }
 
   TimingStats stats() const {
@@ -117,8 +122,9 @@ class Lane : public sc_core::sc_module {
 // The clock, the lanes, the per-edge control (end of run, VCD window, cycle counter) and the VCD
 // sampling: once the values of cycle c have settled, at the falling edge after it (and once for the
 // reset state, halfway to the first rising edge). The clock is one timed process, edge(), which
-// ticks every register stage of every lane (ClockedStage); no clock signal is needed, as nothing
-// reads its level (the VCD draws top.clk from the edge times).
+// ticks every register stage of every lane (ClockedStage) and then settles every combinational
+// part (Combinational), so a cycle is one process activation without delta cycles; no clock signal
+// is needed, as nothing reads its level (the VCD draws top.clk from the edge times).
 class Top : public sc_core::sc_module {
  public:
   SC_HAS_PROCESS(Top);
@@ -136,11 +142,12 @@ class Top : public sc_core::sc_module {
       lanes_.push_back(std::make_unique<Lane>(labels[i].c_str(), i, *units[i], slots, open_stream(),
                                               options, control, on_result, tracing_));
       lanes_.back()->stages(stages_);
+      lanes_.back()->combinational(combs_);
     }
+    // Initialized (no dont_initialize): its first run settles the reset state and schedules the
+    // first edge. One process writes every combinational signal (sc_signal allows one driver).
     SC_METHOD(edge);
     sensitive << edge_event_;
-    dont_initialize();
-    edge_event_.notify(clock_first_edge());
     if (vcd_) {
       SC_METHOD(sample);
       sensitive << sample_event_;
@@ -160,12 +167,23 @@ class Top : public sc_core::sc_module {
 
  private:
   void edge() {
+    if (!initialized_) {
+      initialized_ = true;
+      settle();
+      edge_event_.notify(clock_first_edge());
+      return;
+    }
     const std::uint64_t c = cycle_++;
     if (tracing_) cycle_trace_.set(static_cast<std::int64_t>(c & 0xffffffffu));
     control_.on_edge(c);
     for (ClockedStage* s : stages_) s->tick();
+    settle();
     edge_event_.notify(period_);
     if (vcd_) sample_event_.notify(half_period_);  // the falling edge
+  }
+
+  void settle() {
+    for (Combinational* c : combs_) c->settle();
   }
 
   void sample() {
@@ -185,10 +203,12 @@ class Top : public sc_core::sc_module {
   const sc_core::sc_time half_period_ = clock_period() / 2;
   sc_core::sc_event edge_event_;    // the rising edges
   sc_core::sc_event sample_event_;  // the falling edges (and the reset state's sample)
+  bool initialized_ = false;
   std::uint64_t cycle_ = 0;
   RawBits cycle_trace_;
   std::vector<std::unique_ptr<Lane>> lanes_;
   std::vector<ClockedStage*> stages_;  // every lane's, in lane order
+  std::vector<Combinational*> combs_;
 };
 
 // VCD labels: unit_labels() (the unit's name, or name.k when several lanes share a name) with '_'

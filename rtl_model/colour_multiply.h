@@ -17,8 +17,8 @@ namespace glint::rtl {
 
 class ColourMultiply : public sc_core::sc_module, public Traceable, public ClockedStage {
  public:
-  sc_core::sc_in<Result> in;
-  sc_core::sc_signal<Result> out;
+  In<Result> in;
+  Register<Result> out;
 
   // `out_frac_bits`: the result format's fraction bits, for the trace's real-valued display only.
   ColourMultiply(sc_core::sc_module_name name, int out_width, bool out_signed, bool tracing,
@@ -39,7 +39,7 @@ class ColourMultiply : public sc_core::sc_module, public Traceable, public Clock
 
  private:
   void tick() override {
-    const Result& r = in.read();
+    const Result& r = in.now();
     if (r.valid || active_) {
       out.write(r);
       active_ = r.valid;

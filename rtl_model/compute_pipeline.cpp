@@ -43,12 +43,12 @@ void ComputePipeline::tick() {
 
   // Input register (position 0).
   Entry& in = ring_[head];
-  const bool start = in_valid.read();
+  const bool start = in_valid.now();
   if (start) {
     if (busy_ > 0) ++violations_;
     in.valid = true;
     in.issue = c;
-    in.request = in_request.read();
+    in.request = in_request.now();
     if (tracing_) unit_.eval_staged(in.request.slot, in.request.t_raw, in.staged.data());
     ++started_;
   } else {

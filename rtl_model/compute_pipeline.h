@@ -30,10 +30,10 @@ namespace glint::rtl {
 
 class ComputePipeline : public sc_core::sc_module, public Traceable, public ClockedStage {
  public:
-  sc_core::sc_in<bool> in_valid;       // comparator: start a request at this edge
-  sc_core::sc_in<Request> in_request;  // the source's request register
-  sc_core::sc_signal<bool> ready;      // registered II gate
-  sc_core::sc_signal<Result> out;      // output register (position L)
+  In<bool> in_valid;       // comparator: start a request at this edge
+  In<Request> in_request;  // the source's request register
+  Register<bool> ready;    // registered II gate
+  Register<Result> out;    // output register (position L)
 
   ComputePipeline(sc_core::sc_module_name name, const SpecularUnit& unit, bool tracing);
 

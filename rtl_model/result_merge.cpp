@@ -6,7 +6,7 @@
 namespace glint::rtl {
 
 ResultMerge::ResultMerge(sc_core::sc_module_name name, int depth, int out_width, bool out_signed,
-                         bool tracing, int out_frac_bits)
+                         bool tracing, int out_frac_bits, CombMode comb)
     : sc_core::sc_module(name),
       bypass_in("bypass_in"),
       compute_in("compute_in"),
@@ -16,15 +16,24 @@ ResultMerge::ResultMerge(sc_core::sc_module_name name, int depth, int out_width,
       credit_return("credit_return", false),
       entries_(static_cast<std::size_t>(std::max(depth, 1))),
       tracing_(tracing),
+      comb_mode_(comb),
       out_frac_bits_(out_frac_bits),
       result_trace_(out_width, out_signed),
       count_trace_(bits_for(static_cast<std::uint64_t>(std::max(depth, 1))), false) {
   if (depth < 1) throw std::invalid_argument("ResultMerge: depth >= 1 required");
-  SC_METHOD(comb);
-  sensitive << bypass_in << compute_in << changed_;
+  if (comb_mode_ == CombMode::kOwnProcess) {
+    SC_METHOD(settle);
+    sensitive << bypass_in << compute_in << changed_;
+  }
 }
 
-void ResultMerge::comb() {
+void ResultMerge::end_of_elaboration() {
+  if (comb_mode_ == CombMode::kSettledByClock &&
+      !(bypass_in.bound_to_register() && compute_in.bound_to_register()))
+    throw std::logic_error("ResultMerge: settled by the clock, every input must be a Register");
+}
+
+void ResultMerge::settle() {
   const std::uint64_t h = next_seq_;
   const Result& e = entries_[static_cast<std::size_t>(h % entries_.size())];
   bool valid = false;
@@ -34,8 +43,8 @@ void ResultMerge::comb() {
     value = e.value;
     valid = true;
   } else {
-    const Result& b = bypass_in.read();
-    const Result& u = compute_in.read();
+    const Result& b = bypass_in.settled();
+    const Result& u = compute_in.settled();
     const Result* arriving = (b.valid && b.seq == h) ? &b : (u.valid && u.seq == h) ? &u : nullptr;
     if (arriving) {
       Result r = *arriving;
@@ -54,10 +63,10 @@ void ResultMerge::comb() {
 
 void ResultMerge::tick() {
   const std::uint64_t c = cycle_++;
-  const bool retire = head_valid.read() && sink_ready.read();
+  const bool retire = head_valid.current() && sink_ready.now();
   bool changed = false;
   const std::size_t n = entries_.size();
-  for (const Result* in : {&bypass_in.read(), &compute_in.read()}) {
+  for (const Result* in : {&bypass_in.now(), &compute_in.now()}) {
     if (!in->valid) continue;
     Result& slot = entries_[static_cast<std::size_t>(in->seq % n)];
     if (slot.valid) ++overflows_;
@@ -77,7 +86,7 @@ void ResultMerge::tick() {
     credit_return.write(retire);
     credit_active_ = retire;
   }
-  if (changed) changed_.notify(sc_core::SC_ZERO_TIME);
+  if (changed && comb_mode_ == CombMode::kOwnProcess) changed_.notify(sc_core::SC_ZERO_TIME);
   if (tracing_) count_trace_.set(static_cast<std::int64_t>(count_));
 }
 

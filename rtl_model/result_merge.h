@@ -20,20 +20,24 @@
 
 namespace glint::rtl {
 
-class ResultMerge : public sc_core::sc_module, public Traceable, public ClockedStage {
+class ResultMerge : public sc_core::sc_module,
+                    public Traceable,
+                    public ClockedStage,
+                    public Combinational {
  public:
-  sc_core::sc_in<Result> bypass_in;
-  sc_core::sc_in<Result> compute_in;
-  sc_core::sc_in<bool> sink_ready;
+  In<Result> bypass_in;
+  In<Result> compute_in;
+  In<bool> sink_ready;
 
-  sc_core::sc_signal<bool> head_valid;     // combinational
-  sc_core::sc_signal<Result> head;         // combinational (meaningful when head_valid)
-  sc_core::sc_signal<bool> credit_return;  // registered: retired at the previous edge
+  Register<bool> head_valid;     // combinational
+  Register<Result> head;         // combinational (meaningful when head_valid)
+  Register<bool> credit_return;  // registered: retired at the previous edge
 
   SC_HAS_PROCESS(ResultMerge);
   // `out_frac_bits`: the result format's fraction bits, for the trace's real-valued display only.
+  // `comb`: as TauComparator's (kSettledByClock: the inputs are Registers, settle() the caller's).
   ResultMerge(sc_core::sc_module_name name, int depth, int out_width, bool out_signed, bool tracing,
-              int out_frac_bits = 0);
+              int out_frac_bits = 0, CombMode comb = CombMode::kOwnProcess);
 
   int depth() const { return static_cast<int>(entries_.size()); }
   std::size_t occupancy() const { return count_; }
@@ -43,9 +47,10 @@ class ResultMerge : public sc_core::sc_module, public Traceable, public ClockedS
 
   void add_traces(VcdWriter& vcd, const std::string& prefix) const override;
   void tick() override;
+  void settle() override;
 
  private:
-  void comb();
+  void end_of_elaboration() override;
 
   std::vector<Result> entries_;
   std::uint64_t next_seq_ = 0;  // stream index of the head
@@ -53,8 +58,9 @@ class ResultMerge : public sc_core::sc_module, public Traceable, public ClockedS
   std::uint64_t overflows_ = 0;
   std::uint64_t cycle_ = 0;
   bool credit_active_ = false;
-  sc_core::sc_event changed_;
+  sc_core::sc_event changed_;  // kOwnProcess: the entries are an input of settle()
   const bool tracing_;
+  const CombMode comb_mode_;
   const int out_frac_bits_;
   RawBits result_trace_, count_trace_;
   RawBits seq_trace_{32, false};  // the head's request id

@@ -30,9 +30,9 @@ Scoreboard::Scoreboard(sc_core::sc_module_name name, const SpecularUnit& unit,
 void Scoreboard::tick() {
   const std::uint64_t c = cycle_++;
   bool retired = false;
-  if (head_valid.read()) {
+  if (head_valid.now()) {
     if (ready_now_) {
-      retire(head.read(), c);
+      retire(head.now(), c);
       retired = true;
     } else {
       ++stats_.sink_wait;

@@ -28,9 +28,9 @@ class Scoreboard : public sc_core::sc_module, public Traceable, public ClockedSt
   using Callback =
       std::function<void(const VectorRow& row, const Result& result, const ResultTiming& timing)>;
 
-  sc_core::sc_in<bool> head_valid;
-  sc_core::sc_in<Result> head;
-  sc_core::sc_signal<bool> ready;  // registered: SinkReady::ready(c) at edge c
+  In<bool> head_valid;
+  In<Result> head;
+  Register<bool> ready;  // registered: SinkReady::ready(c) at edge c
 
   // `expect_none`: the lane's stream is empty (the lane is done from the start).
   Scoreboard(sc_core::sc_module_name name, const SpecularUnit& unit, const SinkReady& sink,

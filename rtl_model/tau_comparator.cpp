@@ -7,7 +7,7 @@
 namespace glint::rtl {
 
 TauComparator::TauComparator(sc_core::sc_module_name name, const SpecularUnit& unit, int credits,
-                             bool tracing)
+                             bool tracing, CombMode comb)
     : sc_core::sc_module(name),
       src_valid("src_valid"),
       src_request("src_request"),
@@ -18,6 +18,7 @@ TauComparator::TauComparator(sc_core::sc_module_name name, const SpecularUnit& u
       bypass("bypass"),
       unit_(unit),
       tracing_(tracing),
+      comb_mode_(comb),
       credits_(credits),
       tau_trace_(unit.in_format().width() + 1, true),  // -1 (never skip) .. raw_max
       credits_trace_(bits_for(static_cast<std::uint64_t>(credits)), false),
@@ -28,16 +29,25 @@ TauComparator::TauComparator(sc_core::sc_module_name name, const SpecularUnit& u
   for (std::size_t s = 0; s < unit.slots(); ++s) tau_.push_back(unit.tau_raw(s));
   credits_trace_.set(credits_);
 
-  SC_METHOD(comb);
-  sensitive << src_valid << src_request << unit_ready << credit_return << credits_changed_;
+  if (comb_mode_ == CombMode::kOwnProcess) {
+    SC_METHOD(settle);
+    sensitive << src_valid << src_request << unit_ready << credit_return << credits_changed_;
+  }
 }
 
-void TauComparator::comb() {
-  const bool valid = src_valid.read();
-  const Request& r = src_request.read();
+void TauComparator::end_of_elaboration() {
+  if (comb_mode_ == CombMode::kSettledByClock &&
+      !(src_valid.bound_to_register() && src_request.bound_to_register() &&
+        unit_ready.bound_to_register() && credit_return.bound_to_register()))
+    throw std::logic_error("TauComparator: settled by the clock, every input must be a Register");
+}
+
+void TauComparator::settle() {
+  const bool valid = src_valid.settled();
+  const Request& r = src_request.settled();
   const bool skip = valid && tau_skip(r.t_raw, tau_[r.slot]);
-  const bool credit_ok = credits_ > 0 || credit_return.read();
-  const bool unit_ok = unit_ready.read();
+  const bool credit_ok = credits_ > 0 || credit_return.settled();
+  const bool unit_ok = unit_ready.settled();
   skip_ = skip;
   credit_ok_ = credit_ok;
   src_ready.write(credit_ok && (skip || unit_ok));
@@ -51,12 +61,12 @@ void TauComparator::comb() {
 void TauComparator::tick() {
   const std::uint64_t c = cycle_++;
   bool changed = false;
-  if (credit_return.read()) {
+  if (credit_return.now()) {
     ++credits_;
     changed = true;
   }
-  const bool valid = src_valid.read();
-  const bool issue = valid && src_ready.read();
+  const bool valid = src_valid.now();
+  const bool issue = valid && src_ready.current();
   Result b;
   if (issue) {
     --credits_;
@@ -67,7 +77,7 @@ void TauComparator::tick() {
       held_ = 0;
     }
     if (skip_) {
-      const Request& r = src_request.read();
+      const Request& r = src_request.now();
       b.valid = true;
       b.skipped = true;
       b.last = r.last;
@@ -85,7 +95,8 @@ void TauComparator::tick() {
     bypass.write(b);
     bypass_active_ = b.valid;
   }
-  if (changed) credits_changed_.notify(sc_core::SC_ZERO_TIME);
+  if (changed && comb_mode_ == CombMode::kOwnProcess)
+    credits_changed_.notify(sc_core::SC_ZERO_TIME);
   if (tracing_) {
     issue_trace_ = issue;
     stall_trace_ = valid && !issue;

@@ -27,19 +27,25 @@
 
 namespace glint::rtl {
 
-class TauComparator : public sc_core::sc_module, public Traceable, public ClockedStage {
+class TauComparator : public sc_core::sc_module,
+                      public Traceable,
+                      public ClockedStage,
+                      public Combinational {
  public:
-  sc_core::sc_in<bool> src_valid;
-  sc_core::sc_in<Request> src_request;
-  sc_core::sc_in<bool> unit_ready;     // compute unit can start a request at this edge
-  sc_core::sc_in<bool> credit_return;  // merge buffer retired a result at the previous edge
+  In<bool> src_valid;
+  In<Request> src_request;
+  In<bool> unit_ready;     // compute unit can start a request at this edge
+  In<bool> credit_return;  // merge buffer retired a result at the previous edge
 
-  sc_core::sc_signal<bool> src_ready;      // combinational: the request issues at this edge
-  sc_core::sc_signal<bool> compute_valid;  // combinational: it issues to the compute unit
-  sc_core::sc_signal<Result> bypass;       // bypass register: skipped requests
+  Register<bool> src_ready;      // combinational: the request issues at this edge
+  Register<bool> compute_valid;  // combinational: it issues to the compute unit
+  Register<Result> bypass;       // bypass register: skipped requests
 
   SC_HAS_PROCESS(TauComparator);
-  TauComparator(sc_core::sc_module_name name, const SpecularUnit& unit, int credits, bool tracing);
+  // `comb`: kSettledByClock (a lane) needs every input bound to a Register; settle() is then the
+  // caller's, after each edge's ticks and once before the first edge.
+  TauComparator(sc_core::sc_module_name name, const SpecularUnit& unit, int credits, bool tracing,
+                CombMode comb = CombMode::kOwnProcess);
 
   const std::vector<std::int64_t>& tau_table() const { return tau_; }
   std::uint64_t stall_credit() const { return stall_credit_; }
@@ -49,15 +55,17 @@ class TauComparator : public sc_core::sc_module, public Traceable, public Clocke
 
   void add_traces(VcdWriter& vcd, const std::string& prefix) const override;
   void tick() override;
+  void settle() override;
 
  private:
-  void comb();
+  void end_of_elaboration() override;
 
   const SpecularUnit& unit_;
   std::vector<std::int64_t> tau_;
   const bool tracing_;
+  const CombMode comb_mode_;
   int credits_;
-  sc_core::sc_event credits_changed_;
+  sc_core::sc_event credits_changed_;  // kOwnProcess: the credit counter is an input of settle()
 
   // Decided by comb() for the coming edge.
   bool skip_ = false;

@@ -59,7 +59,7 @@ void VectorSource::load() {
 }
 
 void VectorSource::tick() {
-  if (!valid_ || !ready.read()) return;
+  if (!valid_ || !ready.now()) return;
   try {
     load();
   } catch (...) {

@@ -38,10 +38,10 @@ class RowRing {
 
 class VectorSource : public sc_core::sc_module, public Traceable, public ClockedStage {
  public:
-  sc_core::sc_in<bool> ready;  // from the comparator
+  In<bool> ready;  // from the comparator
 
-  sc_core::sc_signal<bool> valid;
-  sc_core::sc_signal<Request> request;
+  Register<bool> valid;
+  Register<Request> request;
 
   // Reads the first rows now (elaboration), so a malformed stream fails before simulation.
   VectorSource(sc_core::sc_module_name name, RowStream& stream, const SpecularUnit& unit,

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <string>
 #include <systemc>
 #include <vector>
 
@@ -443,6 +444,30 @@ TEST(RtlModules, ScoreboardHonoursSinkReady) {
   EXPECT_EQ(sb.stats().sink_wait, waits);
   EXPECT_EQ(sb.stats().cycles, timings.back().retire + 1);
   for (const ResultTiming& t : timings) EXPECT_TRUE(sink.ready(t.retire));
+}
+
+// Settled by the clock (a lane), the comparator's combinational part reads its inputs' new values
+// after the edge's ticks: only a Register has them, so plain signals are refused at elaboration.
+TEST(RtlModules, CombinationalSettledByTheClockNeedsRegisterInputs) {
+  const SlotMap slots = make_slots(two_materials());
+  const auto unit = make_unit(parse_unit_spec("hast"), slots);
+  sc_core::sc_signal<bool> src_valid("src_valid", true), credit_return("credit_return", false);
+  Register<bool> unit_ready("unit_ready", true);
+  sc_core::sc_signal<Request> src_request("src_request");
+  TauComparator cmp("cmp", *unit, 2, false, CombMode::kSettledByClock);
+  cmp.src_valid(src_valid);
+  cmp.src_request(src_request);
+  cmp.unit_ready(unit_ready);
+  cmp.credit_return(credit_return);
+  try {
+    sc_core::sc_start(clock_period());
+    ADD_FAILURE() << "elaborated with plain signals";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("every input must be a Register"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_TRUE(cmp.unit_ready.bound_to_register());
+  EXPECT_FALSE(cmp.src_valid.bound_to_register());
 }
 
 }  // namespace
