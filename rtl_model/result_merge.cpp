@@ -35,7 +35,7 @@ void ResultMerge::end_of_elaboration() {
 
 void ResultMerge::settle() {
   const std::uint64_t h = next_seq_;
-  const Result& e = entries_[static_cast<std::size_t>(h % entries_.size())];
+  const Result& e = entries_[head_entry_];
   bool valid = false;
   std::int64_t value = 0;
   if (e.valid && e.seq == h) {
@@ -68,7 +68,7 @@ void ResultMerge::tick() {
   const std::size_t n = entries_.size();
   for (const Result* in : {&bypass_in.now(), &compute_in.now()}) {
     if (!in->valid) continue;
-    Result& slot = entries_[static_cast<std::size_t>(in->seq % n)];
+    Result& slot = entries_[entry_of(in->seq)];
     if (slot.valid) ++overflows_;
     slot = *in;
     slot.done = c;
@@ -77,9 +77,10 @@ void ResultMerge::tick() {
   }
   max_count_ = std::max(max_count_, count_);
   if (retire) {
-    entries_[static_cast<std::size_t>(next_seq_ % n)].valid = false;
+    entries_[head_entry_].valid = false;
     --count_;
     ++next_seq_;
+    head_entry_ = head_entry_ + 1 == n ? 0 : head_entry_ + 1;
     changed = true;
   }
   if (retire != credit_active_) {

@@ -52,8 +52,19 @@ class ResultMerge : public sc_core::sc_module,
  private:
   void end_of_elaboration() override;
 
+  // The entry of stream index `seq`: seq mod B, from the head's entry when seq is within B of the
+  // head (always, with credits), without a division (two per cycle were ~4 % of a clocked run).
+  std::size_t entry_of(std::uint64_t seq) const {
+    const std::uint64_t ahead = seq - next_seq_;
+    const std::size_t n = entries_.size();
+    if (ahead >= n) return static_cast<std::size_t>(seq % n);
+    const std::size_t e = head_entry_ + static_cast<std::size_t>(ahead);
+    return e >= n ? e - n : e;
+  }
+
   std::vector<Result> entries_;
   std::uint64_t next_seq_ = 0;  // stream index of the head
+  std::size_t head_entry_ = 0;  // next_seq_ mod B
   std::size_t count_ = 0, max_count_ = 0;
   std::uint64_t overflows_ = 0;
   std::uint64_t cycle_ = 0;

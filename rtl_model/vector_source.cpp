@@ -20,6 +20,8 @@ VectorSource::VectorSource(sc_core::sc_module_name name, RowStream& stream,
       ring_(ring),
       control_(control),
       tracing_(tracing),
+      quantize_(unit.in_format()),
+      unit_slots_(unit.slots()),
       t_trace_(unit.in_format().width(), unit.in_format().is_signed),
       slot_trace_(bits_for(unit.slots() > 0 ? unit.slots() - 1 : 0), false),
       seq_trace_(32, false) {
@@ -38,12 +40,12 @@ void VectorSource::load() {
   row = ahead_;
   Request r;
   r.seq = seq;
-  r.t_raw = quantize_input(row.t, unit_.in_format());
+  r.t_raw = quantize_(row.t);
   const std::size_t slot = slots_.slot(row);
-  if (slot >= unit_.slots())
+  if (slot >= unit_slots_)
     throw std::out_of_range("VectorSource: row " + std::to_string(row.line) + " maps to slot " +
                             std::to_string(slot) + " of a unit built for " +
-                            std::to_string(unit_.slots()));
+                            std::to_string(unit_slots_));
   r.slot = static_cast<std::uint32_t>(slot);
   have_ahead_ = stream_.next(ahead_);
   r.last = !have_ahead_;

@@ -4,9 +4,10 @@
 // has the next request ready (src/timing.h: "the source always has the next request ready"): the
 // row after the presented one is read ahead, which is also how it knows the `last` flag.
 //
-// t_raw comes from quantize_input (the datapath's front end) and the slot from SlotMap::slot; the
-// module adds nothing of its own. The rows themselves stay in a RowRing until the scoreboard
-// retires them (testbench sideband, so the result callback can name its row).
+// t_raw comes from the datapath's front end (InputQuantizer: quantize_input with its format's
+// checks and scale worked out once) and the slot from SlotMap::slot; the module adds nothing of its
+// own. The rows themselves stay in a RowRing until the scoreboard retires them (testbench sideband,
+// so the result callback can name its row).
 #pragma once
 
 #include <cstdint>
@@ -19,21 +20,31 @@
 #include "rtl_model/rtl_common.h"
 #include "rtl_model/sim_control.h"
 #include "units/catalogue.h"
+#include "units/common.h"
 
 namespace glint::rtl {
 
 // Rows in flight, indexed by stream index modulo its size. With B merge-buffer credits at most B
-// requests are issued and not retired, plus the one presented: B + 2 entries never collide.
+// requests are issued and not retired, plus the one presented: B + 2 entries never collide. The
+// size is rounded up to a power of two, so the index is a mask (a division per row was ~2 % of a
+// clocked run).
 class RowRing {
  public:
-  explicit RowRing(std::size_t size) : rows_(size) {}
-  VectorRow& at(std::uint64_t seq) { return rows_[static_cast<std::size_t>(seq % rows_.size())]; }
+  explicit RowRing(std::size_t size) : rows_(round_up(size)), mask_(rows_.size() - 1) {}
+  VectorRow& at(std::uint64_t seq) { return rows_[static_cast<std::size_t>(seq & mask_)]; }
   const VectorRow& at(std::uint64_t seq) const {
-    return rows_[static_cast<std::size_t>(seq % rows_.size())];
+    return rows_[static_cast<std::size_t>(seq & mask_)];
   }
+  std::size_t size() const { return rows_.size(); }
 
  private:
+  static std::size_t round_up(std::size_t n) {
+    std::size_t p = 1;
+    while (p < n) p *= 2;
+    return p;
+  }
   std::vector<VectorRow> rows_;
+  std::uint64_t mask_;
 };
 
 class VectorSource : public sc_core::sc_module, public Traceable, public ClockedStage {
@@ -63,6 +74,8 @@ class VectorSource : public sc_core::sc_module, public Traceable, public Clocked
   RowRing& ring_;
   SimControl& control_;
   const bool tracing_;
+  const InputQuantizer quantize_;
+  const std::size_t unit_slots_;
 
   VectorRow ahead_;
   bool have_ahead_ = false;
