@@ -26,8 +26,7 @@ namespace glint::rtl {
 
 // Rows in flight, indexed by stream index modulo its size. With B merge-buffer credits at most B
 // requests are issued and not retired, plus the one presented: B + 2 entries never collide. The
-// size is rounded up to a power of two, so the index is a mask (a division per row was ~2 % of a
-// clocked run).
+// size is rounded up to a power of two, so the index is a mask, not a division per row.
 class RowRing {
  public:
   explicit RowRing(std::size_t size) : rows_(round_up(size)), mask_(rows_.size() - 1) {}
