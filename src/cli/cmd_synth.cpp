@@ -155,6 +155,31 @@ std::set<std::string> liberty_registers(const std::string& text) {
   return out;
 }
 
+// Transistors of a flip-flop that Yosys' `stat -tech cmos` leaves unpriced (it counts $_DFF_P_ and
+// $_DFF_N_ as 16 and every other flip-flop as 0, printing "N+"): the lane's pipeline registers
+// hold their value under backpressure, so most are $_DFFE_ or $_SDFFE_ and would cost nothing.
+// Priced as a $_DFF_P_ plus the gates folded into it: an enable is a 2:1 mux (12), a synchronous
+// or asynchronous reset or set an AND (6) each. tests/calibration/yosys_flow.py prices the same.
+int register_transistors(const std::string& type) {
+  if (type.rfind("$_", 0) != 0) return 0;
+  if (type.find("DFF") == std::string::npos && type.find("LATCH") == std::string::npos) return 0;
+  if (type == "$_DFF_P_" || type == "$_DFF_N_") return 0;
+  std::string name = type.substr(2);
+  while (!name.empty() && name.back() == '_') name.pop_back();
+  const std::size_t us = name.find('_');
+  const std::string kind = name.substr(0, us);
+  const std::string pins = us == std::string::npos ? "" : name.substr(us + 1);
+  int t = 16;
+  if (!kind.empty() && kind.back() == 'E') t += 12;
+  if (kind.rfind("SDFF", 0) == 0 || kind.rfind("ALDFF", 0) == 0)
+    t += 6;
+  else if (kind.rfind("DFFSR", 0) == 0 || kind.rfind("DLATCHSR", 0) == 0)
+    t += 12;
+  else if (std::regex_match(pins, std::regex("[NP]{2}[01][NP]?")))
+    t += 6;
+  return t;
+}
+
 // Yosys' own flip-flops and latches ($_DFF_P_, $_SDFFE_PP0P_, $_DLATCH_P_, ...) or a library's.
 bool is_register(const std::string& type, const std::set<std::string>& library_registers) {
   if (!type.empty() && type[0] == '$')
@@ -358,8 +383,12 @@ int run_synth(const SynthOptions& o) {
     if (!std::regex_search(stat_text, match, transistors))
       throw std::runtime_error("synth: no transistor estimate in Yosys' stat -tech cmos output");
     const double t = std::stod(match[1]);
-    j["transistors"] = t;
-    j["ge"] = t / 4;
+    double added = 0;
+    for (const auto& [type, n] : dr.cell_types)
+      added += static_cast<double>(register_transistors(type)) * n;
+    j["transistors"] = t + added;
+    j["transistors_yosys"] = t;  // stat -tech cmos alone: flip-flops with enable or reset at 0
+    j["ge"] = (t + added) / 4;
   } else {
     j["liberty"] = o.liberty;
     static const std::regex area(R"(Chip area for (?:top )?module '[^']*':\s+([0-9.eE+-]+))");

@@ -38,14 +38,33 @@ void comparator_stage(CostBuilder& b, const LaneShape& L, bool carry_root) {
   } else if (beside_compare) {
     path.push_back(*beside_compare);
   }
-  b.reg(wi + (L.skip ? 1 : 0) + L.group_bits + (carry_root ? wi : 0), "comparator register", true);
+  // The register after the compare is the datapath's input (t and the group id, loaded by a
+  // computed request: hdl/verilog.h, datapath_input_stage); the skip flag travels with the
+  // bypass tag (merge_buffer) and the root is read again from the group id where it is used.
+  b.reg(wi + L.group_bits, "comparator register", true);
   b.stage("comparator", path);
 }
 
 void merge_buffer(CostBuilder& b, const LaneShape& L, bool colour) {
   const int w = L.out.width() + (colour ? L.colour_bits : 0);
-  b.reg(w, "merge buffer", true, L.buffer);
-  if (L.buffer > 1) b.mux(w, L.buffer, "merge buffer read mux");
+  const int tag = clog2(L.buffer), count = clog2(L.buffer + 1);
+  // Entries: the result and its valid and skipped bits, written from the bypass (a 0) or the
+  // datapath: an AND a bit and the entry's write decode (two tag compares).
+  // Without the comparator (skip=off) nothing bypasses: Yosys removes the bypass register, the
+  // skipped bits and the select, leaving the result, its valid bit and one write decode.
+  const int sources = L.skip ? 2 : 1;
+  b.reg(w + sources, "merge buffer", true, L.buffer);
+  b.gates(L.buffer * ((L.skip ? w : 0) + sources * 2 * tag),
+          "merge buffer write select and decode");
+  if (L.buffer > 1) b.mux(w + sources - 1, L.buffer, "merge buffer read mux");
+  // The entry's tag and a valid bit beside each of the L + 1 positions (plain flip-flops), the
+  // bypass tag and valid bit.
+  b.reg((L.latency + 1) * (tag + 1), "merge buffer tags beside the unit");
+  if (L.skip) b.reg(tag + 1, "bypass tag", true);
+  // Credits, issue and head counters (wrapping incrementers), the II counter.
+  const int counters = 2 * tag + count + (L.ii > 1 ? clog2(L.ii) : 0);
+  b.reg(counters, "credit, issue, head (and II) counters", true);
+  b.adder(counters, "counter incrementers");
 }
 
 void colour_stage(CostBuilder& b, const LaneShape& L) {

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <set>
 #include <stdexcept>
 #include <utility>
 
@@ -15,27 +17,76 @@ const CostConstants& cost_constants() {
 }
 
 double adder_delay(int width) {
-  return 2.0 * clog2(std::max(width, 1)) + 2.0;
+  const CostConstants& k = cost_constants();
+  return std::max(1.0, k.add_depth0 + k.add_depth_log * std::log2(std::max(width, 2)));
 }
 
-int multiplier_tree_levels(int rows) {
-  int levels = 0;
-  for (int d = 2; d < rows; d = d * 3 / 2) ++levels;  // Dadda: 2, 3, 4, 6, 9, 13, 19, 28, ...
-  return levels;
+double comparator_delay(int width) {
+  const CostConstants& k = cost_constants();
+  return std::max(1.0, k.cmp_depth0 + k.cmp_depth_log * std::log2(std::max(width, 2)));
 }
 
 double multiplier_delay(int width_a, int width_b) {
   const CostConstants& k = cost_constants();
-  return k.and_delay + k.fa_level_delay * multiplier_tree_levels(std::min(width_a, width_b)) +
-         adder_delay(width_a + width_b);
+  const int lo = std::max(1, std::min(width_a, width_b));
+  return std::max(1.0, k.mul_depth0 + k.mul_depth_min * std::log2(lo) +
+                           k.mul_depth_sum * std::log2(width_a + width_b));
+}
+
+double multiplier_ge(int width_a, int width_b, bool is_signed) {
+  const CostConstants& k = cost_constants();
+  const double ab = static_cast<double>(width_a) * width_b, sum = width_a + width_b;
+  // A one-bit operand is an AND row; the fit's negative (A + B) term is for real trees.
+  const double ge =
+      is_signed ? k.smul_ab_ge * ab + k.smul_sum_ge * sum : k.mul_ab_ge * ab + k.mul_sum_ge * sum;
+  return std::max(ge, 1.5 * ab);
 }
 
 double divider_row_delay(int divisor_bits) {
-  return adder_delay(divisor_bits + 1) + cost_constants().mux_delay;
+  return std::max(comparator_delay(divisor_bits + 1), adder_delay(divisor_bits + 1)) + 1;
 }
 
 double table_delay(int entries) {
-  return clog2(std::max(entries, 1)) + 2.0;
+  const CostConstants& k = cost_constants();
+  if (entries <= 2) return entries <= 1 ? 0 : 1;
+  return k.rom_depth0 + k.rom_depth_log * std::log2(entries);
+}
+
+double mux_delay(int inputs) {
+  const CostConstants& k = cost_constants();
+  if (inputs <= 1) return 0;
+  if (inputs == 2) return 1;
+  return k.mux_depth0 + k.mux_depth_log * clog2(inputs);
+}
+
+double rom_ge(const std::vector<std::int64_t>& words, int width) {
+  if (words.size() <= 2) return 0;
+  const int ab = clog2(static_cast<long long>(words.size()));
+  const std::size_t n = std::size_t{1} << ab;
+  double nodes = 0;
+  std::vector<std::uint8_t> f(n);
+  std::set<std::vector<std::uint8_t>> seen;
+  for (int bit = 0; bit < width; ++bit) {
+    for (std::size_t i = 0; i < n; ++i)
+      f[i] = i < words.size() ? static_cast<std::uint8_t>((words[i] >> bit) & 1) : 0;
+    seen.clear();
+    // Level by level, address MSB first: a node is a distinct sub-function that depends on its
+    // variable and is not a single literal (both halves constant: a wire or an inverter).
+    for (std::size_t size = n; size >= 2; size /= 2) {
+      for (std::size_t i = 0; i < n; i += size) {
+        const auto b = f.begin() + static_cast<std::ptrdiff_t>(i);
+        const auto mid = b + static_cast<std::ptrdiff_t>(size / 2);
+        const auto e = b + static_cast<std::ptrdiff_t>(size);
+        if (std::equal(b, mid, mid)) continue;
+        const bool lo_const = std::adjacent_find(b, mid, std::not_equal_to<>()) == mid;
+        const bool hi_const = std::adjacent_find(mid, e, std::not_equal_to<>()) == e;
+        if (lo_const && hi_const) continue;
+        seen.emplace(b, e);
+      }
+    }
+    nodes += static_cast<double>(seen.size());
+  }
+  return nodes * cost_constants().rom_node_ge;
 }
 
 // ---- JSON

@@ -2,57 +2,54 @@
 // the slowest pipeline stage) and an energy proxy (operations executed per request), from the
 // unit's datapath and widths. `glint sim` prints them per unit.
 //
-// These are PROXIES for comparing architectures, not synthesis results. Every constant below is a
-// textbook / standard-cell-datasheet figure; they are to be calibrated against Yosys synthesis of
-// the same datapaths later (the formulas stay, the constants move).
+// These are PROXIES for comparing architectures, fitted to Yosys: every constant below comes from
+// primitive sweeps through `glint synth`'s generic flow (tests/calibration/primitives.py ->
+// primitives.csv, fitted by tests/calibration/fit.py; Yosys 0.23, GE = CMOS transistors / 4 as
+// glint synth prices them, flip-flops with enable or reset included). The formulas follow the
+// flow's netlists; the residual of each fit is written beside its constant. The whole lane is held
+// to the synthesized calibration set (tests/calibration/set.json) by the ctest `calibration`.
 //
-// ---- Area: gate equivalents (GE, 1 GE = one NAND2) --------------------------------------------
-// Sources: cell areas of a typical 45 nm standard-cell library relative to its NAND2_X1 (the
-// Nangate FreePDK45 Open Cell Library datasheet, approximate: NAND2_X1 0.80 um^2, FA_X1 ~4.3-4.9,
-// DFF_X1 ~4.5, DLH_X1 ~2.7, MUX2_X1 ~1.9, AND2_X1 ~1.1 um^2) and the usual textbook ranges (Weste
-// & Harris, "CMOS VLSI Design": full adder 5-7 GE, DFF 4-6 GE, 2:1 mux ~2.3 GE, ROM bit 0.25-0.5
-// GE). Rounded, not exact library values: the Yosys calibration replaces them.
-//
-//   adder / subtractor, W bits     W fa_ge                  ripple/prefix: ~W full adders
-//   multiplier, A x B bits         A B (fa_ge + and2_ge)    array/Wallace: A B ANDs + ~A B FAs
-//   divider, R rows x D bits       R (D + 1) (fa_ge + mux2_ge)
-//                                  restoring array, one controlled subtractor row per quotient
-//                                  bit built in hardware: R = all quotient bits when pipelined,
-//                                  R = 1 when iterative (its state registers are listed apart)
-//   comparator, W bits             W cmp_bit_ge             a subtractor's carry chain
-//   register, W bits               W dff_ge
+// ---- Area: gate equivalents (GE, 1 GE = one NAND2 = 4 transistors)
+// -------------------------------
+//   adder / subtractor, W bits     W add_bit_ge
+//   multiplier, A x B bits         mul_ab_ge A B + mul_sum_ge (A + B), signed: the s* constants
+//   divider, R rows x D bits       R (D + 1) (add_bit_ge + cmp_bit_ge + mux2_ge): restoring array,
+//                                  a row per quotient bit built in hardware (the RTL's row is a
+//                                  comparator, a subtractor beside it and the restore mux):
+//                                  R = all quotient bits when pipelined, R = 1 when iterative
+//   comparator, W bits             W cmp_bit_ge
+//   register, W bits               W dff_ge (a datapath stage register: plain D flip-flops);
+//                                  W dffe_ge for the lane's registers, which hold under
+//                                  backpressure (a flip-flop with enable: the mux folded in)
 //   mux, W bits x K inputs         W (K - 1) mux2_ge
-//   barrel shifter, W x S levels   W S mux2_ge              S = shift-amount bits
-//   leading-zero detector, W bits  W lzd_bit_ge
-//   table, E entries x W bits      ROM (fixed function):  E W rom_bit_ge
-//                                  per-slot storage (written when materials load, `where` says
-//                                  "per slot"): W (E latch_ge + (E - 1) mux2_ge), a latch array and
-//                                  its read-mux tree. Banks behind one read port (the lut's table
-//                                  per slot: the slot id is the high address) count as one table
-//                                  of count x entries; banks read in different stages (horner's
-//                                  coefficient per stage) have a tree each. Tables read at i and
-//                                  i + 1 (interpolation) are banked odd/even: the second read costs
-//                                  no extra storage or mux tree. A latch array is what a standard-
-//                                  cell flow builds without a memory compiler (Yosys maps it to
-//                                  flip-flops: dff_ge instead of latch_ge); a compiled SRAM would
-//                                  be ~1 GE per bit for large tables.
-// Rounding to nearest adds a constant; it is folded into a multiplier's compression tree or an
-// adder already there (free), and costs an incrementer (adder) only after a divider or a shifter.
+//   barrel shifter, W x S levels   W S shift_bit_ge
+//   leading-one detector, W bits   W lzd_bit_ge (the priority chain pow's RTL writes)
+//   table, E entries x W bits      rom: Yosys folds a case ROM of constants into logic whose size
+//                                  depends on what it holds, so a ROM of known contents costs
+//                                  rom_node_ge per node of its reduced decision diagram (per
+//                                  output bit, address MSB first; constant and single-literal
+//                                  functions are wires); one of unknown contents E W rom_bit_ge,
+//                                  and nothing for E <= 2 (each bit is a constant or an address
+//                                  bit). ram (registers with a write port, loaded when materials
+//                                  load: a chip of fixed capacity, --slots): E W ram_bit_ge +
+//                                  (E - 1) W ram_mux_ge (the write decoder and the read mux).
+//   Per-slot tables: `tables` (units/keys.h's lane storage) is rom when the scene fixes the
+//   materials at synthesis (what `glint rtl` writes: case ROMs with the real contents) and ram for
+//   a chip of fixed capacity.
 //
-// ---- Critical path: gate delays (~FO4) ---------------------------------------------------------
-//   adder, comparator, W bits      2 ceil(log2 W) + 2                (prefix adder)
-//   multiplier, A x B              1 (AND) + 3 L + adder(A + B)      (L = Dadda/Wallace levels that
-//                                                                     reduce min(A, B) rows to two,
-//                                                                     ~log1.5(rows / 2); 3 per FA)
-//   divider row (D-bit divisor)    adder(D + 1) + 2 (the restore mux)
-//   table read, E entries          ceil(log2 E) + 2
-//   mux, K inputs                  2 ceil(log2 K);  barrel shifter, S levels: 2 S
-//   leading-zero detector, W bits  2 ceil(log2 W)
-//   register overhead per stage    3 (clock-to-q + setup)
-// A stage's delay is the sum along its path (parallel parts: the slower one) plus the register
-// overhead; the critical path is the slowest stage (comparator stage, the unit's stages as
-// timing() counts them, the optional colour stage). An iterative divider's stage is its loop: one
-// row + the load mux.
+// ---- Critical path: logic depth in gates (what glint synth measures) ----------------------------
+//   adder, W bits                  add_depth0 + add_depth_log log2 W
+//   comparator, W bits             cmp_depth0 + cmp_depth_log log2 W
+//   multiplier, A x B              mul_depth0 + mul_depth_min log2 min(A, B) + mul_depth_sum
+//                                  log2(A + B)
+//   divider row (D-bit divisor)    max(comparator, adder)(D + 1) + 1 (the restore mux)
+//   table read, E entries          ROM: rom_depth0 + rom_depth_log log2 E; RAM: the read mux
+//   mux, K inputs                  1 for K = 2, else mux_depth0 + mux_depth_log ceil(log2 K)
+//   barrel shifter, S levels       S;  leading-one detector, W bits: W - 2 (a priority chain)
+//   register overhead per stage    0 (depth counts gates from a register to a register)
+// A stage's delay is the sum along its path (parallel parts: the slower one); the critical path
+// is the slowest stage (comparator stage, the unit's stages as timing() counts them, the optional
+// colour stage). An iterative divider's stage is its loop: one row + the load mux.
 //
 // ---- Energy proxy ------------------------------------------------------------------------------
 // ops_per_computed: operations of one request that reaches the compute unit, by kind: "mul",
@@ -72,6 +69,7 @@
 // the bit for it. cost/builder.h places the parts; units/lane_cost.h puts a lane together.
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -80,7 +78,8 @@
 namespace glint {
 
 struct Primitive {
-  // "adder", "multiplier", "divider", "comparator", "register", "table", "mux", "shifter", "lzd"
+  // "adder", "multiplier", "divider", "comparator", "register", "table", "mux", "shifter", "lzd",
+  // "gates" (width_a two-input gates of glue logic)
   std::string kind;
   // adder/comparator/register/lzd: width_a bits; multiplier: a x b; divider: quotient rows built x
   // divisor bits; table: entries (width_a, per bank) x entry width (width_b); mux: width_a bits x
@@ -114,23 +113,38 @@ struct UnitCost {
   static UnitCost from_json(const nlohmann::json& j);
 };
 
-// Area and delay constants (see the header comment for the sources).
+// Area and delay constants, fitted (tests/calibration/fit.py on primitives.csv; "worst" is the
+// largest relative residual of the fit over its points).
 struct CostConstants {
   // area, GE
   double nand2_ge = 1.0;     // the unit
-  double and2_ge = 1.33;     // partial-product AND (AND2_X1 / NAND2_X1)
-  double fa_ge = 6.0;        // full adder, mid of the 5-7 GE range (FA_X1 ~5.3-6.1 GE)
-  double dff_ge = 5.7;       // D flip-flop without reset (DFF_X1 ~5.7 GE; textbook 4-6)
-  double latch_ge = 3.3;     // level-sensitive latch of a latch-array storage bit (DLH_X1 ~3.3 GE)
-  double mux2_ge = 2.33;     // 2:1 mux (MUX2_X1 ~2.3 GE)
-  double rom_bit_ge = 0.35;  // synthesised fixed-function ROM, per bit (0.25-0.5 GE)
-  double cmp_bit_ge = 3.0;   // magnitude comparator per bit: carry chain, no sum XORs (~fa/2)
-  double lzd_bit_ge = 2.0;   // leading-zero detector per input bit (OR/mux tree)
-  // delay, gate delays
-  double and_delay = 1;       // partial-product AND
-  double fa_level_delay = 3;  // one 3:2 compressor level of a multiplier tree
-  double mux_delay = 2;       // one 2:1 mux level
-  double reg_delay = 3;       // register overhead per stage (clock-to-q + setup)
+  double add_bit_ge = 13.0;  // 18 adders/subtractors 8-41 bits; worst +16 % (8 bits), else < 5 %
+  double cmp_bit_ge = 8.87;  // 9 comparators 8-41 bits; worst +3 %
+  double mul_ab_ge = 12.38;  // unsigned A x B, 19 shapes 8x8..41x41: worst +7 % (16x4)
+  double mul_sum_ge = -7.5;
+  double smul_ab_ge = 13.06;  // signed, the same 19 shapes: worst +13 % (16x4), else < 6 %
+  double smul_sum_ge = -2.7;
+  double dff_ge = 4.0;  // $_DFF_P_: 16 transistors (exact: Yosys' own figure)
+  double dffe_ge = 7.0;
+  double gate_ge = 1.5;   // a two-input AND/OR/ANDNOT: 6 transistors (Yosys' figure, exact)      //
+                          // with enable: + the folded 2:1 mux (glint synth's pricing, exact)
+  double mux2_ge = 3.28;  // per bit and extra input; 15 muxes 8-32 bits x 2-16; worst +19 %
+  double shift_bit_ge = 2.67;  // per bit and level; 12 shifters 12-24 bits x 2-5; worst +16 %
+  double lzd_bit_ge = 4.67;    // 3 priority chains 12-24 bits; worst +33 % (12 bits)
+  double rom_node_ge = 1.75;   // per decision-diagram node; 24 ROMs of 9-257 entries x 8, 16 bits,
+                               // random and t^n contents: median residual 13 %, worst +995 % (a
+                               // t^n table that is almost all zeros, which ABC folds further)
+  double rom_bit_ge = 0.54;    // unknown contents, per bit (random ROMs of 2-257 entries)
+  double ram_bit_ge = 7.77;    // registers with a write port: 20 arrays 1-257 x 8, 16; worst 11 %
+  double ram_mux_ge = 2.48;
+  // delay, gates
+  double add_depth0 = -0.82, add_depth_log = 3.57;   // worst +6 %
+  double cmp_depth0 = -2.13, cmp_depth_log = 3.47;   // worst +10 %
+  double mul_depth0 = -11.55, mul_depth_min = 4.65,  // 38 multipliers; worst +7 %
+      mul_depth_sum = 5.27;
+  double mux_depth0 = 2.6, mux_depth_log = 1.3;  // K > 2; K = 2 is one $_MUX_
+  double rom_depth0 = 0.0, rom_depth_log = 1.1;  // 3-257 entries: +-2 gates
+  double reg_delay = 0;                          // depth starts at a register's output
 };
 const CostConstants& cost_constants();
 
@@ -138,8 +152,13 @@ const CostConstants& cost_constants();
 double adder_delay(int width);
 double multiplier_delay(int width_a, int width_b);
 double divider_row_delay(int divisor_bits);
+double comparator_delay(int width);
 double table_delay(int entries);
-int multiplier_tree_levels(int rows);  // Dadda levels from `rows` partial products to two
+double mux_delay(int inputs);
+// GE of a multiplier (signed: two's complement operands, as the RTL declares them).
+double multiplier_ge(int width_a, int width_b, bool is_signed);
+// GE of a case ROM of these contents (`width` bits a word): decision-diagram nodes x rom_node_ge.
+double rom_ge(const std::vector<std::int64_t>& words, int width);
 
 // Smallest b with 2^b >= x (0 for x <= 1).
 inline int clog2(long long x) {

@@ -24,7 +24,12 @@ UnitCost unit_cost(const SpecularUnit& unit, bool colour_multiply, int colour_en
   lane.colour_bits = clog2(lane.colours);
   lane.latency = unit.timing().latency;
   lane.buffer = unit.timing().buffer_depth;
+  lane.ii = unit.timing().ii;
+  // The scene's materials fixed at synthesis: case ROMs (what `glint rtl` writes); a chip of fixed
+  // capacity loads them: registers with a write port.
+  lane.tables_ram = lane.fixed;
   CostBuilder b;
+  b.set_tables_ram(lane.tables_ram);
   comparator_stage(b, lane, unit.comparator_carries_root());
   unit.add_cost(b, lane);
   merge_buffer(b, lane, colour_multiply);

@@ -166,7 +166,11 @@ struct Hast : UnitKindDefaults {
     int wk = 0;
     for (const HastUnit& u : units)
       wk = std::max(wk, u.scaler().k_int_bits() + u.scaler().k_frac());
-    std::vector<Seg> path = u_scaler_cost(b, L, wk, fh);
+    // The k of every group: the ROM's contents unless the chip loads them.
+    std::vector<std::int64_t> ks;
+    for (const HastUnit& u : units) ks.push_back(u.scaler().k_raw());
+    const bool known = !L.tables_ram && L.groups == static_cast<int>(units.size());
+    std::vector<Seg> path = u_scaler_cost(b, L, wk, fh, known ? &ks : nullptr);
     // d=auto: each slot's order, read with its k and carried down the chain, where stage s
     // multiplies by u while s <= d_s and by 1.0 after (a 2:1 operand mux per stage).
     const int db = c.per_slot_d ? clog2(d + 1) : 0;

@@ -115,17 +115,45 @@ struct Horner : UnitKindDefaults {
     const int wacc = acc_int + fh;  // signed accumulator
 
     // One coefficient bank per stage, every bank holding all datapath groups.
+    // Their contents (bank k: c_k of every group) are known unless the chip loads them; a
+    // coefficient every group shares is a constant (the RTL's group_table writes a wire).
+    const bool known = !L.tables_ram && L.groups == static_cast<int>(units.size());
+    std::vector<std::int64_t> words;
+    for (int k = 0; k <= p; ++k)
+      for (const HornerUnit& u : units) words.push_back(u.coeff_raw()[static_cast<std::size_t>(k)]);
     const Seg coef = b.slot_table(L.groups, cw, p + 1, false,
-                                  "coefficient tables (per datapath group, one bank per stage)");
+                                  "coefficient tables (per datapath group, one bank per stage)",
+                                  known ? &words : nullptr);
     b.op("table_read", p + 1);
     // Stage 1: the u scaler (tau domain; on the full domain u = t is wiring), c_p read beside it.
-    const Seg first = tau_domain ? parallel(coef, series(u_scaler_cost(b, L, wk, fh))) : coef;
+    // k from a ROM of known contents (u_scaler_cost.h). c_p the same in every group (one
+    // material, or fits that agree): the first multiply-add multiplies u by a constant.
+    std::vector<std::int64_t> ks;
+    for (const HornerUnit& u : units) ks.push_back(u.scaler().k_raw());
+    const bool cp_const =
+        known && std::all_of(units.begin(), units.end(), [&](const HornerUnit& u) {
+          return u.coeff_raw()[static_cast<std::size_t>(p)] ==
+                 units.front().coeff_raw()[static_cast<std::size_t>(p)];
+        });
+    const Seg first =
+        tau_domain ? parallel(coef, series(u_scaler_cost(b, L, wk, fh, known ? &ks : nullptr)))
+                   : coef;
     b.reg((fh + 1) + cw + L.group_bits, "stage 1: u, c_p, group id");
     b.stage("stage 1", {first});
     for (int s = 2; s <= p + 1; ++s) {
       const bool last = s == p + 1;
-      const Seg mul = b.multiplier(wacc, fh + 1, fmt::format("stage {}: acc u", s));
-      const Seg add = b.adder(wacc, fmt::format("stage {}: + c_{}", s, p + 1 - s));
+      const std::string what = fmt::format("stage {}: acc u", s);
+      // On the full domain u = t: below the input's fraction bits its bits are zeros, and Yosys
+      // builds no partial products for them.
+      const int wu = tau_domain ? fh + 1 : std::min(fh + 1, L.in.frac_bits + 1);
+      const Seg mul = cp_const && s == 2
+                          ? b.const_multiplier(wu, units.front().coeff_raw()[p], what, true)
+                          : b.multiplier(wacc, wu, what, 1, true);
+      // The + c_k adder's carries run while the product's high bits settle: on the calibration
+      // set's stages it adds about half an adder's depth to the multiplier's (horner's full
+      // domain: 44-46 gates against 36 for the product alone).
+      Seg add = b.adder(wacc, fmt::format("stage {}: + c_{}", s, p + 1 - s));
+      add.delay /= 2;
       b.op("mul");
       b.op("add");
       std::vector<Seg> sp{parallel(mul, coef), add};

@@ -84,8 +84,22 @@ struct Lut : UnitKindDefaults {
         b.slot_table(L.groups, sbits, 1, true, "stage 1: span table (per datapath group)");
     const Seg sub = b.adder(wi, "stage 1: t - t0");
     const Seg sh = b.shifter(wi, sbits, "stage 1: index shifter");
+    // The t^n tables' real contents (the RTL's case ROM: {group, j}, 2^bits + 2 entries a group
+    // padded to a power of two), read at two addresses: two ROMs of the same contents.
+    std::vector<std::int64_t> words;
+    const std::size_t stride = std::size_t{1} << clog2(entries + 1);
+    for (const LutUnit& u : units) {
+      for (int j = 0; j <= entries; ++j) words.push_back(u.entry(j));
+      words.resize(words.size() + stride - static_cast<std::size_t>(entries + 1), 0);
+    }
+    const bool known = !L.tables_ram && L.groups == static_cast<int>(units.size());
     const Seg tab =
-        b.slot_table(entries, tw, L.groups, true, "stage 1: t^n table (per datapath group)");
+        b.slot_table(entries, tw, L.groups, true, "stage 1: t^n table (per datapath group)",
+                     known ? &words : nullptr);
+    // A ROM read at two addresses is two ROMs; registers are banked odd/even (one array).
+    if (!L.tables_ram)
+      b.slot_table(entries, tw, L.groups, true, "stage 1: t^n table, second read",
+                   known ? &words : nullptr);
     b.op("table_read", 3);
     b.op("add");
     b.op("shift");
@@ -96,7 +110,7 @@ struct Lut : UnitKindDefaults {
     std::vector<Seg> p2;
     if (r_max > 0) {
       p2.push_back(b.adder(tw + 1, "stage 2: node difference"));
-      p2.push_back(b.multiplier(tw + 1, r_max, "stage 2: interpolation"));
+      p2.push_back(b.multiplier(tw + 1, r_max, "stage 2: interpolation", 1, true));
       p2.push_back(b.adder(tw + r_max, "stage 2: + node"));
       b.op("add", 2);
       b.op("mul");

@@ -114,7 +114,7 @@ struct Pow : UnitKindDefaults {
   static void cost(CostBuilder& b, const LaneShape& L, const Config& c,
                    const std::vector<Datapath>& units) {
     const QFormat nf = n_register(c, units, L.fixed)->built;
-    const int lb = c.log_bits, lf = c.log_frac, yf = c.y_frac, eb = c.exp_bits, xf = c.exp_frac;
+    const int lf = c.log_frac, yf = c.y_frac, xf = c.exp_frac;
     const int wi = L.in.width(), wo = L.out.width(), wn = nf.width();
     const Widths w = widths(c, nf);
     const int ebits = w.ebits;
@@ -128,7 +128,10 @@ struct Pow : UnitKindDefaults {
     // Stage 1: normalise t, read log2 at the segment's two ends.
     const Seg z = b.lzd(wi, "stage 1: leading-one detector");
     const Seg sh = b.shifter(wi, ebits, "stage 1: normalisation shifter");
-    const Seg lt = b.rom((1 << lb) + 1, lw, "stage 1: log2 table (ROM)");
+    // The log2 and exp2 tables are the same for every material; each is read at two addresses
+    // (the segment's ends): two ROMs of its contents, as the RTL writes them.
+    const PowTables& tabs = *units.front().tables();
+    const Seg lt = b.rom(tabs.log_table, lw, "stage 1: log2 table (ROM, two reads)", 2);
     b.op("lzd");
     b.op("shift");
     b.op("table_read", 2);
@@ -140,7 +143,7 @@ struct Pow : UnitKindDefaults {
     std::vector<Seg> p2;
     if (log_r > 0) {
       p2.push_back(b.adder(lw + 1, "stage 2: log2 node difference"));
-      p2.push_back(b.multiplier(lw + 1, log_r, "stage 2: log2 interpolation"));
+      p2.push_back(b.multiplier(lw + 1, log_r, "stage 2: log2 interpolation", 1, true));
       b.op("add");
       b.op("mul");
     }
@@ -153,13 +156,18 @@ struct Pow : UnitKindDefaults {
     b.stage("stage 2", p2);
 
     // Stage 3: y = n log2 t, rounded to y_frac in the tree.
-    const Seg my = b.multiplier(wn, log2t_w, "stage 3: n log2 t");
+    // n from a ROM of known contents unless the chip loads it (builder.h, table_multiplier).
+    std::vector<std::int64_t> ns;
+    for (const PowUnit& u : units) ns.push_back(u.n_raw());
+    const bool known = !L.tables_ram && L.groups == static_cast<int>(units.size());
+    const Seg my = known ? b.table_multiplier(log2t_w, ns, "stage 3: n log2 t", true)
+                         : b.multiplier(wn, log2t_w, "stage 3: n log2 t", 1, true);
     b.op("mul");
     b.reg(yint + yf, "stage 3: y");
     b.stage("stage 3", {my});
 
     // Stage 4: exp2 nodes of the fraction of y.
-    const Seg et = b.rom((1 << eb) + 1, xw, "stage 4: exp2 table (ROM)");
+    const Seg et = b.rom(tabs.exp_table, xw, "stage 4: exp2 table (ROM, two reads)", 2);
     b.op("table_read", 2);
     b.reg(2 * xw + exp_r + yint, "stage 4: exp2 nodes, remainder, integer part of y");
     b.stage("stage 4", {et});
@@ -168,17 +176,26 @@ struct Pow : UnitKindDefaults {
     std::vector<Seg> p5;
     if (exp_r > 0) {
       p5.push_back(b.adder(xw + 1, "stage 5: exp2 node difference"));
-      p5.push_back(b.multiplier(xw + 1, exp_r, "stage 5: exp2 interpolation"));
+      p5.push_back(b.multiplier(xw + 1, exp_r, "stage 5: exp2 interpolation", 1, true));
       b.op("add");
       b.op("mul");
     }
     p5.push_back(b.adder(xw, "stage 5: + exp2 node"));
+    // Beside the interpolation (pow/rtl.cpp): the shift amount from y's integer part, its range
+    // checks (nothing left, no shift) and the decoded rounding half of the variable shift.
+    b.adder(yint, "stage 5: shift amount");
+    b.comparator(yint, "stage 5: shift range check (all shifted out)");
+    b.comparator(yint, "stage 5: shift range check (no shift)");
+    b.gates(xw, "stage 5: rounding half decoder");
     p5.push_back(b.shifter(xw, clog2(xw + 1), "stage 5: output shifter"));
-    p5.push_back(b.adder(wo + 1, "stage 5: rounding incrementer"));
+    // The compare with 1.0 reads the rounded value, but ABC overlaps it with the incrementer's
+    // carries: on the calibration set stage 5's depth is that of the path without it.
+    p5.push_back(parallel(b.adder(wo + 1, "stage 5: rounding incrementer"),
+                          b.comparator(xw + 1, "stage 5: above 1.0")));
     p5.push_back(b.mux(wo, 2, "stage 5: clamp to 1"));
     b.op("add", 2);
     b.op("shift");
-    b.reg(wo, "stage 5: result");
+    b.reg(wo + xw, "stage 5: result, exp2 (shown beside it)");
     b.stage("stage 5", p5);
   }
 

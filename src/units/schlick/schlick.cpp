@@ -138,7 +138,12 @@ struct Schlick : UnitKindDefaults {
     // Stage 1: D = n (1 - t) + t. 1 - t is the complement of t plus one: the +n correction is one
     // more row of the multiplier's tree.
     const Seg n = b.slot_table(L.groups, wn, 1, true, "stage 1: n table (per datapath group)");
-    const Seg mul = b.multiplier(wn, fi + 1, "stage 1: n (1 - t)");
+    // n from a ROM of known contents unless the chip loads it (builder.h, table_multiplier).
+    std::vector<std::int64_t> ns;
+    for (const SchlickUnit& u : units) ns.push_back(u.n_raw());
+    const bool known = !L.tables_ram && L.groups == static_cast<int>(units.size());
+    const Seg mul = known ? b.table_multiplier(fi + 1, ns, "stage 1: n (1 - t)")
+                          : b.multiplier(wn, fi + 1, "stage 1: n (1 - t)");
     const Seg add = b.adder(wd, "stage 1: + t");
     b.reg(wd + wi, "stage 1: D and t");
     b.op("table_read");
@@ -158,22 +163,26 @@ struct Schlick : UnitKindDefaults {
         b.stage(fmt::format("stage {}", r + 1), {row});
       }
     } else {
-      const Seg row = b.divider(1, wd, span + ": divider (iterative, one row reused)");
+      // Two rows, as the RTL writes it: the first quotient bit's (from stage 1's registers) and
+      // the one the loop reuses; the numerator's bits still to bring down are shifted beside.
+      const Seg row = b.divider(2, wd, span + ": divider (iterative: first row, one row reused)");
       const int counter = clog2(q + 1);
       const Seg load = b.mux(wd + 1, 2, span + ": divider load/iterate mux");
       b.state_reg(wd + 1, span + ": divider partial remainder", q);
       b.state_reg(wd, span + ": divider divisor", 1);
       b.state_reg(q, span + ": divider quotient shift register", q);
       b.state_reg(counter, span + ": divider step counter", q);
+      b.state_reg(fi + 1, span + ": divider numerator bits", q);
       b.stage(span + " (divider loop)", {row, load});
     }
 
     // Last stage: round (Q + 1) >> 1 and clamp to 1.0.
     const Seg rnd = b.adder(q, fmt::format("stage {}: rounding incrementer", q + 2));
+    const Seg over = b.comparator(q + 1, fmt::format("stage {}: above 1.0", q + 2));
     const Seg clamp = b.mux(wo, 2, fmt::format("stage {}: clamp to 1", q + 2));
     b.reg(wo, fmt::format("stage {}: result", q + 2));
     b.op("add");
-    b.stage(fmt::format("stage {}", q + 2), {rnd, clamp});
+    b.stage(fmt::format("stage {}", q + 2), {rnd, over, clamp});
   }
 
   static std::string rtl(const hdl::DatapathPorts& p, const Config& c,
