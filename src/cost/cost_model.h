@@ -33,9 +33,10 @@
 //                                  bit). ram (registers with a write port, loaded when materials
 //                                  load: a chip of fixed capacity, --slots): E W ram_bit_ge +
 //                                  (E - 1) W ram_mux_ge (the write decoder and the read mux).
-//   Per-slot tables: `tables` (units/keys.h's lane storage) is rom when the scene fixes the
-//   materials at synthesis (what `glint rtl` writes: case ROMs with the real contents) and ram for
-//   a chip of fixed capacity.
+//   Per-slot tables (units/lane_cost.cpp, LaneShape::tables_ram): rom when the scene fixes the
+//   materials at synthesis (what `glint rtl` writes: case ROMs with the real contents, the proxy
+//   reading the same contents where the unit's cost knows them), ram for a chip of fixed capacity
+//   (--slots; glint rtl writes no RAM tables yet, so that figure is the sweep's alone).
 //
 // ---- Critical path: logic depth in gates (what glint synth measures) ----------------------------
 //   adder, W bits                  add_depth0 + add_depth_log log2 W

@@ -3,6 +3,8 @@
 every configuration; calibration_report (tests/calibration_report.cpp) holds the cost proxy to it.
 
     python3 tests/calibration/synth_set.py build/glint -o tests/calibration/set.json
+    python3 tests/calibration/synth_set.py build/glint --set tests/calibration/holdout.txt \
+        -o tests/calibration/holdout.json
 
 With --check FILE it re-synthesizes a sample (--sample N configurations, drawn with --seed) and
 compares each with FILE's stored result: flip-flops equal, GE and depth within --tolerance (a
@@ -76,9 +78,10 @@ def main():
               f"{r['yosys_seconds']} s", file=sys.stderr, flush=True)
         results.append(r)
     version = subprocess.run(["yosys", "-V"], capture_output=True, text=True).stdout.strip()
+    rel = os.path.relpath(os.path.abspath(args.set), root)
+    out = os.path.relpath(os.path.abspath(args.output), root)
     doc = {"glint_calibration_set": 1,
-           "command": "python3 tests/calibration/synth_set.py build/glint -o "
-                      "tests/calibration/set.json",
+           "command": f"python3 tests/calibration/synth_set.py build/glint --set {rel} -o {out}",
            "yosys": version, "configs": results}
     with open(args.output, "w") as f:
         json.dump(doc, f, indent=1)

@@ -187,11 +187,13 @@ struct Pow : UnitKindDefaults {
     b.comparator(yint, "stage 5: shift range check (all shifted out)");
     b.comparator(yint, "stage 5: shift range check (no shift)");
     b.gates(xw, "stage 5: rounding half decoder");
-    p5.push_back(b.shifter(xw, clog2(xw + 1), "stage 5: output shifter"));
+    // The RTL shifts a 64-bit word (exp2 plus the decoded rounding half, which reaches bit 62) by
+    // up to 63 and compares all of it with 1.0: Yosys keeps the whole 64 x 6 shifter.
+    p5.push_back(b.shifter(64, 6, "stage 5: output shifter (64 bits, round half up)"));
     // The compare with 1.0 reads the rounded value, but ABC overlaps it with the incrementer's
     // carries: on the calibration set stage 5's depth is that of the path without it.
     p5.push_back(parallel(b.adder(wo + 1, "stage 5: rounding incrementer"),
-                          b.comparator(xw + 1, "stage 5: above 1.0")));
+                          b.comparator(64, "stage 5: above 1.0 (the 64-bit shifted word)")));
     p5.push_back(b.mux(wo, 2, "stage 5: clamp to 1"));
     b.op("add", 2);
     b.op("shift");
