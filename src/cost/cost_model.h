@@ -1,6 +1,6 @@
-// Hardware cost proxies of a specular unit: area (gate equivalents), critical path (gate delays of
-// the slowest pipeline stage) and an energy proxy (operations executed per request), from the
-// unit's datapath and widths. `glint sim` prints them per unit.
+// Hardware cost proxies of a specular unit: area (gate equivalents), critical path (gates of logic
+// depth in the slowest pipeline stage) and an energy proxy (operations executed per request), from
+// the unit's datapath and widths. `glint sim` prints them per unit.
 //
 // These are PROXIES for comparing architectures, fitted to Yosys: every constant below comes from
 // primitive sweeps through `glint synth`'s generic flow (tests/calibration/primitives.py ->
@@ -9,14 +9,17 @@
 // flow's netlists; the residual of each fit is written beside its constant. The whole lane is held
 // to the synthesized calibration set (tests/calibration/set.json) by the ctest `calibration`.
 //
-// ---- Area: gate equivalents (GE, 1 GE = one NAND2 = 4 transistors)
-// -------------------------------
+// ---- Area: gate equivalents (GE, 1 GE = one NAND2 = 4 transistors) ----------------------------
 //   adder / subtractor, W bits     W add_bit_ge
-//   multiplier, A x B bits         mul_ab_ge A B + mul_sum_ge (A + B), signed: the s* constants
+//   multiplier, A x B bits         mul_ab_ge A B + mul_sum_ge (A + B), signed: the s* constants;
+//                                  by a constant k (a one-entry table): the multiplier of k's
+//                                  significant bits x 0.85 ones / bits; by a table of several
+//                                  values: one partial-product row per bit any value sets
 //   divider, R rows x D bits       R (D + 1) (add_bit_ge + cmp_bit_ge + mux2_ge): restoring array,
 //                                  a row per quotient bit built in hardware (the RTL's row is a
 //                                  comparator, a subtractor beside it and the restore mux):
-//                                  R = all quotient bits when pipelined, R = 1 when iterative
+//                                  R = all quotient bits when pipelined, R = 2 when iterative
+//                                  (the first quotient bit's row and the row the loop reuses)
 //   comparator, W bits             W cmp_bit_ge
 //   register, W bits               W dff_ge (a datapath stage register: plain D flip-flops);
 //                                  W dffe_ge for the lane's registers, which hold under
@@ -24,6 +27,7 @@
 //   mux, W bits x K inputs         W (K - 1) mux2_ge
 //   barrel shifter, W x S levels   W S shift_bit_ge
 //   leading-one detector, W bits   W lzd_bit_ge (the priority chain pow's RTL writes)
+//   glue gates                     gate_ge each (two-input AND/OR: the merge buffer's selects)
 //   table, E entries x W bits      rom: Yosys folds a case ROM of constants into logic whose size
 //                                  depends on what it holds, so a ROM of known contents costs
 //                                  rom_node_ge per node of its reduced decision diagram (per
@@ -56,18 +60,21 @@
 // ops_per_computed: operations of one request that reaches the compute unit, by kind: "mul",
 // "add", "div_step" (quotient bits: the same for pipelined and iterative), "table_read" (words),
 // "shift", "lzd", "compare", "reg_bits" (pipeline register bits written, the iterative divider's
-// state once per quotient bit). ops_per_request: every request, skipped or not: the comparator's
-// "compare" and "table_read" (tau), and "reg_bits" of the comparator register and the merge-buffer
-// entry (the bypass path of a skipped result).
+// state once per quotient bit; the tags carried beside the unit). ops_per_request: every request,
+// skipped or not: the comparator's "compare" and "table_read" (tau), and "reg_bits" of the
+// comparator register, the merge-buffer entry, the bypass tag and the counters.
 //
 // ---- What a lane contains (inventory) ----------------------------------------------------------
-// comparator stage (tau table, comparator, register carrying t, the skip flag, the slot id and,
-// for hast/horner, the root tau to the u scaler), the unit's stages as its own files describe them
-// (src/units/<unit>/<unit>.cpp, beside its datapath), the merge buffer (timing buffer_depth entries
-// of the output width and its read mux), and with colour_multiply an RGB stage after the merge
-// buffer (3 multipliers out x out, a per-slot colour table, 3 x out register; operand-isolated for
-// skipped results). Tables that hold 1.0 (log2 at the last node, t^n at t = 1) or 2.0 (exp2) carry
-// the bit for it. cost/builder.h places the parts; units/lane_cost.h puts a lane together.
+// comparator stage (tau table, comparator, and the register after it: the datapath's input, t and
+// the group id), the unit's stages as its own files describe them (src/units/<unit>/<unit>.cpp,
+// beside its datapath, following the Verilog src/units/<unit>/rtl.cpp writes), the merge buffer
+// as hdl/lane.cpp writes it (buffer_depth entries of the output width with valid and skipped bits,
+// their write select and decode, the read mux, a tag and valid bit beside every position of the
+// unit, the bypass tag, the credit, issue, head and II counters), and with colour_multiply an RGB
+// stage after the merge buffer (3 multipliers out x out, a per-slot colour table, 3 x out
+// register; operand-isolated for skipped results). Tables that hold 1.0 (log2 at the last node,
+// t^n at t = 1) or 2.0 (exp2) carry the bit for it. cost/builder.h places the parts;
+// units/lane_cost.h puts a lane together.
 #pragma once
 
 #include <cstdint>
@@ -97,14 +104,14 @@ struct Primitive {
 // Delay of one pipeline stage and what lies on its path.
 struct StageDelay {
   std::string stage;  // "comparator", "stage 1", ..., "colour"
-  double delay = 0;   // gate delays, register overhead included
+  double delay = 0;   // gates of logic depth (glint synth's measure)
   std::string path;   // e.g. "table 2 + mul 18x16 + add 33 + reg"
 };
 
 struct UnitCost {
   std::vector<Primitive> inventory;
   double area_ge = 0;        // sum of the inventory's ge
-  double critical_path = 0;  // gate delays of the slowest stage
+  double critical_path = 0;  // gates of logic depth of the slowest stage
   std::string critical_stage;
   std::vector<StageDelay> stages;  // every stage, in pipeline order
   std::map<std::string, double> ops_per_computed;
@@ -149,7 +156,7 @@ struct CostConstants {
 };
 const CostConstants& cost_constants();
 
-// The delay formulas of the header comment (gate delays).
+// The delay formulas of the header comment (gates of logic depth).
 double adder_delay(int width);
 double multiplier_delay(int width_a, int width_b);
 double divider_row_delay(int divisor_bits);
