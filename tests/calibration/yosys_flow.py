@@ -33,7 +33,7 @@ def register_transistors(cell_type):
     return t
 
 
-def synthesize(verilog, top, keep=None):
+def synthesize(verilog, top):
     """Runs the flow on `verilog` (a string); returns dict(ge, transistors, cells, flip_flops,
     depth, cell_types)."""
     with tempfile.TemporaryDirectory(prefix="glint-cal.") as d:
@@ -52,9 +52,6 @@ def synthesize(verilog, top, keep=None):
         m = re.search(r"Estimated number of transistors:\s+([0-9]+)", text)
         transistors = int(m.group(1)) if m else 0
         nl = json.load(open(netlist))
-        if keep:
-            import shutil
-            shutil.copy(netlist, keep)
     mod = nl["modules"][top]
     cells = []
     driver = {}
