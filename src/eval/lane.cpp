@@ -375,7 +375,7 @@ void LaneAccumulator::merge(const LanePartial& p) {
 }
 
 void LaneAccumulator::merge_timing(const LanePartial& p, TimingEngine& timing) {
-  for (const std::uint64_t word : p.word) timing.next((word >> 63) != 0);
+  timing.next_words(p.word.data(), p.word.size());
 }
 
 }  // namespace glint
