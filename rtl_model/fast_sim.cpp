@@ -13,13 +13,13 @@ namespace {
 class FastLanes : public sc_core::sc_module {
  public:
   FastLanes(sc_core::sc_module_name name, const std::vector<const SpecularUnit*>& units,
-            const SlotMap& slots, const std::function<bool(VectorRow&)>& next_row,
+            const SlotMap& slots, const std::function<bool(std::vector<VectorRow>&)>& next_block,
             const FastOptions& options, std::vector<LaneAccumulator>* accumulators,
             const std::function<void(const FastResult&)>& on_result)
       : sc_module(name),
         units_(units),
         slots_(slots),
-        next_row_(next_row),
+        next_block_(next_block),
         options_(options),
         accumulators_(accumulators),
         on_result_(on_result) {
@@ -80,13 +80,21 @@ class FastLanes : public sc_core::sc_module {
     eo.threads = options_.threads;
     eo.window_rows = 32768;
     EvalEngine engine(slots_, std::move(lanes), std::move(timing), eo);
-    std::vector<VectorRow> rows(std::max(kEngineBatch, options_.batch));
+    const std::size_t batch = std::max(kEngineBatch, options_.batch);
+    std::vector<VectorRow> rows, block;
     std::uint64_t now_cycles = 0;
-    for (;;) {
-      std::size_t n = 0;
-      while (n < rows.size() && next_row_(rows[n])) ++n;
-      if (n == 0) break;
-      engine.add(rows.data(), n);
+    bool more = true;
+    while (more) {
+      rows.clear();
+      while (rows.size() < batch && (more = next_block_(block))) {
+        if (rows.empty() && block.size() >= batch) {
+          rows.swap(block);
+        } else {
+          rows.insert(rows.end(), block.begin(), block.end());
+        }
+      }
+      if (rows.empty()) break;
+      engine.add(rows.data(), rows.size());
       advance(now_cycles);
     }
   }
@@ -100,7 +108,7 @@ class FastLanes : public sc_core::sc_module {
     std::uint64_t now_cycles = 0;
     for (;;) {
       std::size_t n = 0;
-      while (n < batch && next_row_(rows[n])) ++n;
+      while (n < batch && next_row(rows[n])) ++n;
       if (n == 0) break;
       for (std::size_t i = 0; i < n; ++i) {
         slot[i] = slots_.slot(rows[i]);
@@ -125,7 +133,26 @@ class FastLanes : public sc_core::sc_module {
 
   const std::vector<const SpecularUnit*>& units_;
   const SlotMap& slots_;
-  const std::function<bool(VectorRow&)>& next_row_;
+  const std::function<bool(std::vector<VectorRow>&)>& next_block_;
+  // Rows of the last block not yet taken a row at a time (next_row).
+  std::vector<VectorRow> pending_;
+  std::size_t pending_at_ = 0;
+  bool ended_ = false;
+
+  bool next_row(VectorRow& row) {
+    while (pending_at_ == pending_.size()) {
+      if (ended_ || !next_block_(pending_)) {
+        // The source may have changed the block before saying there is no more.
+        ended_ = true;
+        pending_.clear();
+        pending_at_ = 0;
+        return false;
+      }
+      pending_at_ = 0;
+    }
+    row = pending_[pending_at_++];
+    return true;
+  }
   FastOptions options_;
   std::vector<LaneAccumulator>* accumulators_;
   const std::function<void(const FastResult&)>& on_result_;
@@ -135,16 +162,34 @@ class FastLanes : public sc_core::sc_module {
 
 }  // namespace
 
+std::vector<TimingStats> run_fast_blocks(
+    const std::vector<const SpecularUnit*>& units, const SlotMap& slots,
+    const std::function<bool(std::vector<VectorRow>&)>& next_block, const FastOptions& options,
+    std::vector<LaneAccumulator>* accumulators,
+    const std::function<void(const FastResult&)>& on_result) {
+  FastLanes lanes("fast", units, slots, next_block, options, accumulators, on_result);
+  sc_core::sc_start();
+  if (lanes.error()) std::rethrow_exception(lanes.error());
+  return lanes.stats();
+}
+
 std::vector<TimingStats> run_fast(const std::vector<const SpecularUnit*>& units,
                                   const SlotMap& slots,
                                   const std::function<bool(VectorRow&)>& next_row,
                                   const FastOptions& options,
                                   std::vector<LaneAccumulator>* accumulators,
                                   const std::function<void(const FastResult&)>& on_result) {
-  FastLanes lanes("fast", units, slots, next_row, options, accumulators, on_result);
-  sc_core::sc_start();
-  if (lanes.error()) std::rethrow_exception(lanes.error());
-  return lanes.stats();
+  const std::size_t block = std::max<std::size_t>(1, options.batch);
+  return run_fast_blocks(
+      units, slots,
+      [&](std::vector<VectorRow>& rows) {
+        rows.resize(block);
+        std::size_t n = 0;
+        while (n < rows.size() && next_row(rows[n])) ++n;
+        rows.resize(n);
+        return n > 0;
+      },
+      options, accumulators, on_result);
 }
 
 }  // namespace glint

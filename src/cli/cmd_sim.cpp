@@ -191,10 +191,16 @@ SimRun run_clocked_mode(const SimOptions& o, ClockedOptions co, const Rereadable
 // Fast mode: transaction level with temporal decoupling, fed by `reader`.
 SimRun run_fast_mode(const SimOptions& o, VectorReader& reader, SimLanes& lanes, SimDump* dump,
                      bool progress) {
-  std::function<bool(VectorRow&)> next = [&](VectorRow& row) {
-    const bool ok = reader.next(row);
-    if (progress && ok && (reader.rows_read() & 0xFFFFF) == 0)
+  const int threads = o.threads > 0 ? o.threads : default_threads();
+  // Blocks of rows parsed on the threads (VectorReader::next_block): the same rows, line numbers
+  // and errors as a row at a time.
+  std::uint64_t shown = 0;
+  std::function<bool(std::vector<VectorRow>&)> next = [&](std::vector<VectorRow>& rows) {
+    const bool ok = reader.next_block(rows, threads);
+    if (progress && ok && (reader.rows_read() >> 20) != shown) {
+      shown = reader.rows_read() >> 20;
       std::fprintf(stderr, "\r%llu vectors", static_cast<unsigned long long>(reader.rows_read()));
+    }
     return ok;
   };
   std::function<void(const FastResult&)> on_result;
@@ -206,10 +212,10 @@ SimRun run_fast_mode(const SimOptions& o, VectorReader& reader, SimLanes& lanes,
   FastOptions fo;
   fo.sink = SinkReady{o.sink_ready, o.seed};
   fo.batch = o.batch;
-  fo.threads = o.threads > 0 ? o.threads : default_threads();
+  fo.threads = threads;
   fo.colour_stage = lanes.colour;
   SimRun run;
-  run.timing = run_fast(lanes.units, lanes.slots, next, fo, &lanes.acc, on_result);
+  run.timing = run_fast_blocks(lanes.units, lanes.slots, next, fo, &lanes.acc, on_result);
   run.rows = reader.rows_read();
   return run;
 }

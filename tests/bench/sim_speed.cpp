@@ -108,8 +108,17 @@ int sc_main(int argc, char* argv[]) {
     GeneratedRows rows(vectors, t_min);
     glint::FastOptions options;
     options.threads = threads;
-    stats = glint::run_fast(
-        units, slots, [&](glint::VectorRow& row) { return rows.next(row); }, options, &acc);
+    // A block at a time, as `glint sim` reads a file (VectorReader::next_block).
+    stats = glint::run_fast_blocks(
+        units, slots,
+        [&](std::vector<glint::VectorRow>& block) {
+          block.resize(glint::kEngineBatch);
+          std::size_t n = 0;
+          while (n < block.size() && rows.next(block[n])) ++n;
+          block.resize(n);
+          return n > 0;
+        },
+        options, &acc);
     for (std::size_t i = 0; i < units.size(); ++i) skipped[i] = acc[i].stats().skipped;
   } else if (mode == "clocked") {
     glint::ClockedOptions options;
