@@ -63,9 +63,19 @@ bool RowParser::parse(std::string_view line, std::uint64_t line_no, VectorRow& r
       if (p == e || *p == '#') fail_missing(i, comma);
     }
     const char* const f = p;
+    const VectorColumn c = columns_[i];
+    if (c == VectorColumn::kT) {
+      // The common form at once, without scanning the field twice (parse_plain_decimal).
+      double v = 0;
+      const char* const q = parse_plain_decimal(p, e, v);
+      if (q && (q == e || ends_row_field(*q)) && valid_t(v)) {
+        row.t = v;
+        p = q;
+        continue;
+      }
+    }
     while (p < e && !ends_row_field(*p)) ++p;
     const std::string_view tok(f, static_cast<std::size_t>(p - f));
-    const VectorColumn c = columns_[i];
     if (tok.empty()) fail(column_name(c), "empty field");
     switch (c) {
       case VectorColumn::kT: {

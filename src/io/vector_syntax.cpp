@@ -21,6 +21,7 @@ void split_header_tokens(std::string_view line, std::vector<std::string_view>& t
 }
 
 NumberStatus parse_decimal(const char* b, const char* e, double& out) {
+  if (parse_plain_decimal(b, e, out) == e) return NumberStatus::kOk;
   double v = 0;
   const auto r = fast_float::from_chars(b, e, v);
   if (r.ptr != e || r.ec != std::errc()) return NumberStatus::kNotNumber;
