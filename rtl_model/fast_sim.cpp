@@ -85,17 +85,20 @@ class FastLanes : public sc_core::sc_module {
     std::uint64_t now_cycles = 0;
     bool more = true;
     while (more) {
-      rows.clear();
-      while (rows.size() < batch && (more = next_block_(block))) {
-        if (rows.empty() && block.size() >= batch) {
-          rows.swap(block);
-        } else {
-          rows.insert(rows.end(), block.begin(), block.end());
-        }
+      more = next_block_(block);
+      if (more && rows.empty() && block.size() >= batch) {
+        // A block as large as a batch goes in as it is: no copy, and the source keeps its
+        // storage (a vector it refills in place).
+        engine.add(block.data(), block.size());
+        advance(now_cycles);
+        continue;
       }
-      if (rows.empty()) break;
-      engine.add(rows.data(), rows.size());
-      advance(now_cycles);
+      if (more) rows.insert(rows.end(), block.begin(), block.end());
+      if (!rows.empty() && (rows.size() >= batch || !more)) {
+        engine.add(rows.data(), rows.size());
+        advance(now_cycles);
+        rows.clear();
+      }
     }
   }
 
