@@ -85,6 +85,12 @@ void EvalEngine::prepare(const VectorRow* rows, std::size_t count, std::size_t o
     const double* const deferred = deferred_t_.data();
     const std::uint8_t* const known = slot_known_.data();
     const bool defer = out == nullptr;
+    // Rows whose reference is computed, listed: the calls then run back to back in a loop of
+    // their own, where they overlap, instead of one in the middle of each scanned row.
+    thread_local std::vector<std::uint32_t> need_list;
+    need_list.resize(b - a);
+    std::uint32_t* const need = need_list.data();
+    std::size_t needed = 0;
     std::vector<bool> listed;
     for (std::size_t i = a; i < b; ++i) {
       const std::uint32_t s = static_cast<std::uint32_t>(slots_.slot(rows[i]));
@@ -95,15 +101,21 @@ void EvalEngine::prepare(const VectorRow* rows, std::size_t count, std::size_t o
       // statistic can see is left to the lane that needs it (LaneAccumulator::accumulate): on a
       // stream of mostly skipped requests, most of them.
       const double cut = deferred[s];
-      ref_out[i] = cut > 0.0 && t <= 0.0          ? 0.0
-                   : defer && t > 0.0 && t <= cut ? kDeferredReference
-                                                  : reference_value(slots_, s, t);
+      const bool zero = (cut > 0.0) & (t <= 0.0);
+      const bool late = defer & (t > 0.0) & (t <= cut);
+      ref_out[i] = late ? kDeferredReference : 0.0;
+      need[needed] = static_cast<std::uint32_t>(i);
+      needed += !(zero | late);
       if (known[s]) continue;
       if (listed.empty()) listed.resize(slot_known_.size());
       if (!listed[s]) {
         listed[s] = true;
         fresh[r].push_back(s);
       }
+    }
+    for (std::size_t x = 0; x < needed; ++x) {
+      const std::size_t i = need[x];
+      ref_out[i] = reference_value(slots_, slot_out[i], t_out[i]);
     }
   });
   if (out) std::copy(reference_.begin(), reference_.end(), out->reference.begin() + offset);
