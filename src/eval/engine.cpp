@@ -25,6 +25,13 @@ EvalEngine::EvalEngine(const SlotMap& slots, std::vector<LaneAccumulator*> lanes
   options_.window_rows = std::max<std::size_t>(1, options_.window_rows);
   slot_known_.assign(slots.params.size(), 0);
   deferred_t_ = deferred_t(slots);
+  // A slot's small references are deferred only when no lane computes rows there (a comparator
+  // that keeps such t, or none): a lane that does would make each call in the middle of its rows,
+  // where this pass makes them back to back.
+  defer_t_ = deferred_t_;
+  for (std::size_t s = 0; s < defer_t_.size(); ++s)
+    for (const LaneAccumulator* lane : lanes_)
+      if (defer_t_[s] > 0.0 && lane->computes_at_or_below(s, defer_t_[s])) defer_t_[s] = 0.0;
   for (auto& p : partials_) p.resize(lanes_.size());
 }
 
@@ -83,6 +90,7 @@ void EvalEngine::prepare(const VectorRow* rows, std::size_t count, std::size_t o
     std::uint32_t* const slot_out = slot_.data();
     double* const ref_out = reference_.data();
     const double* const deferred = deferred_t_.data();
+    const double* const defer_cut = defer_t_.data();
     const std::uint8_t* const known = slot_known_.data();
     const bool defer = out == nullptr;
     // Rows whose reference is computed, listed: the calls then run back to back in a loop of
@@ -102,7 +110,7 @@ void EvalEngine::prepare(const VectorRow* rows, std::size_t count, std::size_t o
       // stream of mostly skipped requests, most of them.
       const double cut = deferred[s];
       const bool zero = (cut > 0.0) & (t <= 0.0);
-      const bool late = defer & (t > 0.0) & (t <= cut);
+      const bool late = defer & (t > 0.0) & (t <= defer_cut[s]);
       ref_out[i] = late ? kDeferredReference : 0.0;
       need[needed] = static_cast<std::uint32_t>(i);
       needed += !(zero | late);

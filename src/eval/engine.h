@@ -55,6 +55,7 @@ class EvalEngine {
   ThreadPool pool_;
   std::vector<std::uint8_t> slot_known_;  // slots begun in every lane
   std::vector<double> deferred_t_;        // per slot (deferred_t)
+  std::vector<double> defer_t_;           // the same, 0 where some lane computes such rows
   std::vector<double> t_;
   std::vector<std::uint32_t> slot_;
   std::vector<double> reference_;

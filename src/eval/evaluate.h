@@ -236,6 +236,8 @@ class LaneAccumulator {
   // into raw/skipped (when not null, indexed from a); then merge() of the partials in order.
   void begin_slot(std::size_t slot);
   bool slot_begun(std::size_t slot) const { return slot_state_[slot] >= 0; }
+  // Whether the comparator of `slot` keeps some t at or below `t` (computes its row).
+  bool computes_at_or_below(std::size_t slot, double t) const;
   void accumulate(const RowsView& rows, std::size_t a, std::size_t b, LanePartial& p,
                   std::int64_t* raw, std::uint8_t* skipped) const;
   void merge(const LanePartial& p);

@@ -153,6 +153,11 @@ void LaneAccumulator::begin_slot(std::size_t slot) {
   }
 }
 
+bool LaneAccumulator::computes_at_or_below(std::size_t slot, double t) const {
+  // Quantization is monotone: the rows at or below t have codes at or below t's.
+  return tau_[slot] < InputQuantizer(unit_.in_format())(t);
+}
+
 CodeFacts LaneAccumulator::compute_facts(std::size_t slot, std::int64_t t_raw) const {
   CodeFacts f;
   f.out = unit_.eval(slot, t_raw);
