@@ -192,8 +192,11 @@ struct Pow : UnitKindDefaults {
     p5.push_back(b.shifter(64, 6, "stage 5: output shifter (64 bits, round half up)"));
     // The compare with 1.0 reads the rounded value, but ABC overlaps it with the incrementer's
     // carries: on the calibration set stage 5's depth is that of the path without it.
-    p5.push_back(parallel(b.adder(wo + 1, "stage 5: rounding incrementer"),
-                          b.comparator(64, "stage 5: above 1.0 (the 64-bit shifted word)")));
+    // Placed one statement each: as two arguments of one call their order in the inventory would
+    // be the compiler's (GCC and clang evaluate arguments in opposite orders).
+    const Seg above_one = b.comparator(64, "stage 5: above 1.0 (the 64-bit shifted word)");
+    const Seg increment = b.adder(wo + 1, "stage 5: rounding incrementer");
+    p5.push_back(parallel(increment, above_one));
     p5.push_back(b.mux(wo, 2, "stage 5: clamp to 1"));
     b.op("add", 2);
     b.op("shift");
