@@ -15,6 +15,7 @@
 #include "io/vectors.h"
 #include "rtl_model/clocked_sim.h"
 #include "timing/timing.h"
+#include "timing_support.h"
 #include "units/catalogue.h"
 #include "units/common.h"
 
@@ -44,21 +45,6 @@ struct Observed {
   std::int64_t out_raw;
   ResultTiming timing;
 };
-
-bool same_stats(const TimingStats& a, const TimingStats& b) {
-  return a.results == b.results && a.computed == b.computed && a.cycles == b.cycles &&
-         a.stall_credit == b.stall_credit && a.stall_unit == b.stall_unit &&
-         a.sink_wait == b.sink_wait && a.latency_min == b.latency_min &&
-         a.latency_max == b.latency_max && a.latency_sum == b.latency_sum;
-}
-
-std::string describe(const TimingStats& s) {
-  return "results " + std::to_string(s.results) + " computed " + std::to_string(s.computed) +
-         " cycles " + std::to_string(s.cycles) + " stall_credit " + std::to_string(s.stall_credit) +
-         " stall_unit " + std::to_string(s.stall_unit) + " sink_wait " +
-         std::to_string(s.sink_wait) + " latency " + std::to_string(s.latency_min) + ".." +
-         std::to_string(s.latency_max) + " sum " + std::to_string(s.latency_sum);
-}
 
 // Runs the clocked model over `rows` (streamed by `open`) and checks it row by row against the
 // datapath and a TimingEngine fed the same skip sequence.
@@ -107,8 +93,7 @@ void check_equivalence(const SlotMap& slots, const std::vector<VectorRow>& rows,
                       << ", a/d/r " << want.issue << "/" << want.done << "/" << want.retire << ")";
       }
     }
-    EXPECT_TRUE(same_stats(stats[u], engine.stats()))
-        << "clocked: " << describe(stats[u]) << "\nengine:  " << describe(engine.stats());
+    EXPECT_EQ(stats[u], engine.stats()) << "clocked, then the engine";
   }
 }
 
@@ -267,7 +252,7 @@ TEST(RtlEquivalenceEdge, EmptyAndSingleRowStreams) {
   TimingEngine engine(owned[1]->timing(), SinkReady{});
   const std::size_t slot = slots.slot(s.rows[0]);
   engine.next(owned[1]->skip(slot, quantize_input(s.rows[0].t, owned[1]->in_format())));
-  EXPECT_TRUE(same_stats(stats[1], engine.stats()));
+  EXPECT_EQ(stats[1], engine.stats());
 }
 
 }  // namespace

@@ -9,21 +9,10 @@
 #include <vector>
 
 #include "timing/timing.h"
+#include "timing_support.h"
 
 namespace glint {
 namespace {
-
-void expect_same(const TimingStats& a, const TimingStats& b) {
-  EXPECT_EQ(a.results, b.results);
-  EXPECT_EQ(a.computed, b.computed);
-  EXPECT_EQ(a.cycles, b.cycles);
-  EXPECT_EQ(a.stall_credit, b.stall_credit);
-  EXPECT_EQ(a.stall_unit, b.stall_unit);
-  EXPECT_EQ(a.sink_wait, b.sink_wait);
-  EXPECT_EQ(a.latency_min, b.latency_min);
-  EXPECT_EQ(a.latency_max, b.latency_max);
-  EXPECT_EQ(a.latency_sum, b.latency_sum);
-}
 
 TEST(TimingWords, EqualsNextPerRequest) {
   std::mt19937_64 rng(9);
@@ -47,7 +36,7 @@ TEST(TimingWords, EqualsNextPerRequest) {
                 one.next(s);
               }
               words.next_words(w.data(), w.size());
-              expect_same(one.stats(), words.stats());
+              EXPECT_EQ(one.stats(), words.stats());
             }
             // The state after: the next requests schedule alike.
             for (const bool s : {false, true, false}) {
@@ -57,6 +46,21 @@ TEST(TimingWords, EqualsNextPerRequest) {
               EXPECT_EQ(a.retire, b.retire);
             }
           }
+}
+
+// The minimum latency is tracked from a sentinel: before any result it must read 0 like every
+// other statistic, and the first result's latency must replace it.
+TEST(TimingWords, LatencyMinBeforeAndAfterTheFirstResult) {
+  TimingEngine engine(UnitTiming{3, 1, 4}, SinkReady{});
+  EXPECT_EQ(engine.stats(), TimingStats{});
+  engine.next_words(nullptr, 0);
+  EXPECT_EQ(engine.stats(), TimingStats{});
+  const std::uint64_t computed = 0;
+  engine.next_words(&computed, 1);
+  EXPECT_EQ(engine.stats().latency_min, 4u);  // issue at 0, done after 1 + L cycles
+  EXPECT_EQ(engine.stats().latency_max, 4u);
+  engine.next(true);  // a skipped request passes the unit in one cycle but retires in order
+  EXPECT_EQ(engine.stats().latency_min, 4u);
 }
 
 }  // namespace

@@ -75,74 +75,117 @@ struct TimingStats {
   double throughput() const { return cycles ? double(results) / double(cycles) : 0.0; }
 };
 
+// Every field equal: how the clocked model, the fast mode's merge and next() are held to one
+// another (a field added above belongs here too).
+inline bool operator==(const TimingStats& a, const TimingStats& b) {
+  return a.results == b.results && a.computed == b.computed && a.cycles == b.cycles &&
+         a.stall_credit == b.stall_credit && a.stall_unit == b.stall_unit &&
+         a.sink_wait == b.sink_wait && a.latency_min == b.latency_min &&
+         a.latency_max == b.latency_max && a.latency_sum == b.latency_sum;
+}
+inline bool operator!=(const TimingStats& a, const TimingStats& b) {
+  return !(a == b);
+}
+
 class TimingEngine {
  public:
   TimingEngine(const UnitTiming& timing, const SinkReady& sink);
 
   // Schedules the next request in stream order. O(1); inline, since the evaluation engine calls
   // it per request in its sequential merge.
-  ResultTiming next(bool skipped);
+  ResultTiming next(bool skipped) {
+    return step(state_, retire_ring_.data(), sink_.probability >= 1.0, skipped);
+  }
   // next() on each of `count` requests whose skip flags are bit 63 of `words` (the evaluation
-  // engine's digest words), the same recurrences and statistics with the state in locals: next()
-  // keeps every statistic in memory, which cost ~65 instructions a request.
-  void next_words(const std::uint64_t* words, std::size_t count);
-  const TimingStats& stats() const { return stats_; }
+  // engine's digest words), with the state in locals: next() keeps every statistic in memory,
+  // which cost ~65 instructions a request.
+  void next_words(const std::uint64_t* words, std::size_t count) {
+    State st = state_;
+    std::uint64_t* const ring = retire_ring_.data();
+    const bool always_ready = sink_.probability >= 1.0;
+    for (std::size_t k = 0; k < count; ++k) step(st, ring, always_ready, (words[k] >> 63) != 0);
+    state_ = st;
+  }
+  TimingStats stats() const {
+    TimingStats s = state_.stats;
+    if (s.results == 0) s.latency_min = 0;
+    return s;
+  }
   const UnitTiming& timing() const { return timing_; }
 
  private:
+  // What the recurrences carry from one request to the next. The order and retire terms of the
+  // first request and the credit term of the first B are 0: last_issue and last_retire start at
+  // -1 (their + 1 wraps to 0), and the ring holds each credit's first usable cycle, r + 1, with 0
+  // before any result has used the entry.
+  struct State {
+    std::uint64_t last_issue = ~std::uint64_t{0};
+    std::uint64_t last_retire = ~std::uint64_t{0};
+    std::uint64_t last_compute_issue = 0;
+    bool any_compute = false;
+    std::size_t ring_at = 0;  // request index mod B, counted: no division per request
+    TimingStats stats = untouched();
+  };
+  // latency_min starts at the largest value, so the minimum needs no first-result test per
+  // request; stats() reports 0 until there is a result.
+  static TimingStats untouched() {
+    TimingStats s;
+    s.latency_min = ~std::uint64_t{0};
+    return s;
+  }
+  // One request through the recurrences: next() on the engine's state, next_words() on a copy in
+  // locals (the one definition of both).
+  ResultTiming step(State& st, std::uint64_t* credit_ring, bool always_ready, bool skipped);
+
   UnitTiming timing_;
   SinkReady sink_;
-  TimingStats stats_;
-  std::vector<std::uint64_t> retire_ring_;  // r_{i-B} .. r_{i-1}
-  std::size_t ring_at_ = 0;                 // index_ mod B, counted: no division per request
-  std::uint64_t index_ = 0;
-  std::uint64_t last_issue_ = 0, last_retire_ = 0, last_compute_issue_ = 0;
-  bool any_ = false, any_compute_ = false;
+  State state_;
+  std::vector<std::uint64_t> retire_ring_;  // r_{i-B} + 1 .. r_{i-1} + 1 (0: not used yet)
 };
 
-inline ResultTiming TimingEngine::next(bool skipped) {
-  const std::size_t slot = ring_at_;
-  const std::uint64_t order = any_ ? last_issue_ + 1 : 0;
-  const std::uint64_t credit = index_ >= retire_ring_.size() ? retire_ring_[slot] + 1 : 0;
-  const std::uint64_t unit =
-      (!skipped && any_compute_) ? last_compute_issue_ + static_cast<std::uint64_t>(timing_.ii) : 0;
+inline ResultTiming TimingEngine::step(State& st, std::uint64_t* credit_ring, bool always_ready,
+                                       bool skipped) {
+  const std::uint64_t order = st.last_issue + 1;
+  const std::uint64_t credit = credit_ring[st.ring_at];
+  const std::uint64_t unit = (!skipped && st.any_compute)
+                                 ? st.last_compute_issue + static_cast<std::uint64_t>(timing_.ii)
+                                 : 0;
   ResultTiming r;
-  r.issue = std::max({order, credit, unit});
+  r.issue = std::max(order, std::max(credit, unit));  // not max({...}): ~15 % slower here
   // Stall attribution: the binding constraint beyond one-per-cycle order.
+  TimingStats& s = st.stats;
   if (r.issue > order) {
     const std::uint64_t held = r.issue - order;
     if (credit >= unit) {
-      stats_.stall_credit += held;
+      s.stall_credit += held;
     } else {
-      stats_.stall_unit += held;
+      s.stall_unit += held;
     }
   }
   r.done = r.issue + 1 + (skipped ? 0 : static_cast<std::uint64_t>(timing_.latency));
-  std::uint64_t c = std::max(r.done, any_ ? last_retire_ + 1 : 0);
+  std::uint64_t c = std::max(r.done, st.last_retire + 1);
   const std::uint64_t earliest = c;
-  if (sink_.probability < 1.0)
+  if (!always_ready)
     while (!sink_.ready(c)) ++c;
   r.retire = c;
-  stats_.sink_wait += c - earliest;
+  s.sink_wait += c - earliest;
 
-  retire_ring_[slot] = r.retire;
-  last_issue_ = r.issue;
-  last_retire_ = r.retire;
+  credit_ring[st.ring_at] = r.retire + 1;
+  if (++st.ring_at == retire_ring_.size()) st.ring_at = 0;
+  st.last_issue = r.issue;
+  st.last_retire = r.retire;
   if (!skipped) {
-    last_compute_issue_ = r.issue;
-    any_compute_ = true;
-    ++stats_.computed;
+    st.last_compute_issue = r.issue;
+    st.any_compute = true;
+    ++s.computed;
   }
-  any_ = true;
-  ++index_;
-  if (++ring_at_ == retire_ring_.size()) ring_at_ = 0;
 
   const std::uint64_t lat = r.retire - r.issue;
-  stats_.latency_min = stats_.results ? std::min(stats_.latency_min, lat) : lat;
-  stats_.latency_max = std::max(stats_.latency_max, lat);
-  stats_.latency_sum += lat;
-  ++stats_.results;
-  stats_.cycles = r.retire + 1;
+  s.latency_min = std::min(s.latency_min, lat);
+  s.latency_max = std::max(s.latency_max, lat);
+  s.latency_sum += lat;
+  ++s.results;
+  s.cycles = r.retire + 1;
   return r;
 }
 
