@@ -173,23 +173,32 @@ TEST_F(CliOptions, RegressAndRender) {
 }
 
 // A stream beyond a run's resource limits (eval/evaluate.h) is refused against its file, naming the
-// limit, before any unit is built: here 32769 materials under two lights of different colours need
-// 65538 slots (the limit is 65536).
+// limit, before any unit is built, by every subcommand that reads a stream's slots: here 32769
+// materials under two lights of different colours need 65538 slots (the limit is 65536), and 4097
+// materials under 1024 white lights one slot each but 4195328 light x material pairs (the limit is
+// 2^22).
 TEST_F(CliOptions, StreamBeyondTheSlotLimitIsRefused) {
-  {
-    std::ofstream out(dir_.path() / "big.vec");
-    out << "glint-vectors 1\neps 1e-3\nlights 2\nlight 1 1,0.5,0.25\n";
-    for (int m = 0; m <= 32768; ++m)
+  const auto write = [&](const char* name, const char* lights, int materials) {
+    std::ofstream out(dir_.path() / name);
+    out << "glint-vectors 1\neps 1e-3\n" << lights;
+    for (int m = 0; m < materials; ++m)
       out << "material m" << m << " specular=1,1,1 shininess=50 lobe=phong\n";
     out << "columns t material light\ndata\n0.5 m0 1\n";
-  }
-  for (const char* sub : {"eval", "sim"}) {
-    const CliRun r = glint(std::string(sub) + " big.vec --unit pow");
-    EXPECT_EQ(r.status, 2) << sub << ": " << r.out << r.err;
-    EXPECT_NE(r.err.find("big.vec: field 'slots'"), std::string::npos) << r.err;
-    EXPECT_NE(r.err.find("more than 65536 slots"), std::string::npos) << r.err;
-  }
-  EXPECT_EQ(dir_.entries(), std::vector<std::string>{"big.vec"});
+  };
+  write("big.vec", "lights 2\nlight 1 1,0.5,0.25\n", 32769);
+  write("lit.vec", "lights 1024\n", 4097);
+  for (const auto& [file, limit] :
+       {std::pair<std::string, std::string>{"big.vec", "more than 65536 slots"},
+        {"lit.vec", "4195328 light x material pairs, more than the limit of 4194304"}})
+    for (const std::string& args :
+         {"eval " + file + " --unit pow", "sim " + file + " --unit pow",
+          "sweep " + file + " --grid pow -o out.csv", "rtl pow --vectors " + file + " -o out"}) {
+      const CliRun r = glint(args);
+      EXPECT_EQ(r.status, 2) << args << ": " << r.out << r.err;
+      EXPECT_NE(r.err.find(file + ": field 'slots'"), std::string::npos) << args << ": " << r.err;
+      EXPECT_NE(r.err.find(limit), std::string::npos) << args << ": " << r.err;
+    }
+  EXPECT_EQ(dir_.entries(), (std::vector<std::string>{"big.vec", "lit.vec"}));
 }
 
 // Each limit is stated in the subcommand's --help.

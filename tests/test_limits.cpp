@@ -1,8 +1,8 @@
 // Resources proportional to the input, with stated limits (issue 11, item 5; README "Limits and
-// guarantees"): slots per stream, units x slots per run, the accuracy contracts' sweep per run and
-// lut's tables per unit are refused beyond their limits with a message naming the limit, before
-// the memory or time is spent; slots that share a datapath, threshold and lobe share one contract
-// sweep (a file of many identical materials costs what one material does).
+// guarantees"): slots and light x material pairs per stream, units x slots per run, the accuracy
+// contracts' sweep per run and lut's tables per unit are refused beyond their limits with a message
+// naming the limit, before the memory or time is spent; slots that share a datapath, threshold and
+// lobe share one contract sweep (a file of many identical materials costs what one material does).
 #include <gtest/gtest.h>
 
 #include <string>
@@ -56,6 +56,19 @@ TEST(Limits, SlotsPerStream) {
   EXPECT_NE(why.find("more than 65536 slots"), std::string::npos) << why;
   // Lights that leave c_y unchanged add no slot: 65536 materials under 16 white lights.
   EXPECT_EQ(glint::make_slots(header(65536, 16, false)).params.size(), 65536u);
+}
+
+TEST(Limits, LightMaterialPairsPerStream) {
+  // 1024 lights x 4096 materials: 2^22 pairs, the limit; one more material crosses it, and so
+  // does the largest header the vector format allows (1024 x 65536), refused before any slot.
+  EXPECT_EQ(glint::make_slots(header(4096, 1024, false)).params.size(), 4096u);
+  for (const std::size_t materials : {4097, 65536}) {
+    const std::string why = refusal([&] { glint::make_slots(header(materials, 1024, false)); });
+    EXPECT_NE(why.find("more than the limit of 4194304"), std::string::npos) << why;
+    EXPECT_NE(why.find("1024 lights x " + std::to_string(materials) + " materials"),
+              std::string::npos)
+        << why;
+  }
 }
 
 TEST(Limits, UnitSlotsPerRun) {

@@ -87,7 +87,7 @@ int run_rtl(const RtlOptions& o) {
   OutputFile& tb = out.add("-o", base + "_tb.v");
   OutputFile& vec = out.add("-o", base + "_tb.vec");
 
-  const RtlDesign d = make_rtl_design(spec, rtl_header(o.input));
+  const RtlDesign d = make_rtl_design(spec, rtl_header(o.input), rtl_input_name(o.input));
   const std::vector<hdl::TbVector> v = tb_vectors(d, o);
   const std::string vec_name = "glint_" + spec.name + "_tb.vec";
   lane.stream() << d.lane_verilog;

@@ -53,9 +53,18 @@ VectorHeader rtl_header(const RtlInputOptions& o) {
   return VectorReader(in, "--material").header();
 }
 
-RtlDesign make_rtl_design(const UnitSpec& spec, const VectorHeader& header) {
+std::string rtl_input_name(const RtlInputOptions& o) {
+  return !o.vectors.empty() ? o.vectors : !o.scene.empty() ? o.scene : "--material";
+}
+
+RtlDesign make_rtl_design(const UnitSpec& spec, const VectorHeader& header,
+                          const std::string& input) {
   RtlDesign d;
-  d.slots = make_slots(header);
+  try {
+    d.slots = make_slots(header);
+  } catch (const ResourceLimitError& e) {
+    refuse_size(input, e);  // more slots or light x material pairs than a stream may have
+  }
   d.unit = make_unit(spec, d.slots);
   const SpecularUnit& u = *d.unit;
   hdl::LaneParams& p = d.lane;

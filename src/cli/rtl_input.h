@@ -37,7 +37,11 @@ struct RtlDesign {
   std::string lane_verilog;      // glint_<unit>_lane
   std::string datapath_verilog;  // glint_<unit>_datapath
 };
-// Builds the unit for the input's slots and writes its Verilog.
-RtlDesign make_rtl_design(const UnitSpec& spec, const VectorHeader& header);
+// Builds the unit for the input's slots and writes its Verilog. `input` names the input in a
+// refusal (the file, or --material).
+RtlDesign make_rtl_design(const UnitSpec& spec, const VectorHeader& header,
+                          const std::string& input);
+// The input as an error message names it: the vector file, the scene, or --material.
+std::string rtl_input_name(const RtlInputOptions& o);
 
 }  // namespace glint::cli

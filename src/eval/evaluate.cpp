@@ -69,6 +69,11 @@ SlotMap make_slots(const VectorHeader& header, std::size_t capacity) {
   const auto lights = static_cast<std::size_t>(header.lights);
   map.materials = materials;
   map.capacity = capacity;
+  if (lights * materials > kMaxLightMaterialPairs)
+    throw ResourceLimitError(fmt::format(
+        "{} lights x {} materials are {} light x material pairs, more than the limit of {} per "
+        "stream (each slot's report lists its lights: ~70 bytes per pair and unit)",
+        lights, materials, lights * materials, kMaxLightMaterialPairs));
 
   // Slots in order of first use, light by light (light 0's materials first): with every light
   // white this is one slot per material in material order, and with every light changing every

@@ -62,6 +62,13 @@ class SlotCapacityError : public std::invalid_argument {
 // unit. The vector format's limit on materials is the same number, so only lights that change
 // many materials' c_y reach it.
 inline constexpr std::size_t kMaxStreamSlots = 65536;
+// Light x material pairs of one stream: make_slots visits each, and every unit's elaboration
+// lists each slot's lights (SlotOrigin::lights, the report's slot_list), ~70 bytes per pair and
+// unit (measured: 64 white lights x 65536 materials, one unit, 850 MB peak against 560 MB under
+// one light). 2^22 keeps that under ~300 MB per unit: 64 lights x 65536 materials, or 1024 lights
+// x 4096 materials; the vector format alone would allow 2^26 (1024 x 65536: 5.3 GB and 25 s for
+// one unit on a 3.6 MB file).
+inline constexpr std::size_t kMaxLightMaterialPairs = std::size_t{1} << 22;
 // Units x slots of one run: the default five units on the largest stream (measured: ~5 GB and
 // ~1 min for `glint eval` of 65536 distinct materials).
 inline constexpr std::size_t kMaxLaneSlots = 5 * kMaxStreamSlots;

@@ -7,6 +7,8 @@
 #include <optional>
 #include <stdexcept>
 
+#include "eval/evaluate.h"
+#include "io/input_error.h"
 #include "io/vectors.h"
 #include "render/render.h"
 #include "scene/scene.h"
@@ -44,10 +46,21 @@ nlohmann::json input_json(const char* kind, const std::string& path, const Sweep
 // A scene: the render layer ray-casts it and hands every tile's requests to the engine (the first
 // render only); the image-level error of each configuration is the render's own, from the final
 // 8-bit pixels, a group of configurations per render.
+// The engine for the input's slots; a stream beyond the limits of src/eval/evaluate.h is refused
+// against the input file, as eval and sim refuse it.
+SweepEngine make_engine(const SweepJob& job, const VectorHeader& header,
+                        const std::vector<SweepConfig>& mine) {
+  try {
+    return SweepEngine(header, mine, job.settings);
+  } catch (const ResourceLimitError& e) {
+    throw InputError(job.input.path, 0, "slots", e.what());
+  }
+}
+
 SceneRun sweep_scene(const SweepJob& job, const std::vector<SweepConfig>& all,
                      const std::vector<SweepConfig>& mine) {
   const Scene scene = load_scene(job.input.path);
-  SweepEngine engine(scene_request_header(scene), mine, job.settings);
+  SweepEngine engine = make_engine(job, scene_request_header(scene), mine);
   const std::size_t group = render_group_size(scene);
   // Without image errors (or with no configuration in this shard) one render of one unit still
   // makes the requests.
@@ -81,7 +94,7 @@ SceneRun sweep_scene(const SweepJob& job, const std::vector<SweepConfig>& all,
 
 SceneRun sweep_vectors(const SweepJob& job, const std::vector<SweepConfig>& mine) {
   VectorReader reader(job.input.path);
-  SweepEngine engine(reader.header(), mine, job.settings);
+  SweepEngine engine = make_engine(job, reader.header(), mine);
   std::vector<VectorRow> chunk(std::max<std::size_t>(1, job.settings.chunk_rows));
   for (;;) {
     std::size_t n = 0;
