@@ -36,18 +36,21 @@ int replay(const std::string& kind, const std::string& name, Harness harness) {
   return static_cast<int>(files.size());
 }
 
-#define GLINT_REPLAY(name)                                                  \
-  TEST(FuzzReplay, name##_seeds) {                                          \
-    EXPECT_GT(replay("corpus", #name, glint::fuzz::name), 0) << "no seeds"; \
-  }                                                                         \
-  TEST(FuzzReplay, name##_findings) {                                       \
-    replay("regressions", #name, glint::fuzz::name);                        \
+// The harness `name` on the seeds and findings of `inputs` (scene_render takes scene's).
+#define GLINT_REPLAY_ON(name, inputs)                                         \
+  TEST(FuzzReplay, name##_seeds) {                                            \
+    EXPECT_GT(replay("corpus", #inputs, glint::fuzz::name), 0) << "no seeds"; \
+  }                                                                           \
+  TEST(FuzzReplay, name##_findings) {                                         \
+    replay("regressions", #inputs, glint::fuzz::name);                        \
   }
+#define GLINT_REPLAY(name) GLINT_REPLAY_ON(name, name)
 
 GLINT_REPLAY(vectors)
 GLINT_REPLAY(specs)
 GLINT_REPLAY(units)
 GLINT_REPLAY(scene)
+GLINT_REPLAY_ON(scene_render, scene)
 GLINT_REPLAY(golden)
 GLINT_REPLAY(options)
 

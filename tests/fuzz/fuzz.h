@@ -20,6 +20,7 @@ int vectors(const std::uint8_t* data, std::size_t size);
 int specs(const std::uint8_t* data, std::size_t size);
 int units(const std::uint8_t* data, std::size_t size);
 int scene(const std::uint8_t* data, std::size_t size);
+int scene_render(const std::uint8_t* data, std::size_t size);
 int golden(const std::uint8_t* data, std::size_t size);
 int options(const std::uint8_t* data, std::size_t size);
 
