@@ -86,21 +86,27 @@ int run_rtl(const RtlOptions& o) {
   OutputFile& datapath = out.add("-o", base + "_datapath.v");
   OutputFile& tb = out.add("-o", base + "_tb.v");
   OutputFile& vec = out.add("-o", base + "_tb.vec");
-
+  // tables=ram: the table writes the testbench loads through the write port.
   const RtlDesign d = make_rtl_design(spec, rtl_header(o.input), rtl_input_name(o.input));
+  OutputFile* cfg = d.lane.tables_ram ? &out.add("-o", base + "_tb.cfg") : nullptr;
+
   const std::vector<hdl::TbVector> v = tb_vectors(d, o);
   const std::string vec_name = "glint_" + spec.name + "_tb.vec";
   lane.stream() << d.lane_verilog;
   datapath.stream() << d.datapath_verilog;
+  const std::string cfg_name = "glint_" + spec.name + "_tb.cfg";
   tb.stream() << hdl::testbench_module(d.lane, hdl::TbSink{o.sink_ready, o.seed}, v.size(),
-                                       vec_name);
+                                       vec_name, cfg_name);
   vec.stream() << hdl::testbench_vectors(d.lane, v);
+  if (cfg != nullptr) cfg->stream() << hdl::testbench_writes(d.lane);
   out.commit();
 
   const UnitTiming t = d.unit->timing();
+  nlohmann::json files{lane.path(), datapath.path(), tb.path(), vec.path()};
+  if (cfg != nullptr) files.push_back(cfg->path());
   nlohmann::json j{{"unit", d.unit->name()},
                    {"spec", d.unit->canonical_spec()},
-                   {"files", {lane.path(), datapath.path(), tb.path(), vec.path()}},
+                   {"files", files},
                    {"latency", t.latency},
                    {"ii", t.ii},
                    {"buffer_depth", t.buffer_depth},
@@ -119,6 +125,9 @@ int run_rtl(const RtlOptions& o) {
         d.unit->name(), d.unit->canonical_spec(), t.latency, t.ii, t.buffer_depth, d.unit->slots(),
         d.unit->datapath_groups(), lane.path(), datapath.path(), tb.path(), vec.path(), v.size(),
         v.back().retire + 1);
+    if (cfg != nullptr)
+      std::cout << fmt::format("  {} ({} table writes)\n", cfg->path(),
+                               hdl::testbench_write_count(d.lane));
   }
   return kExitOk;
 }

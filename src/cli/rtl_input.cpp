@@ -90,8 +90,28 @@ RtlDesign make_rtl_design(const UnitSpec& spec, const VectorHeader& header,
   ports.group_bits = hdl::group_bits(p);
   ports.groups = p.groups;
   ports.latency = p.latency;
-  d.lane_verilog = "`timescale 1ns / 1ps\n" + hdl::lane_module(p);
+  if (!u.tables_ram()) {
+    d.lane_verilog = "`timescale 1ns / 1ps\n" + hdl::lane_module(p);
+    d.datapath_verilog = "`timescale 1ns / 1ps\n" + u.rtl_datapath(ports);
+    return d;
+  }
+  // tables=ram: the write port's widths hold every table of the lane and the datapath, so the
+  // lane is elaborated once to list them (selects, entries, widths), then written with them.
+  p.tables_ram = true;
+  hdl::RamTables listing;
+  hdl::lane_module(p, &listing);
+  ports.ram = &listing;
+  u.rtl_datapath(ports);
+  listing.size_port();
+  p.ram = listing;
+  hdl::RamTables ram = listing;
+  ram.tables.clear();
+  d.lane_verilog = "`timescale 1ns / 1ps\n" + hdl::lane_module(p, &ram);
+  ports.ram = &ram;
   d.datapath_verilog = "`timescale 1ns / 1ps\n" + u.rtl_datapath(ports);
+  if (ram.tables.size() != listing.tables.size())
+    throw std::logic_error("rtl: the RAM tables differ between the two elaborations");
+  p.ram = std::move(ram);
   return d;
 }
 

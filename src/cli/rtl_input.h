@@ -20,8 +20,8 @@ struct RtlInputOptions {
   std::vector<std::string> materials;  // "NAME shininess=N [lobe=...] [specular=r,g,b]"
   double eps = 1e-3;
 };
-// --vectors, --scene, --material, --eps. (No --slots: a chip of fixed capacity needs writable
-// tables, which the generator does not write yet; the ROMs hold the input's slots.)
+// --vectors, --scene, --material, --eps. (No --slots: the tables, ROMs or with tables=ram
+// registers with a write port, hold the input's slots and datapath groups.)
 void add_rtl_input_options(CLI::App* sub, RtlInputOptions& o);
 // Exactly one input kind; throws std::invalid_argument naming the options otherwise.
 void check_rtl_input(const RtlInputOptions& o);

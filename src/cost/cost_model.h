@@ -38,9 +38,11 @@
 //                                  load: a chip of fixed capacity, --slots): E W ram_bit_ge +
 //                                  (E - 1) W ram_mux_ge (the write decoder and the read mux).
 //   Per-slot tables (units/lane_cost.cpp, LaneShape::tables_ram): rom when the scene fixes the
-//   materials at synthesis (what `glint rtl` writes: case ROMs with the real contents, the proxy
-//   reading the same contents where the unit's cost knows them), ram for a chip of fixed capacity
-//   (--slots; glint rtl writes no RAM tables yet, so that figure is the sweep's alone).
+//   materials at synthesis (key tables=rom, the default: what `glint rtl` writes as case ROMs
+//   with the real contents, the proxy reading the same contents where the unit's cost knows
+//   them), ram with key tables=ram or for a chip of fixed capacity (--slots): what `glint rtl`
+//   writes with tables=ram, register arrays with one write port; held to seven synthesized
+//   tables=ram lanes of the calibration set with these constants (no refit).
 //
 // ---- Critical path: logic depth in gates (what glint synth measures) ----------------------------
 //   adder, W bits                  add_depth0 + add_depth_log log2 W

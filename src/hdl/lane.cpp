@@ -24,6 +24,17 @@ std::string zext1(const std::string& expr, int width) {
   return width == 1 ? expr : fmt::format("{{{}'d0, {}}}", width - 1, expr);
 }
 
+// A ROM's contents as a RAM table (tables=ram) of the same name and width.
+RamTable as_ram(const Rom& r) {
+  RamTable t;
+  t.name = r.name;
+  t.width = r.data_bits;
+  t.is_signed = r.is_signed;
+  t.words = r.words;
+  t.what = r.comment;
+  return t;
+}
+
 // tag + 1 modulo B, the merge buffer's circular index.
 std::string next_tag(const std::string& tag, int tag_bits, int buffer) {
   if ((1 << tag_bits) == buffer) return fmt::format("{} + {}", tag, lit(tag_bits, 1));
@@ -33,7 +44,31 @@ std::string next_tag(const std::string& tag, int tag_bits, int buffer) {
 
 }  // namespace
 
-std::string lane_module(const LaneParams& p) {
+namespace {
+
+// The port protocol of a RAM lane, for its header comment.
+std::string ram_protocol(const LaneParams& p) {
+  std::string s = fmt::format(
+      "\ntables=ram: the per-slot tables are registers (no reset), loaded through one "
+      "synchronous write port:\n"
+      "at a rising edge with cfg_we = 1, entry cfg_addr of table cfg_sel takes cfg_data (its low "
+      "bits;\n"
+      "a one-entry table ignores cfg_addr). Load every entry before the first request (rst may "
+      "be high);\n"
+      "a write is read from the next cycle on. A slot or address past a table's last entry "
+      "reads\n"
+      "an undefined value. Tables (cfg_sel: name, entries x bits):");
+  for (const RamTable& t : p.ram.tables)
+    s += fmt::format("\n  {}: {}, {} x {}{}", t.select, t.name, t.words.size(), t.width,
+                     t.is_signed ? " (two's complement)" : "");
+  return s;
+}
+
+}  // namespace
+
+std::string lane_module(const LaneParams& p, RamTables* ram) {
+  if (p.tables_ram && ram == nullptr)
+    throw std::invalid_argument("hdl: a tables=ram lane needs its table record");
   const std::size_t slots = p.threshold.size();
   if (slots == 0 || p.group.size() != slots || p.latency < 1 || p.ii < 1 || p.buffer < 1)
     throw std::invalid_argument("hdl: lane needs slots, a group per slot, L >= 1, II >= 1, B >= 1");
@@ -51,9 +86,12 @@ std::string lane_module(const LaneParams& p) {
                   "entries with as many credits.\n"
                   "in: t {}, slot 0..{}; out: the result {} and whether the comparator skipped "
                   "it (result 0).\n"
-                  "A slot number past the last reads threshold -1 (never skip) and group 0.",
+                  "{}",
                   fmt::format("glint_{}_lane", p.unit), p.spec, p.generator, L, p.ii, p.buffer,
-                  describe(p.in), slots - 1, describe(p.out)),
+                  describe(p.in), slots - 1, describe(p.out),
+                  p.tables_ram ? ram_protocol(p)
+                               : "A slot number past the last reads threshold -1 (never skip) "
+                                 "and group 0."),
       0);
   s += fmt::format("module glint_{}_lane (\n", p.unit);
   s += "  input  wire clk,\n";
@@ -65,8 +103,9 @@ std::string lane_module(const LaneParams& p) {
   s += "  output wire out_valid,\n";
   s += "  input  wire out_ready,\n";
   s += fmt::format("  output wire {} out_result,\n", range(wo));
-  s += "  output wire out_skipped\n";
-  s += ");\n\n";
+  s += "  output wire out_skipped";
+  if (p.tables_ram) s += "," + ram_ports(*ram);
+  s += "\n);\n\n";
 
   // ---- comparator
   s += comment(
@@ -87,7 +126,7 @@ std::string lane_module(const LaneParams& p) {
     for (std::size_t k = 0; k < slots; ++k)
       if (k < p.slot_names.size())
         r.comment += fmt::format("\n  slot {}: {} -> {}", k, p.slot_names[k], p.threshold[k]);
-    s += rom(r);
+    s += p.tables_ram ? ram_table(*ram, as_ram(r), r.addr, r.addr_bits) : rom(r);
     s += "  wire skip = $signed({1'b0, in_t}) <= tau;\n";
   } else {
     s += "  // skip=off: no comparator, every request is computed.\n";
@@ -101,10 +140,12 @@ std::string lane_module(const LaneParams& p) {
     r.data_bits = wg;
     r.words.assign(p.group.begin(), p.group.end());
     r.comment = "datapath group per slot (slots of one material share its datapath)";
-    s += rom(r);
+    s += p.tables_ram ? ram_table(*ram, as_ram(r), r.addr, r.addr_bits) : rom(r);
   } else {
     s += "  wire [0:0] group = 1'b0;  // one datapath group\n";
-    if (!p.comparator) s += "  wire unused_slot = ^in_slot;  // one slot's worth of nothing\n";
+    // (a one-entry RAM is read without its address)
+    if (!p.comparator || (p.tables_ram && slots == 1))
+      s += "  wire unused_slot = ^in_slot;  // one slot's worth of nothing\n";
   }
 
   // ---- issue
@@ -147,7 +188,11 @@ std::string lane_module(const LaneParams& p) {
   s += fmt::format("  wire {} dp_result;\n", range(wo));
   s += fmt::format("  glint_{}_datapath datapath (\n", p.unit);
   s += "    .clk(clk),\n    .start(start),\n    .start_t(in_t),\n    .start_group(group),\n";
-  s += "    .result(dp_result)\n  );\n";
+  s += "    .result(dp_result)";
+  if (p.tables_ram)
+    s += ",\n    .cfg_we(cfg_we),\n    .cfg_sel(cfg_sel),\n    .cfg_addr(cfg_addr),\n    "
+         ".cfg_data(cfg_data)";
+  s += "\n  );\n";
 
   // ---- merge buffer
   s += "\n";
@@ -209,8 +254,31 @@ std::string lane_module(const LaneParams& p) {
   return s;
 }
 
+std::size_t testbench_write_count(const LaneParams& p) {
+  std::size_t n = 0;
+  if (p.tables_ram)
+    for (const RamTable& t : p.ram.tables) n += t.words.size();
+  return n;
+}
+
+std::string testbench_writes(const LaneParams& p) {
+  if (!p.tables_ram) return "";
+  std::string s = fmt::format(
+      "// glint_{}_tb table writes: select address data (hex; {} writes, every entry of every "
+      "table)\n",
+      p.unit, testbench_write_count(p));
+  for (const RamTable& t : p.ram.tables) {
+    const std::uint64_t mask =
+        t.width >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << t.width) - 1;
+    for (std::size_t a = 0; a < t.words.size(); ++a)
+      s += fmt::format("{:x} {:x} {:x}\n", t.select, a,
+                       static_cast<std::uint64_t>(t.words[a]) & mask);
+  }
+  return s;
+}
+
 std::string testbench_module(const LaneParams& p, const TbSink& sink, std::size_t count,
-                             const std::string& vectors_file) {
+                             const std::string& vectors_file, const std::string& cfg_file) {
   const int wi = p.in.width(), wo = p.out.width(), ws = slot_bits(p);
   // Ready in cycle c when double(z >> 11) 2^-53 < p (SinkReady::ready): z >> 11 < 2^53 and the
   // product are exact, so it is the integer test z >> 11 < ceil(p 2^53).
@@ -235,6 +303,18 @@ std::string testbench_module(const LaneParams& p, const TbSink& sink, std::size_
   s += fmt::format("  localparam integer N = {};\n", count);
   s += "  reg clk = 1'b0;\n  reg rst = 1'b1;\n";
   s += "  always #5 clk = ~clk;\n\n";
+  const std::size_t writes = testbench_write_count(p);
+  if (p.tables_ram) {
+    s += comment(fmt::format(
+        "tables=ram: {} writes (select, address, data) load every table before the stream", writes));
+    s += fmt::format("  localparam integer NW = {};\n", writes);
+    s += fmt::format("  reg [63:0] cfgv [0:{}];  // 3 words a write\n", 3 * writes - 1);
+    s += "  reg cfg_we = 1'b0;\n";
+    s += fmt::format("  reg {} cfg_sel = {};\n", range(p.ram.sel_bits), lit(p.ram.sel_bits, 0));
+    s += fmt::format("  reg {} cfg_addr = {};\n", range(p.ram.addr_bits), lit(p.ram.addr_bits, 0));
+    s += fmt::format("  reg {} cfg_data = {};\n", range(p.ram.data_bits), lit(p.ram.data_bits, 0));
+    s += "  integer w;\n  reg [1023:0] cfg_path;\n\n";
+  }
   s += fmt::format("  reg [63:0] vec [0:{}];  // 6 words a request\n", 6 * count - 1);
   s += "  integer idx;  // next request offered\n";
   s += "  integer got;  // results retired\n";
@@ -246,6 +326,20 @@ std::string testbench_module(const LaneParams& p, const TbSink& sink, std::size_
       fmt::format("    if (!$value$plusargs(\"vectors=%s\", path)) path = \"{}\";\n", vectors_file);
   s += "    $readmemh(path, vec);\n";
   s += "    errors = 0;\n";
+  if (p.tables_ram) {
+    s += fmt::format("    if (!$value$plusargs(\"cfg=%s\", cfg_path)) cfg_path = \"{}\";\n",
+                     cfg_file);
+    s += "    $readmemh(cfg_path, cfgv);\n";
+    s += "    // in reset, one write a cycle through the lane's write port\n";
+    s += "    for (w = 0; w < NW; w = w + 1) begin\n";
+    s += "      @(negedge clk);\n";
+    s += "      cfg_we = 1'b1;\n";
+    s += fmt::format("      cfg_sel = cfgv[3 * w][{}:0];\n", p.ram.sel_bits - 1);
+    s += fmt::format("      cfg_addr = cfgv[3 * w + 1][{}:0];\n", p.ram.addr_bits - 1);
+    s += fmt::format("      cfg_data = cfgv[3 * w + 2][{}:0];\n", p.ram.data_bits - 1);
+    s += "    end\n";
+    s += "    @(negedge clk) cfg_we = 1'b0;\n";
+  }
   s += "    repeat (2) @(posedge clk);\n";
   s += "    @(negedge clk) rst = 1'b0;  // the next edge is cycle 0\n";
   s += "  end\n\n";
@@ -270,7 +364,10 @@ std::string testbench_module(const LaneParams& p, const TbSink& sink, std::size_
   s += "    .clk(clk), .rst(rst),\n";
   s += "    .in_valid(in_valid), .in_ready(in_ready), .in_t(in_t), .in_slot(in_slot),\n";
   s += "    .out_valid(out_valid), .out_ready(out_ready), .out_result(out_result),\n";
-  s += "    .out_skipped(out_skipped)\n  );\n\n";
+  s += "    .out_skipped(out_skipped)";
+  if (p.tables_ram)
+    s += ",\n    .cfg_we(cfg_we), .cfg_sel(cfg_sel), .cfg_addr(cfg_addr), .cfg_data(cfg_data)";
+  s += "\n  );\n\n";
   s += "  wire [63:0] exp_skipped = vec[6 * got + 2];\n";
   s += "  wire [63:0] exp_result = vec[6 * got + 3];\n";
   s += "  wire [63:0] exp_issue = vec[6 * idx + 4];\n";

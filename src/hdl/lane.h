@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "fixed/fixed_point.h"
+#include "hdl/verilog.h"
 
 namespace glint::hdl {
 
@@ -35,6 +36,11 @@ struct LaneParams {
   std::vector<std::uint32_t> group;     // per slot: its datapath group
   std::vector<std::string> slot_names;  // per slot, for comments
   std::size_t groups = 1;
+  // tables=ram: the threshold and group tables, and every per-group table of the datapath, are
+  // register arrays with a write port (verilog.h, RamTables). `ram` lists them all with their
+  // selects and the port's widths (the generator elaborates once to learn them).
+  bool tables_ram = false;
+  RamTables ram;
 };
 
 int slot_bits(const LaneParams& p);
@@ -43,7 +49,9 @@ int group_bits(const LaneParams& p);
 // The lane module glint_<unit>_lane, which instantiates glint_<unit>_datapath (written by the
 // unit). Ports: clk, rst (synchronous, active high), in_valid/in_ready/in_t/in_slot,
 // out_valid/out_ready/out_result/out_skipped.
-std::string lane_module(const LaneParams& p);
+// tables=ram: the lane's own tables are recorded in `ram` (selects from ram->next_select()), whose
+// widths must be the port's; the header comment lists p.ram's tables.
+std::string lane_module(const LaneParams& p, RamTables* ram = nullptr);
 
 // One request of the testbench and what glint's C++ model says of it.
 struct TbVector {
@@ -68,7 +76,12 @@ struct TbSink {
 // edge it is accepted at and the edge it leaves at. Prints "PASS <n> results" or the first
 // mismatches and "FAIL"; ends with $finish (status 0) or $fatal (non-zero).
 std::string testbench_module(const LaneParams& p, const TbSink& sink, std::size_t count,
-                             const std::string& vectors_file);
+                             const std::string& vectors_file, const std::string& cfg_file = "");
+// tables=ram: the writes the testbench makes before the stream, three hex words a line (select,
+// address, data: every entry of every table of p.ram), read with $readmemh from `cfg_file` (or
+// +cfg=FILE). Empty for ROM lanes.
+std::string testbench_writes(const LaneParams& p);
+std::size_t testbench_write_count(const LaneParams& p);
 // The vector file it reads: six hex words a request (t, slot, skipped, result, issue, retire).
 std::string testbench_vectors(const LaneParams& p, const std::vector<TbVector>& v);
 

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace glint::hdl {
@@ -134,6 +135,71 @@ std::string group_table(const std::string& name, const std::string& addr, int ad
   return rom(r);
 }
 
+void RamTables::size_port() {
+  sel_bits = index_bits(tables.size());
+  addr_bits = 1;
+  data_bits = 1;
+  for (const RamTable& t : tables) {
+    addr_bits = std::max(addr_bits, index_bits(t.words.size()));
+    data_bits = std::max(data_bits, t.width);
+  }
+}
+
+std::string ram_array(RamTables& tables, RamTable t) {
+  if (t.words.empty() || t.width < 1)
+    throw std::invalid_argument(fmt::format("hdl: RAM table {}: no entries", t.name));
+  t.select = tables.next_select();
+  const int ab = index_bits(t.words.size());
+  std::string s = comment(fmt::format(
+      "{}\n"
+      "tables=ram: {} x {} bits, written through cfg_* with cfg_sel = {} (no reset: loaded)",
+      t.what, t.words.size(), t.width, t.select));
+  const std::string cell = t.words.size() == 1
+                               ? t.name + "_mem[0]"
+                               : fmt::format("{}_mem[{}]", t.name,
+                                             ext("cfg_addr", tables.addr_bits, ab));
+  s += fmt::format("  reg {}{} {}_mem [0:{}];\n", t.is_signed ? "signed " : "", range(t.width),
+                   t.name, t.words.size() - 1);
+  s += fmt::format("  always @(posedge clk) if (cfg_we && cfg_sel == {}) {} <= {};\n",
+                   lit(tables.sel_bits, t.select), cell,
+                   ext("cfg_data", tables.data_bits, t.width));
+  tables.tables.push_back(std::move(t));
+  return s;
+}
+
+std::string ram_table(RamTables& tables, RamTable t, const std::string& addr, int addr_bits) {
+  const std::string name = t.name, sign = t.is_signed ? "signed " : "";
+  const int width = t.width;
+  const std::size_t entries = t.words.size();
+  std::string s = ram_array(tables, std::move(t));
+  if (entries == 1)
+    return s + fmt::format("  wire {}{} {} = {}_mem[0];\n", sign, range(width), name, name);
+  return s + fmt::format("  wire {}{} {} = {}_mem[{}];\n", sign, range(width), name, name,
+                         ext(addr, addr_bits, index_bits(entries)));
+}
+
+std::string ram_ports(const RamTables& tables) {
+  return fmt::format(
+      "\n  input  wire cfg_we,  // tables=ram: write cfg_data into entry cfg_addr of table "
+      "cfg_sel\n"
+      "  input  wire {} cfg_sel,\n  input  wire {} cfg_addr,\n  input  wire {} cfg_data",
+      range(tables.sel_bits), range(tables.addr_bits), range(tables.data_bits));
+}
+
+std::string group_table(const DatapathPorts& p, const std::string& name, const std::string& addr,
+                        int width, const std::vector<std::int64_t>& values,
+                        const std::string& what, bool is_signed) {
+  if (p.ram == nullptr)
+    return group_table(name, addr, p.group_bits, width, values, what, is_signed);
+  RamTable t;
+  t.name = name;
+  t.width = width;
+  t.is_signed = is_signed;
+  t.words = values;
+  t.what = what + " per datapath group";
+  return ram_table(*p.ram, std::move(t), addr, p.group_bits);
+}
+
 std::string ext(const std::string& name, int from, int to, bool is_signed) {
   if (to == from) return name;
   if (to < from) return fmt::format("{}[{}:0]", name, to - 1);
@@ -166,9 +232,12 @@ std::string datapath_header(const DatapathPorts& p, const std::string& header_co
   s += fmt::format("  input  wire {} start_t,  // t, {}\n", range(p.in.width()), describe(p.in));
   s += fmt::format("  input  wire {} start_group,  // the request's datapath group\n",
                    range(p.group_bits));
-  s += fmt::format("  output wire {} result  // position {} (L): {}\n", range(p.out.width()),
-                   p.latency, describe(p.out));
-  s += ");\n";
+  s += fmt::format("  output wire {} result{}  // position {} (L): {}", range(p.out.width()),
+                   p.ram != nullptr ? "," : "", p.latency, describe(p.out));
+  if (p.ram != nullptr) s += ram_ports(*p.ram);
+  s += "\n);\n";
+  // The write port reaches every table of the lane; a module uses the bits its tables need.
+  if (p.ram != nullptr) s += "  wire unused_cfg = ^{cfg_sel, cfg_addr, cfg_data};\n";
   return s;
 }
 

@@ -60,6 +60,37 @@ std::string group_table(const std::string& name, const std::string& addr, int ad
                         const std::vector<std::int64_t>& values, const std::string& what,
                         bool is_signed = false);
 
+// tables=ram: per-slot tables as register arrays with one synchronous write port shared by the
+// whole lane. At a rising edge with cfg_we high, entry cfg_addr of the table numbered cfg_sel takes
+// cfg_data (its low `width` bits; a table of one entry ignores cfg_addr). The arrays have no reset
+// (a material is loaded, not reset); reads are combinational, so a write is seen from the next
+// cycle. Selects are numbered in the order the tables are generated: the lane's first (tau, the
+// slot's group), then the datapath's.
+struct RamTable {
+  std::string name;  // the read wire; the array is <name>_mem
+  int select = 0;
+  int width = 1;
+  bool is_signed = false;
+  std::vector<std::int64_t> words;  // the contents a testbench loads (entries = words.size())
+  std::string what;
+};
+struct RamTables {
+  // The write port's widths, the same for the lane and the datapath module.
+  int sel_bits = 1, addr_bits = 1, data_bits = 1;
+  std::vector<RamTable> tables;  // in select order
+  int next_select() const { return static_cast<int>(tables.size()); }
+  // Widths that hold every table's select, address and data.
+  void size_port();
+};
+// Declares table t (select t.select, its address `addr_bits` wide) and its write port, and the
+// wire t.name read at `addr`; records it in `tables`.
+std::string ram_table(RamTables& tables, RamTable t, const std::string& addr, int addr_bits);
+// Only the array <name>_mem and its write port (the caller writes the reads); recorded too.
+std::string ram_array(RamTables& tables, RamTable t);
+// The write-port lines of a module's port list (cfg_we, ..., cfg_data: each on a new line, the
+// caller ends the port before with a comma).
+std::string ram_ports(const RamTables& tables);
+
 // `name` (an identifier of `from` bits) as `to` bits: zero- or sign-extended, or its low `to` bits.
 // Every operand of the generated arithmetic is sized this way, so that no width is implied
 // (verilator -Wall's WIDTH warnings).
@@ -80,7 +111,16 @@ struct DatapathPorts {
   int group_bits = 1;
   std::size_t groups = 1;  // one: in_group is the constant 0
   int latency = 1;
+  // tables=ram: every per-group table is a register array written through cfg_* (the module
+  // gets the write port), recorded here; null: case ROMs of the built contents.
+  RamTables* ram = nullptr;
 };
+// A value per datapath group as the lane's storage asks: group_table() above (rom), or a RAM
+// table of the same contents (ram: also when every group holds the same value, since another
+// material may be loaded).
+std::string group_table(const DatapathPorts& p, const std::string& name, const std::string& addr,
+                        int width, const std::vector<std::int64_t>& values,
+                        const std::string& what, bool is_signed = false);
 // The module header with its ports (and `header_comment` above it), and the closing line.
 std::string datapath_header(const DatapathPorts& p, const std::string& header_comment);
 std::string datapath_footer(const DatapathPorts& p);

@@ -85,7 +85,11 @@ std::vector<UnitKey> common_keys() {
        "tau comparator on|off: skips t where the unit's own output is <= eps_K/c_y, never above "
        "Källberg's tau (eq.5, §3)",
        "on"},
-      {"buffer", "merge-buffer entries (timing; auto: latency + 3, full throughput)", "auto"}};
+      {"buffer", "merge-buffer entries (timing; auto: latency + 3, full throughput)", "auto"},
+      {"tables",
+       "per-slot tables (tau thresholds, per-material tables) as rom: case ROMs of the scene's "
+       "materials, or ram: registers with a write port (glint rtl: cfg_*), loaded at run time",
+       "rom"}};
 }
 
 CommonKeys read_common_keys(const KeyReader& keys) {
@@ -102,6 +106,7 @@ CommonKeys read_common_keys(const KeyReader& keys) {
   }
   c.skip = keys.flag("skip", true);
   c.buffer = keys.integer("buffer", -1, 1, 1 << 16, true);
+  c.tables_ram = keys.choice("tables", "rom", {"rom", "ram"}) == "ram";
   return c;
 }
 

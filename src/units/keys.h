@@ -42,6 +42,9 @@ struct CommonKeys {
   QFormat out = kDefaultOut;
   bool skip = true;
   int buffer = -1;  // merge-buffer entries; -1: auto (latency + 3)
+  // tables=ram: per-slot tables (thresholds, every per-material table) as registers with a write
+  // port, loaded when the materials load; rom (default): case ROMs of the scene's materials.
+  bool tables_ram = false;
 };
 CommonKeys read_common_keys(const KeyReader& keys);
 

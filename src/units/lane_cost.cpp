@@ -25,9 +25,10 @@ UnitCost unit_cost(const SpecularUnit& unit, bool colour_multiply, int colour_en
   lane.latency = unit.timing().latency;
   lane.buffer = unit.timing().buffer_depth;
   lane.ii = unit.timing().ii;
-  // The scene's materials fixed at synthesis: case ROMs (what `glint rtl` writes); a chip of fixed
-  // capacity loads them: registers with a write port.
-  lane.tables_ram = lane.fixed;
+  // The scene's materials fixed at synthesis: case ROMs (what `glint rtl` writes by default); a
+  // chip of fixed capacity, or a lane asked for tables=ram, loads them: registers with a write
+  // port (what `glint rtl` writes with tables=ram).
+  lane.tables_ram = lane.fixed || unit.tables_ram();
   CostBuilder b;
   b.set_tables_ram(lane.tables_ram);
   comparator_stage(b, lane, unit.comparator_carries_root());

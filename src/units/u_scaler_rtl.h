@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "hdl/verilog.h"
 #include "units/u_scaler.h"
 
 namespace glint {
@@ -11,7 +12,7 @@ namespace glint {
 // Combinational u = min(1, round((min(t, 1) - root) k)), 0 at t <= root, as UScaler::apply: the
 // wire `scaler_u` (fh + 1 bits) from the datapath's position 0 (in_t, in_group), with each group's
 // root and k read from its built UScaler.
-std::string u_scaler_rtl(const std::vector<const UScaler*>& groups, const QFormat& in,
-                         int group_bits, int fh);
+std::string u_scaler_rtl(const hdl::DatapathPorts& p, const std::vector<const UScaler*>& groups,
+                         const QFormat& in, int fh);
 
 }  // namespace glint

@@ -95,6 +95,9 @@ class SpecularUnit {
   virtual UnitTiming timing() const = 0;
   // The tau comparator is built (key skip=on).
   virtual bool comparator_enabled() const = 0;
+  // Per-slot tables as registers with a write port (key tables=ram), not case ROMs of the
+  // scene's materials.
+  virtual bool tables_ram() const = 0;
   // The comparator register also carries the slot's root to a u scaler (hast, horner on [tau, 1]).
   virtual bool comparator_carries_root() const = 0;
   // Places the unit's own stages (after the comparator stage) in the cost builder.

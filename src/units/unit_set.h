@@ -85,6 +85,7 @@ class UnitSet final : public SpecularUnit {
         in_(common.in),
         out_(common.out),
         skip_(common.skip),
+        tables_ram_(common.tables_ram),
         cfg_(std::move(cfg)),
         datapaths_(std::move(datapaths)),
         group_(plan.group),
@@ -137,6 +138,7 @@ class UnitSet final : public SpecularUnit {
   double datapath_bound_ulps(std::size_t s) const override { return dp(s).datapath_bound_ulps(); }
   UnitTiming timing() const override { return timing_; }
   bool comparator_enabled() const override { return skip_; }
+  bool tables_ram() const override { return tables_ram_; }
   bool comparator_carries_root() const override { return Kind::carries_root(cfg_); }
   void add_cost(CostBuilder& b, const LaneShape& lane) const override {
     Kind::cost(b, lane, cfg_, datapaths_);
@@ -229,6 +231,7 @@ class UnitSet final : public SpecularUnit {
   std::string name_, canonical_;
   QFormat in_, out_;
   bool skip_;
+  bool tables_ram_;
   Config cfg_;
   std::vector<Datapath> datapaths_;           // one per datapath group
   std::vector<std::uint32_t> group_;          // per slot: its group
@@ -244,7 +247,11 @@ class UnitSet final : public SpecularUnit {
 
 // The description JSON's config of the common keys; a kind's build adds its own keys.
 inline nlohmann::json common_config(const CommonKeys& c) {
-  return {{"in", c.in.name()}, {"out", c.out.name()}, {"skip", on_off(c.skip)}};
+  nlohmann::json j{{"in", c.in.name()}, {"out", c.out.name()}, {"skip", on_off(c.skip)}};
+  // tables=rom is left out of the canonical spec, so that specs and goldens written before the
+  // key existed keep their bytes.
+  if (c.tables_ram) j["tables"] = "ram";
+  return j;
 }
 
 // Runs one slot's part of a build; a refusal names the slot's material (and light), so that one

@@ -1,6 +1,8 @@
 # The co-simulation cases of ctest label `rtl`: NAME|SPEC|glint rtl input options. Every unit at
 # its default and at least two other specs; the testbench runs every input code of every slot and,
-# with --vectors, the trace's rows, under the sink pattern of --sink-ready.
+# with --vectors, the trace's rows, under the sink pattern of --sink-ready. The `.ram` cases write
+# every per-slot table as registers with a write port (tables=ram), which the testbench loads
+# before the stream; multi-material inputs, so that the group addressing of the RAMs is exercised.
 set(GLINT_RTL_CASES
   "lut.default|lut|--vectors traces/phong_basic.vec --sink-ready 0.6"
   "lut.bits4|lut:bits=4,table_frac=20|--vectors traces/multi_light.vec --sink-ready 0.3 --seed 5"
@@ -19,4 +21,14 @@ set(GLINT_RTL_CASES
   "schlick.default|schlick|--vectors traces/phong_basic.vec --sink-ready 0.7"
   "schlick.iterative|schlick:divider=iterative,n=uq10.2|--vectors traces/gaussian.vec"
   "schlick.minimax_narrow|schlick:match=minimax,in=uq1.12,out=uq1.10|--vectors traces/hard_cases.vec --sink-ready 0.4"
+  "lut.ram|lut:tables=ram|--vectors traces/phong_basic.vec --sink-ready 0.6"
+  "lut.ram_bits4|lut:tables=ram,bits=4,table_frac=20,in=uq1.12|--vectors traces/multi_light.vec --sink-ready 0.5"
+  "hast.ram|hast:tables=ram|--vectors traces/phong_basic.vec --sink-ready 0.6"
+  "hast.ram_auto_d|hast:tables=ram,d=auto,match=minimax,in=uq1.12|--vectors traces/blinn_colored.vec --sink-ready 0.5"
+  "horner.ram|horner:tables=ram|--vectors traces/phong_basic.vec --sink-ready 0.7"
+  "horner.ram_full|horner:tables=ram,degree=3,domain=full,in=uq1.12|--vectors traces/multi_light.vec --sink-ready 0.5"
+  "pow.ram|pow:tables=ram|--vectors traces/phong_basic.vec --sink-ready 0.6"
+  "pow.ram_small_tables|pow:tables=ram,log_bits=6,exp_bits=4,in=uq1.12,out=uq1.10|--vectors traces/blinn_colored.vec --sink-ready 0.5"
+  "schlick.ram|schlick:tables=ram|--vectors traces/phong_basic.vec --sink-ready 0.7"
+  "schlick.ram_iterative|schlick:tables=ram,divider=iterative,in=uq1.12|--vectors traces/multi_light.vec"
 )

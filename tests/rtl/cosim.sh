@@ -23,7 +23,11 @@ verilator --lint-only -Wall --top-module "glint_${unit}_lane" $design
 # shellcheck disable=SC2086
 verilator --binary --top-module "glint_${unit}_tb" -Mdir "$work/obj" -CFLAGS -O1 \
   -o tb $design "$work/glint_${unit}_tb.v" > "$work/verilator.log"
-"$work/obj/tb" +vectors="$work/glint_${unit}_tb.vec" | tee "$work/tb.log"
+# tables=ram: the testbench loads the tables from the .cfg file glint rtl wrote beside.
+cfg=""
+if [ -f "$work/glint_${unit}_tb.cfg" ]; then cfg="+cfg=$work/glint_${unit}_tb.cfg"; fi
+# shellcheck disable=SC2086 # empty or one argument
+"$work/obj/tb" +vectors="$work/glint_${unit}_tb.vec" $cfg | tee "$work/tb.log"
 grep -q "^PASS" "$work/tb.log"
 # The testbench must see a wrong result and a wrong retire edge: the first request's expectations
 # changed in a copy of the vectors, each run must fail.
@@ -31,10 +35,22 @@ for field in 4 6; do
   awk -v f=$field 'NR == 2 { $f = ($f == "3") ? "4" : "3" } 1' "$work/glint_${unit}_tb.vec" \
     > "$work/tampered.vec"
   # (the subshell's stderr: the shell's note that the testbench aborted, as $fatal does)
-  if ("$work/obj/tb" +vectors="$work/tampered.vec" > "$work/tampered.log" 2>&1) 2> /dev/null; then
+  # shellcheck disable=SC2086
+  if ("$work/obj/tb" +vectors="$work/tampered.vec" $cfg > "$work/tampered.log" 2>&1) 2> /dev/null; then
     echo "FAIL: the testbench passed a tampered field $field"
     exit 1
   fi
   grep -q '^FAIL' "$work/tampered.log"
 done
 echo "PASS: tampered vectors are caught"
+# tables=ram: the tables must come from the writes: with every written word 0, the run must fail.
+if [ -n "$cfg" ]; then
+  awk '/^\/\// { print; next } { $3 = "0" } 1' "$work/glint_${unit}_tb.cfg" > "$work/tampered.cfg"
+  if ("$work/obj/tb" +vectors="$work/glint_${unit}_tb.vec" +cfg="$work/tampered.cfg" \
+    > "$work/tampered.log" 2>&1) 2> /dev/null; then
+    echo "FAIL: the testbench passed with every table written 0"
+    exit 1
+  fi
+  grep -q '^FAIL' "$work/tampered.log"
+  echo "PASS: zeroed table writes are caught"
+fi

@@ -31,7 +31,7 @@ std::string hast_rtl(const hdl::DatapathPorts& p, const HastConfig& c,
   using hdl::ext;
   using hdl::lit;
   using hdl::range;
-  const int d = c.d, wo = c.out.width(), fo = c.out.frac_bits, wg = p.group_bits;
+  const int d = c.d, wo = c.out.width(), fo = c.out.frac_bits;
   const int fh = fo + c.guard, w = fh + 1;
   const int pw = 2 * w;
   std::vector<const UScaler*> scalers;
@@ -54,10 +54,10 @@ std::string hast_rtl(const hdl::DatapathPorts& p, const HastConfig& c,
   s += hdl::datapath_input_stage(p);
   const Stage& scale = rtl_stage(layout, "scale");
   s += rtl_stage_registers(scale, d == 1 ? "u, rounded to the output" : "u");
-  s += u_scaler_rtl(scalers, c.in, wg, fh);
+  s += u_scaler_rtl(p, scalers, c.in, fh);
   const int db = hdl::value_bits(static_cast<std::uint64_t>(d));
   if (c.per_slot_d && d > 1) {
-    s += hdl::group_table("order", "in_group", wg, db, order,
+    s += hdl::group_table(p, "order", "in_group", db, order,
                           "the group's order d_s (d=auto: HastUnit::order)");
     for (int k = 1; k < d; ++k)
       s += fmt::format("  reg {} d{};  // d_s carried beside position {}\n", range(db), k, k);

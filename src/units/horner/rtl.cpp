@@ -46,16 +46,18 @@ std::string horner_rtl(const hdl::DatapathPorts& p, const std::vector<HornerUnit
                                                      : "t (full domain: root 0, k = 1)"));
   s += hdl::datapath_input_stage(p);
   s += rtl_stage_registers(scale, "u, and acc = c_p");
-  s += u_scaler_rtl(scalers, first.config().in, wg, fh);
-  s += hdl::group_table("c" + std::to_string(degree), "in_group", wg, cw, coeff(degree),
+  s += u_scaler_rtl(p, scalers, first.config().in, fh);
+  s += hdl::group_table(p, "c" + std::to_string(degree), "in_group", cw, coeff(degree),
                         fmt::format("c_{}, sq{}.{} (HornerUnit::coeff_raw)", degree, cw - fh, fh),
                         true);
   // The group is carried down the pipeline as far as a stage reads a coefficient that differs
   // between groups (g<m> beside position m).
-  int carry = 0;
+  // tables=ram: any stage's coefficient may differ once loaded, so it goes the whole way.
+  int carry = p.ram != nullptr && p.groups > 1 ? degree : 0;
   for (int m = 1; m <= degree; ++m) {
     const std::vector<std::int64_t> v = coeff(degree - m);
-    if (std::any_of(v.begin(), v.end(), [&](std::int64_t x) { return x != v.front(); })) carry = m;
+    if (std::any_of(v.begin(), v.end(), [&](std::int64_t x) { return x != v.front(); }))
+      carry = std::max(carry, m);
   }
   for (int m = 1; m <= carry; ++m)
     s += fmt::format("  reg {} g{};  // the group carried beside position {}\n", range(wg), m, m);
@@ -76,7 +78,7 @@ std::string horner_rtl(const hdl::DatapathPorts& p, const std::vector<HornerUnit
         st, last ? "acc u + c_0 exact, rounded once to the output, clamped to [0, 1]"
                  : fmt::format("u carried, acc = round(acc u) + c_{}", k));
     const std::string cname = st.name + "_c";
-    s += hdl::group_table(cname, g, wg, cw, coeff(k),
+    s += hdl::group_table(p, cname, g, cw, coeff(k),
                           fmt::format("c_{}, sq{}.{} (HornerUnit::coeff_raw)", k, cw - fh, fh),
                           true);
     // acc (signed) times u (unsigned, a zero sign bit), in two's complement of pw bits.

@@ -80,8 +80,16 @@ struct Lut : UnitKindDefaults {
     for (const LutUnit& u : units) r_max = std::max(r_max, fi - u.span_log2() - bits);
 
     // Stage 1: t - t0 (t0 = 1 - 2^-span), the index field at the slot's span, the two nodes.
+    // As ROMs, t0, the remainder bits and the paddings are functions of the span, which Yosys
+    // folds into one table of it; as registers (tables=ram) each is its own array, as
+    // units/lut/rtl.cpp loads them: t0 (wi bits), the remainder bits, the padding and (with
+    // interpolation bits) the alignment.
     const Seg sp =
-        b.slot_table(L.groups, sbits, 1, true, "stage 1: span table (per datapath group)");
+        L.tables_ram
+            ? b.slot_table(L.groups, wi + (r_max > 0 ? 3 : 2) * sbits, 1, true,
+                           "stage 1: t0, remainder-bits, padding, alignment tables (per datapath "
+                           "group)")
+            : b.slot_table(L.groups, sbits, 1, true, "stage 1: span table (per datapath group)");
     const Seg sub = b.adder(wi, "stage 1: t - t0");
     const Seg sh = b.shifter(wi, sbits, "stage 1: index shifter");
     // The t^n tables' real contents (the RTL's case ROM: {group, j}, 2^bits + 2 entries a group
@@ -93,9 +101,10 @@ struct Lut : UnitKindDefaults {
       words.resize(words.size() + stride - static_cast<std::size_t>(entries + 1), 0);
     }
     const bool known = !L.tables_ram && L.groups == static_cast<int>(units.size());
-    const Seg tab =
-        b.slot_table(entries, tw, L.groups, true, "stage 1: t^n table (per datapath group)",
-                     known ? &words : nullptr);
+    // As registers, each group holds the padding entry too (the even and odd banks of the RTL).
+    const Seg tab = b.slot_table(L.tables_ram ? entries + 1 : entries, tw, L.groups, true,
+                                 "stage 1: t^n table (per datapath group)",
+                                 known ? &words : nullptr);
     // A ROM read at two addresses is two ROMs; registers are banked odd/even (one array).
     if (!L.tables_ram)
       b.slot_table(entries, tw, L.groups, true, "stage 1: t^n table, second read",

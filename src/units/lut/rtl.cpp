@@ -10,6 +10,49 @@
 #include "units/stage_rtl.h"
 
 namespace glint {
+namespace {
+
+// tables=ram: the t^n tables as two register arrays, the even nodes and the odd ones, each group's
+// 2^bits + 2 entries (j = 0..2^bits + 1) at group (2^(bits-1) + 1) + j / 2. The two nodes j and
+// j + 1 a request reads are one even and one odd, so each bank has one read port and the two read
+// muxes together are no larger than one over the whole table (the cost model's ram table).
+std::string lut_ram_tables(hdl::RamTables& ram, const std::vector<LutUnit>& groups, int bits,
+                           int tw, int wg, int iw, const std::string& what) {
+  using hdl::ext;
+  using hdl::range;
+  const int half = (1 << (bits - 1)) + 1;  // entries a group in each bank
+  hdl::RamTable even, odd;
+  even.name = "tn_even";
+  odd.name = "tn_odd";
+  even.width = odd.width = tw;
+  for (const LutUnit& u : groups)
+    for (int h = 0; h < half; ++h) {
+      even.words.push_back(u.entry(2 * h));
+      odd.words.push_back(u.entry(2 * h + 1));
+    }
+  even.what = what + "\nthe even entries j = 2h, at group (2^(bits-1) + 1) + h";
+  odd.what = what + "\nthe odd entries j = 2h + 1, at group (2^(bits-1) + 1) + h";
+  const int ab = hdl::index_bits(even.words.size());
+  std::string s = hdl::ram_array(ram, std::move(even));
+  s += hdl::ram_array(ram, std::move(odd));
+  // node j = i in one bank, j = i + 1 in the other: the even bank is read at (i + 1) / 2, the
+  // odd one at i / 2, and i's low bit says which holds node_lo.
+  const auto addr = [&](const std::string& h) {
+    const std::string hi = ext(h, iw - 1, ab);
+    if (groups.size() == 1) return hi;
+    return fmt::format("{} * {} + {}", ext("in_group", wg, ab), hdl::lit(ab, half), hi);
+  };
+  s += fmt::format("  wire {} lookup_ih = lookup_i[{}:1];\n", range(iw - 1), iw - 1);
+  s += fmt::format("  wire {} lookup_i1h = lookup_i1[{}:1];\n", range(iw - 1), iw - 1);
+  s += fmt::format("  wire {} lookup_even = tn_even_mem[{}];\n", range(tw), addr("lookup_i1h"));
+  s += fmt::format("  wire {} lookup_odd = tn_odd_mem[{}];\n", range(tw), addr("lookup_ih"));
+  s += fmt::format("  wire {} lookup_lo = lookup_i[0] ? lookup_odd : lookup_even;\n", range(tw));
+  s += fmt::format("  wire {} lookup_hi = lookup_i[0] ? lookup_even : lookup_odd;\n", range(tw));
+  s += "  wire unused_i1 = lookup_i1[0];  // (i + 1)'s bank is the other one\n";
+  return s;
+}
+
+}  // namespace
 
 std::string lut_rtl(const hdl::DatapathPorts& p, const LutConfig& c,
                     const std::vector<LutUnit>& groups, const StageLayout& layout) {
@@ -35,8 +78,13 @@ std::string lut_rtl(const hdl::DatapathPorts& p, const LutConfig& c,
     pad.push_back(std::max(0, bits - (fi - u.span_log2())));
     align.push_back(rmax - u.remainder_bits());
   }
+  // The group is carried to stage 2 for its alignment when that differs between groups (with
+  // tables=ram: whenever there are groups, since another material may be loaded).
   const bool align_varies =
-      std::any_of(align.begin(), align.end(), [&](std::int64_t a) { return a != align.front(); });
+      p.ram != nullptr
+          ? p.groups > 1 && rmax > 0
+          : std::any_of(align.begin(), align.end(),
+                        [&](std::int64_t a) { return a != align.front(); });
   const int kw = std::max(wi, iw);  // the index before its padding shift
   const int sb = hdl::value_bits(static_cast<std::uint64_t>(std::max(fi, bits)));
 
@@ -56,11 +104,11 @@ std::string lut_rtl(const hdl::DatapathPorts& p, const LutConfig& c,
                            "two nodes around t");
   s += "  reg lookup_short;  // t <= t0: below the table's span, result 0 (carried)\n";
   if (align_varies) s += fmt::format("  reg {} lookup_group;  // carried to stage 2\n", range(wg));
-  s += hdl::group_table("t0", "in_group", wg, wi, t0,
+  s += hdl::group_table(p, "t0", "in_group", wi, t0,
                         "t0 = 1 - 2^-span, the table's first node (LutUnit::t0_raw)");
-  s += hdl::group_table("rbits", "in_group", wg, sb, rbits,
+  s += hdl::group_table(p, "rbits", "in_group", sb, rbits,
                         "input bits below the index (LutUnit::remainder_bits)");
-  s += hdl::group_table("pad", "in_group", wg, sb, pad,
+  s += hdl::group_table(p, "pad", "in_group", sb, pad,
                         "index padding: the span holds fewer codes than the table has segments");
   s += fmt::format("  wire {} lookup_tc = (in_t > {}) ? {} : in_t;  // t clamped to 1.0\n",
                    range(wi), lit(wi, c.in.raw_one()), lit(wi, c.in.raw_one()));
@@ -92,14 +140,21 @@ std::string lut_rtl(const hdl::DatapathPorts& p, const LutConfig& c,
       "(LutUnit::entry);\n"
       "address {{group, j}}, j = 0..2^{} + 1 (the last entry repeats 1.0 for node_hi at t = 1)",
       bits, tf, bits);
-  s += hdl::rom_function(tab);
+  std::string node_lo = "tn_table({in_group, lookup_i})", node_hi = "tn_table({in_group, lookup_i1})";
+  if (p.ram == nullptr) {
+    s += hdl::rom_function(tab);
+  } else {
+    s += lut_ram_tables(*p.ram, groups, bits, tw, wg, iw, tab.comment);
+    node_lo = "lookup_lo";
+    node_hi = "lookup_hi";
+  }
   s += "  always @(posedge clk) begin\n";
   s += "    lookup_short <= in_t <= t0;\n";
   if (align_varies) s += "    lookup_group <= in_group;\n";
   s += fmt::format("    {} <= lookup_i;\n", rtl_reg(lookup, 0));
   s += fmt::format("    {} <= {};\n", rtl_reg(lookup, 1), ext("lookup_rem", wi, fw));
-  s += fmt::format("    {} <= tn_table({{in_group, lookup_i}});\n", rtl_reg(lookup, 2));
-  s += fmt::format("    {} <= tn_table({{in_group, lookup_i1}});\n", rtl_reg(lookup, 3));
+  s += fmt::format("    {} <= {};\n", rtl_reg(lookup, 2), node_lo);
+  s += fmt::format("    {} <= {};\n", rtl_reg(lookup, 3), node_hi);
   s += "  end\n";
 
   // ---- stage 2: y = (a << r) + (b - a) rem, exact, then one rounding (half up) and the clamp.
@@ -114,7 +169,7 @@ std::string lut_rtl(const hdl::DatapathPorts& p, const LutConfig& c,
       rmax > 0 ? fmt::format("{{{}'d0, {}, {}'d0}}", yw - tw - rmax, rtl_reg(lookup, 2), rmax)
                : ext(rtl_reg(lookup, 2), tw, yw));
   if (rmax > 0) {
-    s += hdl::group_table("align", "lookup_group", wg, sb, align,
+    s += hdl::group_table(p, "align", "lookup_group", sb, align,
                           fmt::format("R - r: the remainder aligned to R = {} bits", rmax));
     s += fmt::format("  wire {} interp_rem = {} << align;\n", range(fw), rtl_reg(lookup, 1));
     s += fmt::format("  wire signed {} interp_diff = {} - {};  // b - a\n", range(dw),

@@ -149,10 +149,14 @@ struct Pow : UnitKindDefaults {
     }
     p2.push_back(b.adder(lw, "stage 2: + log2 node"));
     b.op("add");
-    const Seg n = b.slot_table(L.groups, wn, 1, true, "stage 2: n table (per datapath group)");
+    // The RTL's n table and register hold the key's whole format (units/pow/rtl.cpp): as a ROM
+    // its constants fold to the scene's bits; as registers (tables=ram) every bit is stored,
+    // carried and multiplied.
+    const int wn_ram = L.tables_ram ? c.n_format.width() : wn;
+    const Seg n = b.slot_table(L.groups, wn_ram, 1, true, "stage 2: n table (per datapath group)");
     b.op("table_read");
     p2.front() = parallel(p2.front(), n);
-    b.reg(log2t_w + wn, "stage 2: log2 t, n");
+    b.reg(log2t_w + wn_ram, "stage 2: log2 t, n");
     b.stage("stage 2", p2);
 
     // Stage 3: y = n log2 t, rounded to y_frac in the tree.
@@ -161,7 +165,7 @@ struct Pow : UnitKindDefaults {
     for (const PowUnit& u : units) ns.push_back(u.n_raw());
     const bool known = !L.tables_ram && L.groups == static_cast<int>(units.size());
     const Seg my = known ? b.table_multiplier(log2t_w, ns, "stage 3: n log2 t", true)
-                         : b.multiplier(wn, log2t_w, "stage 3: n log2 t", 1, true);
+                         : b.multiplier(wn_ram, log2t_w, "stage 3: n log2 t", 1, true);
     b.op("mul");
     b.reg(yint + yf, "stage 3: y");
     b.stage("stage 3", {my});

@@ -137,7 +137,7 @@ std::string pow_rtl(const hdl::DatapathPorts& p, const std::vector<PowUnit>& gro
                            "log2 t = log2 m - shift (interpolated, rounded half up); the "
                            "group's n");
   s += interpolate("li", rtl_reg(s1, 1), rtl_reg(s1, 2), rtl_reg(s1, 3), lw, lrw, log_r);
-  s += hdl::group_table("n", "g1", wg, nw, n,
+  s += hdl::group_table(p, "n", "g1", nw, n,
                         fmt::format("n, {} (PowUnit::n_raw)", c.n_format.name()));
   s += fmt::format("  wire {} li_sh = {};\n", range(eb), rtl_reg(s1, 0));
   s += "  always @(posedge clk) begin\n";

@@ -29,7 +29,7 @@ std::string schlick_rtl(const hdl::DatapathPorts& p, const std::vector<SchlickUn
   using hdl::lit;
   using hdl::range;
   const SchlickConfig& c = groups.front().config();
-  const int wi = c.in.width(), wo = c.out.width(), wg = p.group_bits;
+  const int wi = c.in.width(), wo = c.out.width();
   const int q = c.out.frac_bits + 2;  // quotient bits: Q = floor(2 num / D)
   const int nf = c.n_format.frac_bits, wn = c.n_format.width();
   const int num_shift = nf + c.out.frac_bits;  // num = t 2^(Fn + Fo)
@@ -54,7 +54,7 @@ std::string schlick_rtl(const hdl::DatapathPorts& p, const std::vector<SchlickUn
   // ---- stage mac: D.
   s += rtl_stage_registers(mac, "D = n (1 - t) + t, exact (one multiplier, one adder)");
   s += fmt::format("  reg {} mac_t;  // t clamped, carried for the numerator\n", range(wi));
-  s += hdl::group_table("n", "in_group", wg, wn, n,
+  s += hdl::group_table(p, "n", "in_group", wn, n,
                         fmt::format("n', {} (SchlickUnit::n_raw)", c.n_format.name()));
   const std::int64_t one = c.in.raw_one();
   s += fmt::format("  wire {} mac_tc = (in_t > {}) ? {} : in_t;\n", range(wi), lit(wi, one),

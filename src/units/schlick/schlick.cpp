@@ -137,14 +137,24 @@ struct Schlick : UnitKindDefaults {
 
     // Stage 1: D = n (1 - t) + t. 1 - t is the complement of t plus one: the +n correction is one
     // more row of the multiplier's tree.
-    const Seg n = b.slot_table(L.groups, wn, 1, true, "stage 1: n table (per datapath group)");
+    // The RTL's n table holds the key's whole format (units/schlick/rtl.cpp): as a ROM its
+    // constants fold to the scene's bits; as registers (tables=ram) every bit is stored and
+    // multiplied.
+    const int wn_table = L.tables_ram ? c.datapath.n_format.width() : wn;
+    const Seg n =
+        b.slot_table(L.groups, wn_table, 1, true, "stage 1: n table (per datapath group)");
     // n from a ROM of known contents unless the chip loads it (builder.h, table_multiplier).
     std::vector<std::int64_t> ns;
     for (const SchlickUnit& u : units) ns.push_back(u.n_raw());
     const bool known = !L.tables_ram && L.groups == static_cast<int>(units.size());
     const Seg mul = known ? b.table_multiplier(fi + 1, ns, "stage 1: n (1 - t)")
-                          : b.multiplier(wn, fi + 1, "stage 1: n (1 - t)");
-    const Seg add = b.adder(wd, "stage 1: + t");
+                          : b.multiplier(wn_table, fi + 1, "stage 1: n (1 - t)");
+    Seg add = b.adder(wd, "stage 1: + t");
+    // A full multiplier (n loaded, not a constant): Yosys sums `+ t` in the product's tree, and its
+    // carries run while the product's high bits settle, about half an adder's depth after it, as
+    // horner's `+ c_k` (horner.cpp; here on the calibration set's tables=ram schlick lanes, 42-43
+    // gates for the stage).
+    if (!known) add.delay /= 2;
     b.reg(wd + wi, "stage 1: D and t");
     b.op("table_read");
     b.op("mul");
