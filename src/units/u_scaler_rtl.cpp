@@ -9,7 +9,7 @@
 namespace glint {
 
 std::string u_scaler_rtl(const hdl::DatapathPorts& p, const std::vector<const UScaler*>& groups,
-                         const QFormat& in, int fh) {
+                         const QFormat& in, int fh, bool loaded) {
   using hdl::ext;
   using hdl::lit;
   using hdl::range;
@@ -30,9 +30,11 @@ std::string u_scaler_rtl(const hdl::DatapathPorts& p, const std::vector<const US
       "k = 1/(1 - root) rounded up to {} fraction bits, rounded half up to {} fraction bits, "
       "clamped to 1.0; 0 at t <= root",
       fk, fh));
-  s += hdl::group_table(p, "root", "in_group", wi, root,
+  hdl::DatapathPorts tables = p;
+  if (!loaded) tables.ram = nullptr;  // the same for every material: constants
+  s += hdl::group_table(tables, "root", "in_group", wi, root,
                         "root: the comparator's threshold code (UScaler::root_raw)");
-  s += hdl::group_table(p, "k", "in_group", kw, k,
+  s += hdl::group_table(tables, "k", "in_group", kw, k,
                         fmt::format("k = 1/(1 - root), uq{}.{} (UScaler::k_raw)", kw - fk, fk));
   s += fmt::format("  wire {} scaler_tc = (in_t > {}) ? {} : in_t;  // t clamped to 1.0\n",
                    range(wi), lit(wi, in.raw_one()), lit(wi, in.raw_one()));

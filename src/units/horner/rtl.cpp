@@ -46,7 +46,7 @@ std::string horner_rtl(const hdl::DatapathPorts& p, const std::vector<HornerUnit
                                                      : "t (full domain: root 0, k = 1)"));
   s += hdl::datapath_input_stage(p);
   s += rtl_stage_registers(scale, "u, and acc = c_p");
-  s += u_scaler_rtl(p, scalers, first.config().in, fh);
+  s += u_scaler_rtl(p, scalers, first.config().in, fh, first.coefficients().tau_domain);
   s += hdl::group_table(p, "c" + std::to_string(degree), "in_group", cw, coeff(degree),
                         fmt::format("c_{}, sq{}.{} (HornerUnit::coeff_raw)", degree, cw - fh, fh),
                         true);
