@@ -469,6 +469,7 @@ TEST_F(CliTest, EvalBadUnitSpecs) {
       {"pow:skip=maybe", "'skip'"},
       {"horner:degree=11", "'degree'"},
       {"hast:d=3,d=4", "'d'"},
+      {"lut:tables=ramx", "'tables'"},
   };
   for (const auto& c : cases) {
     const CliRun r =
@@ -477,6 +478,43 @@ TEST_F(CliTest, EvalBadUnitSpecs) {
     EXPECT_NE(r.err.find(c.names), std::string::npos) << c.spec << ": " << r.err;
     EXPECT_TRUE(r.out.empty()) << c.spec << ": " << r.out;
     EXPECT_FALSE(fs::exists(dir_ / "out.csv")) << c.spec;
+  }
+}
+
+// tables=ram: the lane gets the write port, and the testbench's load file holds one write for
+// every entry of every table its header lists; tables=rom (the default) writes neither.
+TEST_F(CliTest, RtlTablesRamWritesEveryTableEntry) {
+  const std::string materials = " --material 'a shininess=20' --material 'b shininess=80'";
+  for (const std::string unit : {"lut", "hast", "horner", "pow", "schlick"}) {
+    const CliRun ram = glint("rtl " + unit + ":tables=ram" + materials + " --no-sweep -o ram_" +
+                             unit + " --vectors " + quote(kPhongBasic));
+    // (--vectors and --material together are refused: one input kind)
+    EXPECT_EQ(ram.status, 2) << ram.err;
+    const CliRun r = glint("rtl " + unit + ":tables=ram" + materials + " -o ram_" + unit);
+    ASSERT_EQ(r.status, 0) << r.err;
+    const std::string lane = read_text(dir_ / ("ram_" + unit) / ("glint_" + unit + "_lane.v"));
+    EXPECT_NE(lane.find("input  wire cfg_we"), std::string::npos) << unit;
+    const std::regex listed(R"(^//   (\d+): (\w+), (\d+) x (\d+))");
+    std::size_t entries = 0, tables = 0;
+    for (const std::string& line : lines_of(lane)) {
+      std::smatch m;
+      if (!std::regex_search(line, m, listed)) continue;
+      EXPECT_EQ(std::stoul(m[1].str()), tables) << unit << ": selects in order";
+      ++tables;
+      entries += std::stoul(m[3].str());
+    }
+    EXPECT_GE(tables, 2u) << unit << ": the tau table and the datapath's";
+    std::size_t writes = 0;
+    for (const std::string& line :
+         lines_of(read_text(dir_ / ("ram_" + unit) / ("glint_" + unit + "_tb.cfg"))))
+      writes += !line.empty() && line.rfind("//", 0) != 0;
+    EXPECT_EQ(writes, entries) << unit;
+    const CliRun rom = glint("rtl " + unit + materials + " -o rom_" + unit);
+    ASSERT_EQ(rom.status, 0) << rom.err;
+    EXPECT_FALSE(fs::exists(dir_ / ("rom_" + unit) / ("glint_" + unit + "_tb.cfg"))) << unit;
+    EXPECT_EQ(read_text(dir_ / ("rom_" + unit) / ("glint_" + unit + "_lane.v")).find("cfg_we"),
+              std::string::npos)
+        << unit;
   }
 }
 

@@ -242,6 +242,35 @@ TEST(CostModel, LutTableScalesWithSlots) {
   EXPECT_EQ(rom1[0]->ge + rom1[1]->ge, rom4[0]->ge + rom4[1]->ge);
 }
 
+// tables=ram: the same results, a canonical spec that says so (tables=rom, the default, is left
+// out), and every per-slot table priced as registers with a write port (at least ram_bit_ge a
+// stored bit), so the lane costs more than with ROMs of its contents.
+TEST(CostModel, TablesRamPricesRegistersAndKeepsResults) {
+  const std::vector<double> shin = {10, 50, 200};
+  for (const std::string& u : kUnits) {
+    const auto rom = build(u, shin), ram = build(u + ":tables=ram", shin);
+    EXPECT_TRUE(ram->tables_ram()) << u;
+    EXPECT_FALSE(rom->tables_ram()) << u;
+    EXPECT_NE(ram->canonical_spec().find("tables=ram"), std::string::npos) << u;
+    EXPECT_EQ(rom->canonical_spec().find("tables"), std::string::npos) << u;
+    for (std::size_t s = 0; s < shin.size(); ++s)
+      for (std::int64_t t = 0; t <= rom->in_format().raw_one(); t += 37)
+        ASSERT_EQ(ram->eval_with_skip(s, t), rom->eval_with_skip(s, t)) << u << " " << t;
+    const UnitCost cr = unit_cost(*rom), cm = unit_cost(*ram);
+    EXPECT_GT(cm.area_ge, cr.area_ge) << u;
+    int per_slot = 0;
+    for (const Primitive& p : cm.inventory) {
+      if (p.kind != "table" || (p.where.find("per slot") == std::string::npos &&
+                                p.where.find("per datapath group") == std::string::npos))
+        continue;
+      ++per_slot;
+      EXPECT_GE(p.ge, p.width_a * p.width_b * p.count * cost_constants().ram_bit_ge)
+          << u << ": " << p.where;
+    }
+    EXPECT_GE(per_slot, 2) << u << ": the tau table and the datapath's";
+  }
+}
+
 TEST(CostModel, SchlickDividerWidths) {
   // A chip of fixed capacity holds any n of the key's format: uq14.4, 18 bits.
   const UnitCost fixed = unit_cost(*build("schlick", {50}, 1));
