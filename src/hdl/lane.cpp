@@ -306,7 +306,8 @@ std::string testbench_module(const LaneParams& p, const TbSink& sink, std::size_
   const std::size_t writes = testbench_write_count(p);
   if (p.tables_ram) {
     s += comment(fmt::format(
-        "tables=ram: {} writes (select, address, data) load every table before the stream", writes));
+        "tables=ram: {} writes (select, address, data) load every table before the stream",
+        writes));
     s += fmt::format("  localparam integer NW = {};\n", writes);
     s += fmt::format("  reg [63:0] cfgv [0:{}];  // 3 words a write\n", 3 * writes - 1);
     s += "  reg cfg_we = 1'b0;\n";

@@ -154,15 +154,14 @@ std::string ram_array(RamTables& tables, RamTable t) {
       "{}\n"
       "tables=ram: {} x {} bits, written through cfg_* with cfg_sel = {} (no reset: loaded)",
       t.what, t.words.size(), t.width, t.select));
-  const std::string cell = t.words.size() == 1
-                               ? t.name + "_mem[0]"
-                               : fmt::format("{}_mem[{}]", t.name,
-                                             ext("cfg_addr", tables.addr_bits, ab));
+  const std::string cell = t.words.size() == 1 ? t.name + "_mem[0]"
+                                               : fmt::format("{}_mem[{}]", t.name,
+                                                             ext("cfg_addr", tables.addr_bits, ab));
   s += fmt::format("  reg {}{} {}_mem [0:{}];\n", t.is_signed ? "signed " : "", range(t.width),
                    t.name, t.words.size() - 1);
-  s += fmt::format("  always @(posedge clk) if (cfg_we && cfg_sel == {}) {} <= {};\n",
-                   lit(tables.sel_bits, t.select), cell,
-                   ext("cfg_data", tables.data_bits, t.width));
+  s +=
+      fmt::format("  always @(posedge clk) if (cfg_we && cfg_sel == {}) {} <= {};\n",
+                  lit(tables.sel_bits, t.select), cell, ext("cfg_data", tables.data_bits, t.width));
   tables.tables.push_back(std::move(t));
   return s;
 }
@@ -187,8 +186,8 @@ std::string ram_ports(const RamTables& tables) {
 }
 
 std::string group_table(const DatapathPorts& p, const std::string& name, const std::string& addr,
-                        int width, const std::vector<std::int64_t>& values,
-                        const std::string& what, bool is_signed) {
+                        int width, const std::vector<std::int64_t>& values, const std::string& what,
+                        bool is_signed) {
   if (p.ram == nullptr)
     return group_table(name, addr, p.group_bits, width, values, what, is_signed);
   RamTable t;

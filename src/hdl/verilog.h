@@ -1,5 +1,6 @@
 // Verilog-2005 text for `glint rtl`: the pieces every unit's generator shares (literals, case ROMs,
-// pipeline registers, the datapath module's ports), and the lane around a unit's datapath (lane.h).
+// RAM tables with their write port, pipeline registers, the datapath module's ports), and the lane
+// around a unit's datapath (lane.h).
 // Plain text building: no unit knowledge here (the hdl layer sees only fixed/), each unit writes
 // its own stages in src/units/<unit>/rtl.cpp from its own build objects.
 //
@@ -119,8 +120,8 @@ struct DatapathPorts {
 // table of the same contents (ram: also when every group holds the same value, since another
 // material may be loaded).
 std::string group_table(const DatapathPorts& p, const std::string& name, const std::string& addr,
-                        int width, const std::vector<std::int64_t>& values,
-                        const std::string& what, bool is_signed = false);
+                        int width, const std::vector<std::int64_t>& values, const std::string& what,
+                        bool is_signed = false);
 // The module header with its ports (and `header_comment` above it), and the closing line.
 std::string datapath_header(const DatapathPorts& p, const std::string& header_comment);
 std::string datapath_footer(const DatapathPorts& p);

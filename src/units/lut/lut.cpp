@@ -102,9 +102,9 @@ struct Lut : UnitKindDefaults {
     }
     const bool known = !L.tables_ram && L.groups == static_cast<int>(units.size());
     // As registers, each group holds the padding entry too (the even and odd banks of the RTL).
-    const Seg tab = b.slot_table(L.tables_ram ? entries + 1 : entries, tw, L.groups, true,
-                                 "stage 1: t^n table (per datapath group)",
-                                 known ? &words : nullptr);
+    const Seg tab =
+        b.slot_table(L.tables_ram ? entries + 1 : entries, tw, L.groups, true,
+                     "stage 1: t^n table (per datapath group)", known ? &words : nullptr);
     // A ROM read at two addresses is two ROMs; registers are banked odd/even (one array).
     if (!L.tables_ram)
       b.slot_table(entries, tw, L.groups, true, "stage 1: t^n table, second read",

@@ -80,11 +80,10 @@ std::string lut_rtl(const hdl::DatapathPorts& p, const LutConfig& c,
   }
   // The group is carried to stage 2 for its alignment when that differs between groups (with
   // tables=ram: whenever there are groups, since another material may be loaded).
-  const bool align_varies =
-      p.ram != nullptr
-          ? p.groups > 1 && rmax > 0
-          : std::any_of(align.begin(), align.end(),
-                        [&](std::int64_t a) { return a != align.front(); });
+  const bool align_varies = p.ram != nullptr
+                                ? p.groups > 1 && rmax > 0
+                                : std::any_of(align.begin(), align.end(),
+                                              [&](std::int64_t a) { return a != align.front(); });
   const int kw = std::max(wi, iw);  // the index before its padding shift
   const int sb = hdl::value_bits(static_cast<std::uint64_t>(std::max(fi, bits)));
 
@@ -140,11 +139,14 @@ std::string lut_rtl(const hdl::DatapathPorts& p, const LutConfig& c,
       "(LutUnit::entry);\n"
       "address {{group, j}}, j = 0..2^{} + 1 (the last entry repeats 1.0 for node_hi at t = 1)",
       bits, tf, bits);
-  std::string node_lo = "tn_table({in_group, lookup_i})", node_hi = "tn_table({in_group, lookup_i1})";
+  std::string node_lo = "tn_table({in_group, lookup_i})",
+              node_hi = "tn_table({in_group, lookup_i1})";
   if (p.ram == nullptr) {
     s += hdl::rom_function(tab);
   } else {
-    s += lut_ram_tables(*p.ram, groups, bits, tw, wg, iw, tab.comment);
+    // (the ROM's first line: its addressing is the banks')
+    s += lut_ram_tables(*p.ram, groups, bits, tw, wg, iw,
+                        tab.comment.substr(0, tab.comment.find('\n')));
     node_lo = "lookup_lo";
     node_hi = "lookup_hi";
   }
