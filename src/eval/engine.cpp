@@ -93,6 +93,8 @@ void EvalEngine::prepare(const VectorRow* rows, std::size_t count, std::size_t o
     const double* const defer_cut = defer_t_.data();
     const std::uint8_t* const known = slot_known_.data();
     const bool defer = out == nullptr;
+    const std::uint32_t* const slot_of = slots_.slot_of.data();
+    const std::size_t stride = slots_.light_stride;
     // Rows whose reference is computed, listed: the calls then run back to back in a loop of
     // their own, where they overlap, instead of one in the middle of each scanned row.
     thread_local std::vector<std::uint32_t> need_list;
@@ -101,7 +103,9 @@ void EvalEngine::prepare(const VectorRow* rows, std::size_t count, std::size_t o
     std::size_t needed = 0;
     std::vector<bool> listed;
     for (std::size_t i = a; i < b; ++i) {
-      const std::uint32_t s = static_cast<std::uint32_t>(slots_.slot(rows[i]));
+      // SlotMap::slot, from locals: through slots_ the stores below reload it every row.
+      const std::uint32_t s =
+          slot_of[stride * static_cast<std::size_t>(rows[i].light) + rows[i].material];
       const double t = rows[i].t;
       t_out[i] = t;
       slot_out[i] = s;
@@ -111,7 +115,9 @@ void EvalEngine::prepare(const VectorRow* rows, std::size_t count, std::size_t o
       const double cut = deferred[s];
       const bool zero = (cut > 0.0) & (t <= 0.0);
       const bool late = defer & (t > 0.0) & (t <= defer_cut[s]);
-      ref_out[i] = late ? kDeferredReference : 0.0;
+      // -late, not late ? kDeferredReference : 0.0, which GCC made a branch taken at random.
+      static_assert(kDeferredReference == -1.0, "the conversion below writes -1 or 0");
+      ref_out[i] = -static_cast<double>(late);
       need[needed] = static_cast<std::uint32_t>(i);
       needed += !(zero | late);
       if (known[s]) continue;

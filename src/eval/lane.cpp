@@ -273,14 +273,16 @@ void LaneAccumulator::accumulate_rows(const RowsView& rows, std::size_t a, std::
       word[k] = digest_word(0, true);
       if (raw) raw[i] = 0;
       if (skipped) skipped[i] = 1;
-      if (ref < 0.0) {
-        if ((always || (total.value >= kSumFloor && skip.value > kDeferredBound)) &&
-            weighted.value > kDeferredBound * c_y[s]) {
-          always_rows += always;
-          square[k] = 0;
-          continue;
-        }
+      // A deferred reference that can change nothing goes through the statistics below as 0,
+      // which changes nothing either (every maximum it enters is larger, its square is 0, its
+      // display code 0): no branch on which rows were deferred, which a stream takes at random.
+      const bool deferred = ref < 0.0;
+      const bool settled = (always | ((total.value >= kSumFloor) & (skip.value > kDeferredBound))) &
+                           (weighted.value > kDeferredBound * c_y[s]);
+      if (deferred & !settled) {
         ref = reference_value(slots_, s, t);
+      } else {
+        ref = std::max(ref, 0.0);  // kDeferredReference is negative, a lobe never
       }
       // The result is 0: the error is -ref, of magnitude ref (a lobe is never negative).
       max_at(weighted, ref * c_y[s], t);

@@ -8,6 +8,10 @@
 #include <cstring>
 #include <string>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "fixed/fixed_point.h"
 
 namespace glint {
@@ -45,6 +49,19 @@ inline double pow2(int e) {
 // Front end: t = r.v or n.h arrives as a float in [-1, 1 + 1e-3]. The unit computes max(0, t)^n, so
 // negative t is clamped to 0 (Källberg eq.1), and t > 1 (normalisation noise of unit vectors) to
 // 1. The clamped value is rounded to nearest-even into the input format.
+// t <= 0 ? 0 : (t >= 1 ? 1 : t), NaN kept, except that -0 stays -0 (which every caller rounds
+// to the code of 0). With SSE2 it is maxsd and minsd: GCC made the plain form, and std::max and
+// std::min too, a branch on t <= 0, which a stream of t either side of 0 takes at random.
+inline double clamp01(double t) {
+#if defined(__SSE2__)
+  // maxsd/minsd give their second operand when either is NaN, and 0 > t, 1 < t in this order.
+  const __m128d c = _mm_min_sd(_mm_set_sd(1.0), _mm_max_sd(_mm_setzero_pd(), _mm_set_sd(t)));
+  return _mm_cvtsd_f64(c);
+#else
+  return t <= 0.0 ? 0.0 : (t >= 1.0 ? 1.0 : t);
+#endif
+}
+
 class InputQuantizer {
  public:
   explicit InputQuantizer(const QFormat& in)
@@ -53,8 +70,8 @@ class InputQuantizer {
         scale_(exact_ ? pow2(in.frac_bits) : 0.0) {}
 
   std::int64_t operator()(double t) const {
-    const double c = t <= 0.0 ? 0.0 : (t >= 1.0 ? 1.0 : t);
     if (exact_) {
+      const double c = clamp01(t);
       // c * 2^F is exact and at most 2^52, and 1.0 is representable so nothing saturates.
       // Adding and taking away 2^52 rounds it to an integer, half to even (the sum lies in
       // [2^52, 2^53], where doubles are the integers), in the default rounding mode, which is
@@ -62,6 +79,7 @@ class InputQuantizer {
       const double x = c * scale_;
       return static_cast<std::int64_t>((x + 0x1.0p52) - 0x1.0p52);
     }
+    const double c = t <= 0.0 ? 0.0 : (t >= 1.0 ? 1.0 : t);
     return Fixed::from_double(c, in_, Quant::kRndConv, Overflow::kSat).raw();
   }
 
