@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "eval/evaluate.h"
@@ -30,6 +31,42 @@ inline void max_at(LanePartial::MaxAt& m, double value, double t) {
   m.value = more ? value : m.value;
   m.t = more ? t : m.t;
 }
+
+// c ? a : b on the bits: GCC turns the plain form into a branch, which costs a misprediction on
+// every other row when c follows the stream's t.
+inline double select(bool c, double a, double b) {
+  std::uint64_t x = 0, y = 0;
+  std::memcpy(&x, &a, sizeof x);
+  std::memcpy(&y, &b, sizeof y);
+  const std::uint64_t mask = std::uint64_t{0} - static_cast<std::uint64_t>(c);
+  const std::uint64_t bits = (x & mask) | (y & ~mask);
+  double out = 0;
+  std::memcpy(&out, &bits, sizeof out);
+  return out;
+}
+
+// std::min(v, 1.0) for v >= 0, without a branch.
+inline double min1(double v) {
+  return select(v > 1.0, 1.0, v);
+}
+
+// A largest value (strict >: the first row to reach it) with that row's index in the run, so
+// that the maxima of two passes over disjoint rows join into the one of a single pass.
+struct FirstMax {
+  double value = -1;  // below every value: no row yet (LanePartial's total and weighted)
+  double t = 0;
+  std::size_t row = ~std::size_t{0};
+  void add(double v, double at, std::size_t k) {
+    const bool more = v > value;
+    value = more ? v : value;
+    t = more ? at : t;
+    row = more ? k : row;
+  }
+  static LanePartial::MaxAt join(const FirstMax& a, const FirstMax& b) {
+    const bool second = b.value > a.value || (b.value == a.value && b.row < a.row);
+    return second ? LanePartial::MaxAt{b.value, b.t} : LanePartial::MaxAt{a.value, a.t};
+  }
+};
 
 inline void merge_part(PartStats& s, const LanePartial::MaxAt& m) {
   if (m.value > s.max_abs) {
@@ -247,18 +284,27 @@ void LaneAccumulator::accumulate_rows(const RowsView& rows, std::size_t a, std::
   const double ulp = ulp_, display = display_;
   double* const square = p.square.data();
   std::uint64_t* const word = p.word.data();
-  LanePartial::MaxAt total{-1, 0}, weighted{-1, 0}, input{0, 0}, skip{0, 0};
+  thread_local std::vector<std::uint32_t> computed_list;
+  thread_local std::vector<std::int64_t> code_list;
+  computed_list.resize(n);
+  code_list.resize(n);
+  std::uint32_t* const computed = computed_list.data();
+  std::int64_t* const code = code_list.data();
+  std::size_t computed_rows = 0;
+  // Two passes: the skipped rows' statistics in the first, without a branch on which rows a
+  // comparator skips (a stream takes it at random: half the rows of `glint eval`'s five units),
+  // the computed rows, listed there, in the second. The maxima that both passes enter keep the
+  // row of their first largest value, to be joined as one pass in stream order would have.
+  FirstMax total1, weighted1, total2, weighted2;
+  LanePartial::MaxAt input{0, 0}, skip{0, 0};
   LanePartial::MaxAt approximation{0, 0}, parameter{0, 0}, datapath{0, 0};
   std::uint64_t skips = 0, always_rows = 0, mismatch = 0;
-  const auto fold_parts = [&](const CodeFacts& f, double t) {
-    max_at(approximation, std::fabs(f.approximation), t);
-    max_at(parameter, std::fabs(f.parameter), t);
-    max_at(datapath, std::fabs(f.datapath), t);
-  };
   // A skipped row whose reference was deferred (at most kDeferredBound) changes nothing once
   // earlier rows of this run are larger in every maximum it enters, and one squared error is
   // at least 2^-26, which puts kDeferredBound^2 below half an ulp of the running sum (it is at
-  // least that row's square: sums of non-negative terms round monotonically). Else it is computed.
+  // least that row's square: sums of non-negative terms round monotonically). Else it is
+  // computed. The maxima of the skipped rows alone are at most those of every row so far, so this
+  // pass computes at least the references one pass in stream order would.
   constexpr double kSumFloor = 0x1.0p-13;  // an error whose square is 2^-26
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t i = a + k;
@@ -268,36 +314,53 @@ void LaneAccumulator::accumulate_rows(const RowsView& rows, std::size_t a, std::
     const std::int64_t t_raw = quantize(t);
     const bool sk = t_raw <= tau[s];
     const bool always = state[s] == 1;
-    if (sk) {
-      skips += 1;
-      word[k] = digest_word(0, true);
-      if (raw) raw[i] = 0;
-      if (skipped) skipped[i] = 1;
-      // A deferred reference that can change nothing goes through the statistics below as 0,
-      // which changes nothing either (every maximum it enters is larger, its square is 0, its
-      // display code 0): no branch on which rows were deferred, which a stream takes at random.
-      const bool deferred = ref < 0.0;
-      const bool settled = (always | ((total.value >= kSumFloor) & (skip.value > kDeferredBound))) &
-                           (weighted.value > kDeferredBound * c_y[s]);
-      if (deferred & !settled) {
-        ref = reference_value(slots_, s, t);
-      } else {
-        ref = std::max(ref, 0.0);  // kDeferredReference is negative, a lobe never
+    computed[computed_rows] = static_cast<std::uint32_t>(k);
+    code[computed_rows] = t_raw;
+    computed_rows += !sk;
+    if (raw) raw[i] = 0;
+    if (skipped) skipped[i] = sk;
+    word[k] = digest_word(0, true);  // a computed row's is written by the second pass
+    // A deferred reference that can change nothing goes through the statistics below as 0,
+    // which changes nothing either (every maximum it enters is larger, its square is 0, its
+    // display code 0).
+    const bool settled = (always | ((total1.value >= kSumFloor) & (skip.value > kDeferredBound))) &
+                         (weighted1.value > kDeferredBound * c_y[s]);
+    if (sk & (ref < 0.0) & !settled) ref = reference_value(slots_, s, t);
+    ref = select(ref < 0.0, 0.0, ref);  // kDeferredReference is negative, a lobe never
+    // The result is 0: the error is -ref, of magnitude ref. A row outside a maximum enters it
+    // as -1, below every maximum's start.
+    const bool scalar = sk & !always;
+    skips += sk;
+    always_rows += sk & always;
+    weighted1.add(select(sk, ref * c_y[s], -1.0), t, k);
+    total1.add(select(scalar, ref, -1.0), t, k);
+    max_at(skip, select(scalar, ref, -1.0), t);
+    square[k] = select(scalar, ref * ref, 0.0);
+    // The result's display code is 0; the reference's is not when it rounds up from 0.5.
+    mismatch += scalar & (min1(ref) * display >= 0.5);
+  }
+  const auto fold_parts = [&](const CodeFacts& f, double t) {
+    max_at(approximation, std::fabs(f.approximation), t);
+    max_at(parameter, std::fabs(f.parameter), t);
+    max_at(datapath, std::fabs(f.datapath), t);
+  };
+  // How many computed rows ahead the memo entry is fetched: five lanes' tables of 2^15 codes
+  // are beyond the L2 cache, and a row's entry is where its t falls.
+  constexpr std::size_t kAhead = 8;
+  for (std::size_t x = 0; x < computed_rows; ++x) {
+    if constexpr (kMemo) {
+      if (x + kAhead < computed_rows) {
+        const Memo::Table& ahead = memo_->tables[rows.slot[a + computed[x + kAhead]]];
+        __builtin_prefetch(&ahead.hot[static_cast<std::size_t>(code[x + kAhead] - ahead.first)]);
       }
-      // The result is 0: the error is -ref, of magnitude ref (a lobe is never negative).
-      max_at(weighted, ref * c_y[s], t);
-      if (always) {
-        ++always_rows;
-        square[k] = 0;
-      } else {
-        max_at(total, ref, t);
-        square[k] = ref * ref;
-        max_at(skip, ref, t);
-        // The result's display code is 0; the reference's is not when it rounds up from 0.5.
-        mismatch += std::min(ref, 1.0) * display >= 0.5;
-      }
-      continue;
     }
+    const std::size_t k = computed[x];
+    const std::size_t i = a + k;
+    const std::size_t s = rows.slot[i];
+    const double t = rows.t[i];
+    double ref = rows.reference[i];
+    const std::int64_t t_raw = code[x];
+    const bool always = state[s] == 1;
     if (ref < 0.0) ref = reference_value(slots_, s, t);
     std::int64_t out = 0;
     double r = 0;
@@ -328,26 +391,25 @@ void LaneAccumulator::accumulate_rows(const RowsView& rows, std::size_t a, std::
     }
     const double fixed = static_cast<double>(out) * ulp;
     const double err = fixed - ref;
-    max_at(weighted, std::fabs(err * c_y[s]), t);
+    weighted2.add(std::fabs(err * c_y[s]), t, k);
     if (always) {
       ++always_rows;
       square[k] = 0;
     } else {
-      max_at(total, std::fabs(err), t);
+      total2.add(std::fabs(err), t, k);
       square[k] = err * err;
       max_at(input, std::fabs(r - ref), t);
       mismatch += display_code(fixed, display) != display_code(ref, display);
     }
     word[k] = digest_word(out, false);
     if (raw) raw[i] = out;
-    if (skipped) skipped[i] = 0;
   }
   p.vectors = n;
   p.skipped = skips;
   p.always_skipped = always_rows;
   p.mismatch = mismatch;
-  p.total = total;
-  p.weighted = weighted;
+  p.total = FirstMax::join(total1, total2);
+  p.weighted = FirstMax::join(weighted1, weighted2);
   p.input = input;
   p.skip = skip;
   p.approximation = approximation;
