@@ -284,21 +284,37 @@ void LaneAccumulator::accumulate_rows(const RowsView& rows, std::size_t a, std::
   const double ulp = ulp_, display = display_;
   double* const square = p.square.data();
   std::uint64_t* const word = p.word.data();
-  thread_local std::vector<std::uint32_t> computed_list;
+  thread_local std::vector<std::uint32_t> computed_list, skipped_list;
   thread_local std::vector<std::int64_t> code_list;
   computed_list.resize(n);
+  skipped_list.resize(n);
   code_list.resize(n);
   std::uint32_t* const computed = computed_list.data();
+  std::uint32_t* const skipped_rows = skipped_list.data();
   std::int64_t* const code = code_list.data();
-  std::size_t computed_rows = 0;
-  // Two passes: the skipped rows' statistics in the first, without a branch on which rows a
-  // comparator skips (a stream takes it at random: half the rows of `glint eval`'s five units),
-  // the computed rows, listed there, in the second. The maxima that both passes enter keep the
-  // row of their first largest value, to be joined as one pass in stream order would have.
+  std::size_t computed_count = 0, skipped_count = 0;
+  // Three passes: every row's code and comparator, which lists the skipped and the computed
+  // rows without a branch between them (a stream takes it at random: half the rows of each of
+  // `glint eval`'s five units); then the skipped rows' statistics; then the computed rows'. The
+  // maxima that both lists enter keep the row of their first largest value, to be joined as
+  // one pass in stream order would have.
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t i = a + k;
+    const std::int64_t t_raw = quantize(rows.t[i]);
+    const bool sk = t_raw <= tau[rows.slot[i]];
+    computed[computed_count] = static_cast<std::uint32_t>(k);
+    code[computed_count] = t_raw;
+    computed_count += !sk;
+    skipped_rows[skipped_count] = static_cast<std::uint32_t>(k);
+    skipped_count += sk;
+    if (raw) raw[i] = 0;
+    if (skipped) skipped[i] = sk;
+    word[k] = digest_word(0, true);  // a computed row's is written by the third pass
+  }
   FirstMax total1, weighted1, total2, weighted2;
   LanePartial::MaxAt input{0, 0}, skip{0, 0};
   LanePartial::MaxAt approximation{0, 0}, parameter{0, 0}, datapath{0, 0};
-  std::uint64_t skips = 0, always_rows = 0, mismatch = 0;
+  std::uint64_t always_rows = 0, mismatch = 0;
   // A skipped row whose reference was deferred (at most kDeferredBound) changes nothing once
   // earlier rows of this run are larger in every maximum it enters, and one squared error is
   // at least 2^-26, which puts kDeferredBound^2 below half an ulp of the running sum (it is at
@@ -306,38 +322,32 @@ void LaneAccumulator::accumulate_rows(const RowsView& rows, std::size_t a, std::
   // computed. The maxima of the skipped rows alone are at most those of every row so far, so this
   // pass computes at least the references one pass in stream order would.
   constexpr double kSumFloor = 0x1.0p-13;  // an error whose square is 2^-26
-  for (std::size_t k = 0; k < n; ++k) {
+  for (std::size_t x = 0; x < skipped_count; ++x) {
+    const std::size_t k = skipped_rows[x];
     const std::size_t i = a + k;
     const std::size_t s = rows.slot[i];
     const double t = rows.t[i];
     double ref = rows.reference[i];
-    const std::int64_t t_raw = quantize(t);
-    const bool sk = t_raw <= tau[s];
     const bool always = state[s] == 1;
-    computed[computed_rows] = static_cast<std::uint32_t>(k);
-    code[computed_rows] = t_raw;
-    computed_rows += !sk;
-    if (raw) raw[i] = 0;
-    if (skipped) skipped[i] = sk;
-    word[k] = digest_word(0, true);  // a computed row's is written by the second pass
     // A deferred reference that can change nothing goes through the statistics below as 0,
     // which changes nothing either (every maximum it enters is larger, its square is 0, its
-    // display code 0).
+    // display code 0): no branch on which rows were deferred, which a stream takes at random.
     const bool settled = (always | ((total1.value >= kSumFloor) & (skip.value > kDeferredBound))) &
                          (weighted1.value > kDeferredBound * c_y[s]);
-    if (sk & (ref < 0.0) & !settled) ref = reference_value(slots_, s, t);
+    if ((ref < 0.0) & !settled) ref = reference_value(slots_, s, t);
     ref = select(ref < 0.0, 0.0, ref);  // kDeferredReference is negative, a lobe never
-    // The result is 0: the error is -ref, of magnitude ref. A row outside a maximum enters it
-    // as -1, below every maximum's start.
-    const bool scalar = sk & !always;
-    skips += sk;
-    always_rows += sk & always;
-    weighted1.add(select(sk, ref * c_y[s], -1.0), t, k);
-    total1.add(select(scalar, ref, -1.0), t, k);
-    max_at(skip, select(scalar, ref, -1.0), t);
-    square[k] = select(scalar, ref * ref, 0.0);
-    // The result's display code is 0; the reference's is not when it rounds up from 0.5.
-    mismatch += scalar & (min1(ref) * display >= 0.5);
+    // The result is 0: the error is -ref, of magnitude ref.
+    weighted1.add(ref * c_y[s], t, k);
+    if (always) {
+      ++always_rows;
+      square[k] = 0;
+    } else {
+      total1.add(ref, t, k);
+      square[k] = ref * ref;
+      max_at(skip, ref, t);
+      // The result's display code is 0; the reference's is not when it rounds up from 0.5.
+      mismatch += min1(ref) * display >= 0.5;
+    }
   }
   const auto fold_parts = [&](const CodeFacts& f, double t) {
     max_at(approximation, std::fabs(f.approximation), t);
@@ -347,9 +357,9 @@ void LaneAccumulator::accumulate_rows(const RowsView& rows, std::size_t a, std::
   // How many computed rows ahead the memo entry is fetched: five lanes' tables of 2^15 codes
   // are beyond the L2 cache, and a row's entry is where its t falls.
   constexpr std::size_t kAhead = 8;
-  for (std::size_t x = 0; x < computed_rows; ++x) {
+  for (std::size_t x = 0; x < computed_count; ++x) {
     if constexpr (kMemo) {
-      if (x + kAhead < computed_rows) {
+      if (x + kAhead < computed_count) {
         const Memo::Table& ahead = memo_->tables[rows.slot[a + computed[x + kAhead]]];
         __builtin_prefetch(&ahead.hot[static_cast<std::size_t>(code[x + kAhead] - ahead.first)]);
       }
@@ -405,7 +415,7 @@ void LaneAccumulator::accumulate_rows(const RowsView& rows, std::size_t a, std::
     if (raw) raw[i] = out;
   }
   p.vectors = n;
-  p.skipped = skips;
+  p.skipped = skipped_count;
   p.always_skipped = always_rows;
   p.mismatch = mismatch;
   p.total = FirstMax::join(total1, total2);
