@@ -103,9 +103,8 @@ void EvalEngine::prepare(const VectorRow* rows, std::size_t count, std::size_t o
     std::size_t needed = 0;
     std::vector<bool> listed;
     for (std::size_t i = a; i < b; ++i) {
-      // SlotMap::slot, from locals: through slots_ the stores below reload it every row.
-      const std::uint32_t s =
-          slot_of[stride * static_cast<std::size_t>(rows[i].light) + rows[i].material];
+      // From locals: through slots_ the stores below reload slot_of every row.
+      const auto s = static_cast<std::uint32_t>(SlotMap::slot_in(slot_of, stride, rows[i]));
       const double t = rows[i].t;
       t_out[i] = t;
       slot_out[i] = s;

@@ -41,7 +41,13 @@ struct SlotMap : SlotPlan {
   std::size_t light_stride = 0;
 
   std::size_t slot(const VectorRow& row) const {
-    return slot_of[light_stride * row.light + row.material];
+    return slot_in(slot_of.data(), light_stride, row);
+  }
+  // The same from a copy of slot_of's data and light_stride (a hot loop keeps them in locals,
+  // where stores through its other pointers cannot make the compiler reload them).
+  static std::size_t slot_in(const std::uint32_t* slot_of, std::size_t light_stride,
+                             const VectorRow& row) {
+    return slot_of[light_stride * static_cast<std::size_t>(row.light) + row.material];
   }
   // Entries of the colour stage's table: the stream's colours, or a fixed chip's capacity.
   std::size_t colour_entries() const { return capacity > 0 ? capacity : colours; }
