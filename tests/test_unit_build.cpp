@@ -17,6 +17,7 @@
 
 #include "reference/reference.h"
 #include "units/catalogue.h"
+#include "units/horner/slots.h"
 #include "units/lut/datapath.h"
 #include "units/pow/datapath.h"
 
@@ -278,6 +279,39 @@ TEST(WideInputs, EveryUnitBuildsOrRefusesPromptly) {
       EXPECT_LT(seconds, 10.0);
     }
   }
+}
+
+// horner's fits are memoized per process: each fit, asked in a sequence where every step changes
+// one field of the memo's key (so a field left out of it would return the previous step's fit),
+// equals fit_power run afresh, and asking again returns the same.
+TEST(HornerFitMemo, EveryFieldOfTheKeyTellsFitsApart) {
+  struct Ask {
+    HornerFitSpec spec;
+    double n, tau, min_slope;
+  };
+  HornerFitSpec s;
+  std::vector<Ask> asks = {{s, 37, 0.8, 0}};
+  const auto then = [&](auto change) {
+    Ask a = asks.back();
+    change(a);
+    asks.push_back(a);
+  };
+  then([](Ask& a) { a.spec.degree = 5; });
+  then([](Ask& a) { a.spec.method = FitMethod::kLeastSquares; });
+  then([](Ask& a) { a.spec.constrain = false; });
+  then([](Ask& a) { a.n = 38; });
+  then([](Ask& a) { a.tau = 0.81; });
+  then([](Ask& a) { a.min_slope = 0.05; });
+  then([](Ask& a) { a.spec.tau_domain = false; });
+  for (int round = 0; round < 2; ++round)
+    for (const Ask& a : asks) {
+      SCOPED_TRACE(testing::Message() << "round " << round << ", degree " << a.spec.degree << ", n "
+                                      << a.n << ", tau " << a.tau);
+      const HornerCoefficients memo = fit_slot(a.spec, a.n, a.tau, a.min_slope);
+      const FitResult fresh = fit_power(horner_fit_options(a.spec, a.n, a.tau, a.min_slope));
+      EXPECT_EQ(memo.c, fresh.coeffs);
+      EXPECT_EQ(memo.tau_domain, a.spec.tau_domain);
+    }
 }
 
 }  // namespace

@@ -4,8 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <map>
+#include <mutex>
 #include <stdexcept>
+#include <tuple>
 #include <utility>
 
 #include "units/unit_set.h"
@@ -22,7 +26,9 @@ int remez_grid(const HornerFitSpec& spec) {
   return spec.tau_domain ? 24 * (spec.degree + 2) + 1 : 0;
 }
 
-HornerCoefficients fit_slot(const HornerFitSpec& spec, double n, double tau, double min_slope) {
+}  // namespace
+
+FitOptions horner_fit_options(const HornerFitSpec& spec, double n, double tau, double min_slope) {
   FitOptions o;
   o.shininess = n;
   o.degree = spec.degree;
@@ -35,9 +41,59 @@ HornerCoefficients fit_slot(const HornerFitSpec& spec, double n, double tau, dou
   o.min_slope = min_slope;
   o.remez_grid = remez_grid(spec);
   o.error_grid = 0;  // the unit reports its errors itself
-  const FitResult r = fit_power(o);
-  return {r.coeffs, spec.tau_domain, o.constrain_one, o.constrain_zero};
+  return o;
 }
+
+namespace {
+
+// A fit is a pure function of its spec, n, tau and slope margin, and a monotone Remez fit costs
+// milliseconds. A sweep builds the same fit for every format that keeps tau_q (every format on the
+// full domain, where tau is 0), and a --grid's value check builds each value once more: one memo
+// per process. Doubles are keyed by their bits (a NaN would break a map's ordering). Bounded: a
+// long sweep or fuzz run that fills it starts it afresh, so memory stays ~1 MB.
+class FitMemo {
+ public:
+  using Key = std::tuple<int, FitMethod, bool, bool, std::uint64_t, std::uint64_t, std::uint64_t>;
+
+  template <typename Fit>
+  HornerCoefficients get(const Key& key, Fit&& fit) {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      if (const auto it = fits_.find(key); it != fits_.end()) return it->second;
+    }
+    HornerCoefficients c = fit();  // outside the lock: two threads may fit alike, both equal
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (fits_.size() >= kMaxEntries) fits_.clear();
+    fits_.emplace(key, c);
+    return c;
+  }
+
+ private:
+  static constexpr std::size_t kMaxEntries = 4096;
+  std::mutex mutex_;
+  std::map<Key, HornerCoefficients> fits_;
+};
+
+std::uint64_t bits_of(double x) {
+  std::uint64_t b = 0;
+  std::memcpy(&b, &x, sizeof b);
+  return b;
+}
+
+}  // namespace
+
+HornerCoefficients fit_slot(const HornerFitSpec& spec, double n, double tau, double min_slope) {
+  static FitMemo memo;
+  const FitMemo::Key key{spec.degree, spec.method,  spec.tau_domain,   spec.constrain,
+                         bits_of(n),  bits_of(tau), bits_of(min_slope)};
+  return memo.get(key, [&] {
+    const FitOptions o = horner_fit_options(spec, n, tau, min_slope);
+    const FitResult r = fit_power(o);
+    return HornerCoefficients{r.coeffs, spec.tau_domain, o.constrain_one, o.constrain_zero};
+  });
+}
+
+namespace {
 
 // The slope margin of a refit (fit_monotone proves P' >= it on [0, 1]). Quantizing the
 // coefficients (½ LSB each, and the P(1) = 1 repair's sum of them in one coefficient) moves P' by
@@ -64,18 +120,12 @@ double horner_fit_tau(const MaterialParams& m, const QFormat& in, bool tau_domai
 
 std::vector<HornerUnit> build_horner_slots(const HornerFitSpec& spec, HornerConfig& cfg,
                                            const std::vector<MaterialParams>& slots) {
-  // Slots with the same (n, tau_q) share one fit: lights x materials repeat them.
-  std::map<std::pair<double, double>, HornerCoefficients> cache;
+  // Slots with the same (n, tau_q) share one fit through fit_slot's memo.
   std::vector<HornerCoefficients> fits;
   fits.reserve(slots.size());
   for (const MaterialParams& m : slots) {
     const double tau = horner_fit_tau(m, cfg.in, spec.tau_domain);
-    const auto key = std::make_pair(m.shininess, tau);
-    auto it = cache.find(key);
-    if (it == cache.end())
-      it = cache.emplace(key, for_slot(m, [&] { return fit_slot(spec, m.shininess, tau, 0); }))
-               .first;
-    fits.push_back(it->second);
+    fits.push_back(for_slot(m, [&] { return fit_slot(spec, m.shininess, tau, 0); }));
   }
   const bool auto_guard = cfg.guard < 0;
   int extra = 0;  // guard bits added because a slot's output could not be made monotone

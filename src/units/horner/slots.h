@@ -11,6 +11,7 @@
 
 namespace glint {
 
+// Every field is part of fit_slot's memo key (slots.cpp): a new field goes there too.
 struct HornerFitSpec {
   int degree = 4;
   FitMethod method = FitMethod::kMinimax;
@@ -22,6 +23,12 @@ struct HornerFitSpec {
 // (root_threshold_raw), so that the fitted polynomial's u is the hardware's; 0 on the full domain
 // and for slots whose root is at 1 (always skipped: u = 0 on every code).
 double horner_fit_tau(const MaterialParams& m, const QFormat& in, bool tau_domain);
+
+// The fit of t^n for one slot: monotone (with P' >= min_slope), on [tau, 1] in u or on (0, 1].
+FitOptions horner_fit_options(const HornerFitSpec& spec, double n, double tau, double min_slope);
+
+// fit_power(horner_fit_options(...))'s coefficients, memoized per process (bounded, thread-safe).
+HornerCoefficients fit_slot(const HornerFitSpec& spec, double n, double tau, double min_slope);
 
 // Builds every slot's datapath at cfg.guard (< 0: auto, the largest guard any slot needs for a
 // faithful result, written back into cfg). Every datapath is monotone: its quantized polynomial
