@@ -87,6 +87,10 @@ TEST(SweepGrid, BadGridsNameTheGridAndTheKey) {
       {"horner:degree=2..4/0", {"key 'degree'", "step"}},
       {"horner:degree=2..x", {"key 'degree'", "lo..hi"}},
       {"horner:degree=2|2", {"key 'degree'", "listed twice"}},
+      {"hast:buffer=1..65536|7", {"key 'buffer'", "'7' listed twice"}},
+      {"horner:degree=2..82222", {"key 'degree'", "'82222'", "1..10"}},
+      {"hast:buffer=1..1000,d=1..16,guard=0..7",
+       {"128000 configurations exceed the limit of 100000"}},
       {"horner:degree=", {"key 'degree'", "empty value"}},
       {"horner:degree=2||3", {"key 'degree'", "empty value"}},
       {"horner:degree=2,degree=3", {"key 'degree' given twice"}},
@@ -100,6 +104,22 @@ TEST(SweepGrid, BadGridsNameTheGridAndTheKey) {
     ASSERT_FALSE(e.empty()) << c.grid << " was accepted";
     for (const char* m : c.mentions) EXPECT_NE(e.find(m), std::string::npos) << c.grid << ": " << e;
   }
+}
+
+// parse_grid checks a range at its two ends only, which holds because every key's accepted
+// integers form an interval: checked here for every key of every unit over -2..70.
+TEST(SweepGrid, EveryKeyAcceptsAnIntervalOfIntegers) {
+  for (const glint::UnitInfo& unit : glint::unit_catalog())
+    for (const glint::UnitKey& key : unit.keys) {
+      std::vector<int> accepted;
+      for (int v = -2; v <= 70; ++v)
+        if (error_of([&] { parse_grid(fmt::format("{}:{}={}", unit.name, key.key, v)); }).empty())
+          accepted.push_back(v);
+      if (accepted.empty()) continue;
+      EXPECT_EQ(accepted.back() - accepted.front() + 1, static_cast<int>(accepted.size()))
+          << unit.name << ":" << key.key << " accepts "
+          << fmt::format("{}", fmt::join(accepted, ","));
+    }
 }
 
 TEST(SweepGrid, CrossProductOrderAndCount) {
