@@ -685,6 +685,55 @@ TEST(VectorRows, NextBlockAcrossEveryBufferBoundary) {
   }
 }
 
+// A malformed row anywhere in a block parsed in pieces (each numbered from 0, then renumbered):
+// the rows before it, then its error with its own line, as a row at a time gives them.
+TEST(VectorRows, NextBlockErrorsKeepTheirLines) {
+  const std::string head = kPre + kMat + "columns t material\ndata\n";
+  std::string rows;
+  for (int i = 0; i < 60000; ++i) rows += std::to_string(i % 1000 / 1000.0) + " white\n";
+  const std::size_t row_lines = 60000;
+  for (const std::size_t bad :
+       {std::size_t{0}, std::size_t{17}, std::size_t{31000}, row_lines - 1}) {
+    std::string text = head;
+    std::size_t line = 0;
+    for (std::size_t at = 0; at < rows.size(); ++line) {
+      const std::size_t nl = rows.find('\n', at);
+      text += line == bad ? std::string("0.5 nosuch\n") : rows.substr(at, nl + 1 - at);
+      at = nl + 1;
+    }
+    std::string by_line_error;
+    std::uint64_t by_line_rows = 0;
+    {
+      std::istringstream in(text);
+      VectorReader reader(in, "bad.vec");
+      VectorRow row;
+      try {
+        while (reader.next(row)) ++by_line_rows;
+      } catch (const InputError& e) {
+        by_line_error = e.what();
+      }
+    }
+    ASSERT_FALSE(by_line_error.empty()) << bad;
+    for (int threads : {1, 2, 4}) {
+      std::istringstream in(text);
+      VectorReader reader(in, "bad.vec");
+      std::vector<VectorRow> block;
+      std::uint64_t by_block_rows = 0;
+      std::uint64_t last_line = 0;
+      try {
+        while (reader.next_block(block, threads)) {
+          for (const VectorRow& r : block) EXPECT_EQ(r.line, ++last_line + 6) << bad;
+          by_block_rows += block.size();
+        }
+        ADD_FAILURE() << "no error for line " << bad;
+      } catch (const InputError& e) {
+        EXPECT_EQ(e.what(), by_line_error) << bad << " threads " << threads;
+      }
+      EXPECT_EQ(by_block_rows, by_line_rows) << bad << " threads " << threads;
+    }
+  }
+}
+
 TEST(VectorErrors, ErrorsAreStickyAndWhatIsFormatted) {
   std::istringstream in(kPre + kMat + "columns t material\ndata\n0.5 white\n7 white\n0.5 white\n");
   VectorReader r(in, "sticky.vec");

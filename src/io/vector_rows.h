@@ -29,7 +29,7 @@ class MaterialLookup {
   // `last` is the caller's last hit (each thread that parses rows keeps its own).
   bool find(std::string_view name, std::uint32_t& index, std::uint32_t& last) const {
     const std::string_view hit = names_[last];
-    if (name.size() == hit.size() && std::memcmp(name.data(), hit.data(), name.size()) == 0) {
+    if (name.size() == hit.size() && same_bytes(name.data(), hit.data(), name.size())) {
       index = last;
       return true;
     }
@@ -49,6 +49,20 @@ class MaterialLookup {
   }
 
  private:
+  // memcmp(a, b, n) == 0 inline, eight bytes at a time: a call to memcmp for each row's name (a
+  // few bytes) took 3 % of `glint eval`'s time.
+  static bool same_bytes(const char* a, const char* b, std::size_t n) {
+    for (; n >= 8; a += 8, b += 8, n -= 8) {
+      std::uint64_t x = 0, y = 0;
+      std::memcpy(&x, a, 8);
+      std::memcpy(&y, b, 8);
+      if (x != y) return false;
+    }
+    for (; n > 0; ++a, ++b, --n)
+      if (*a != *b) return false;
+    return true;
+  }
+
   // Up to this many names a linear scan beats hashing the name.
   static constexpr std::size_t kLinearNames = 8;
 
