@@ -159,13 +159,27 @@ void EvalEngine::add_window(const VectorRow* rows, std::size_t count, std::size_
   const std::size_t lanes = lanes_.size();
   const std::size_t runs = runs_per_lane(count);
   if (runs == 1) {
-    // Each lane's window is one task: accumulated and merged at once, nothing kept.
+    // Each task is the window of a group of lanes: accumulated and merged at once (the group's
+    // folds side by side: LaneAccumulator::merge_group), nothing kept. Groups no larger than
+    // needed to give every thread one.
     merge_pending();
-    pool_.run(lanes, [&](std::size_t l) {
-      thread_local LanePartial scratch;
-      lanes_[l]->accumulate(view, 0, count, scratch, raw(l), skipped(l));
-      lanes_[l]->merge(scratch);
-      if (timing_[l]) LaneAccumulator::merge_timing(scratch, *timing_[l]);
+    const std::size_t threads = static_cast<std::size_t>(pool_.threads());
+    const std::size_t group =
+        std::min(LaneAccumulator::kMergeGroup, std::max<std::size_t>(1, lanes / threads));
+    pool_.run(ceil_div(lanes, group), [&](std::size_t task) {
+      thread_local LanePartial scratch[LaneAccumulator::kMergeGroup];
+      LaneAccumulator* members[LaneAccumulator::kMergeGroup];
+      const LanePartial* parts[LaneAccumulator::kMergeGroup];
+      const std::size_t first = task * group, size = std::min(group, lanes - first);
+      for (std::size_t j = 0; j < size; ++j) {
+        const std::size_t l = first + j;
+        lanes_[l]->accumulate(view, 0, count, scratch[j], raw(l), skipped(l));
+        members[j] = lanes_[l];
+        parts[j] = &scratch[j];
+      }
+      LaneAccumulator::merge_group(members, parts, size);
+      for (std::size_t j = 0; j < size; ++j)
+        if (timing_[first + j]) LaneAccumulator::merge_timing(scratch[j], *timing_[first + j]);
     });
     return;
   }

@@ -254,6 +254,12 @@ class LaneAccumulator {
   void accumulate(const RowsView& rows, std::size_t a, std::size_t b, LanePartial& p,
                   std::int64_t* raw, std::uint8_t* skipped) const;
   void merge(const LanePartial& p);
+  // merge() of parts[j] into lanes[j] for j < count, the sequential folds of kMergeGroup lanes
+  // side by side: each is a chain of dependent operations, which alone leaves the core mostly
+  // idle.
+  static constexpr std::size_t kMergeGroup = 4;
+  static void merge_group(LaneAccumulator* const* lanes, const LanePartial* const* parts,
+                          std::size_t count);
   // The partial's skip pattern through a lane's timing recurrences: a sequential fold of its own,
   // so the engine runs it beside merge().
   static void merge_timing(const LanePartial& p, TimingEngine& timing);
@@ -263,6 +269,9 @@ class LaneAccumulator {
   // The facts of (slot, code), from the memo for narrow inputs (filled on first use; safe from
   // any thread), computed otherwise.
   CodeFacts facts(std::size_t slot, std::int64_t t_raw) const;
+  void merge_counts(const LanePartial& p);  // merge() but for the sequential folds
+  template <std::size_t kLanes>
+  static void fold_lanes(LaneAccumulator* const* lanes, const LanePartial* const* parts);
   template <bool kMemo>
   void accumulate_rows(const RowsView& rows, std::size_t a, std::size_t b, LanePartial& p,
                        std::int64_t* raw, std::uint8_t* skipped) const;

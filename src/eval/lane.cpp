@@ -427,7 +427,7 @@ void LaneAccumulator::accumulate_rows(const RowsView& rows, std::size_t a, std::
   p.datapath = datapath;
 }
 
-void LaneAccumulator::merge(const LanePartial& p) {
+void LaneAccumulator::merge_counts(const LanePartial& p) {
   stats_.vectors += p.vectors;
   stats_.skipped += p.skipped;
   stats_.always_skipped_vectors += p.always_skipped;
@@ -440,17 +440,62 @@ void LaneAccumulator::merge(const LanePartial& p) {
   merge_part(stats_.datapath, p.datapath);
   merge_part(stats_.skip, p.skip);
   for (const auto& [slot, c] : p.folded) memo_->tables[slot].set_folded(c);
-  // The sequential folds, in stream order: floating-point sums and the digest do not reassociate.
-  // Rows in no scalar statistic add +0, which leaves the sum as it is.
-  double sum = stats_.total.sum_sq;
-  std::uint64_t digest = digest_;
-  const std::size_t n = p.word.size();
-  for (std::size_t k = 0; k < n; ++k) {
-    sum += p.square[k];
-    digest = fold_digest(digest, p.word[k]);
+}
+
+// The sequential folds, in stream order: floating-point sums and the digest do not reassociate.
+// Rows in no scalar statistic add +0, which leaves the sum as it is. kLanes lanes at once, each
+// lane's folds in its own order; in locals, as the stores would otherwise reload every member.
+template <std::size_t kLanes>
+void LaneAccumulator::fold_lanes(LaneAccumulator* const* lanes, const LanePartial* const* parts) {
+  double sum[kLanes];
+  std::uint64_t digest[kLanes];
+  const double* square[kLanes];
+  const std::uint64_t* word[kLanes];
+  for (std::size_t j = 0; j < kLanes; ++j) {
+    sum[j] = lanes[j]->stats_.total.sum_sq;
+    digest[j] = lanes[j]->digest_;
+    square[j] = parts[j]->square.data();
+    word[j] = parts[j]->word.data();
   }
-  stats_.total.sum_sq = sum;
-  digest_ = digest;
+  const std::size_t n = parts[0]->word.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    for (std::size_t j = 0; j < kLanes; ++j) {
+      sum[j] += square[j][k];
+      digest[j] = fold_digest(digest[j], word[j][k]);
+    }
+  }
+  for (std::size_t j = 0; j < kLanes; ++j) {
+    lanes[j]->stats_.total.sum_sq = sum[j];
+    lanes[j]->digest_ = digest[j];
+  }
+}
+
+void LaneAccumulator::merge(const LanePartial& p) {
+  LaneAccumulator* const self = this;
+  const LanePartial* const part = &p;
+  merge_group(&self, &part, 1);
+}
+
+void LaneAccumulator::merge_group(LaneAccumulator* const* lanes, const LanePartial* const* parts,
+                                  std::size_t count) {
+  static_assert(kMergeGroup == 4, "the switch below folds up to 4 lanes at once");
+  for (std::size_t j = 0; j < count; ++j) lanes[j]->merge_counts(*parts[j]);
+  for (std::size_t at = 0; at < count; at += kMergeGroup) {
+    switch (std::min(kMergeGroup, count - at)) {
+      case 1:
+        fold_lanes<1>(lanes + at, parts + at);
+        break;
+      case 2:
+        fold_lanes<2>(lanes + at, parts + at);
+        break;
+      case 3:
+        fold_lanes<3>(lanes + at, parts + at);
+        break;
+      default:
+        fold_lanes<4>(lanes + at, parts + at);
+        break;
+    }
+  }
 }
 
 void LaneAccumulator::merge_timing(const LanePartial& p, TimingEngine& timing) {
