@@ -60,9 +60,7 @@ void EvalEngine::add(const VectorRow* rows, std::size_t count, BatchResults* out
 }
 
 void EvalEngine::merge(const std::vector<LanePartial>& runs, std::size_t l) {
-  for (const LanePartial& p : runs) lanes_[l]->merge(p);
-  if (timing_[l])
-    for (const LanePartial& p : runs) LaneAccumulator::merge_timing(p, *timing_[l]);
+  for (const LanePartial& p : runs) lanes_[l]->merge(p, timing_[l]);
 }
 
 void EvalEngine::merge_pending() {
@@ -170,34 +168,29 @@ void EvalEngine::add_window(const VectorRow* rows, std::size_t count, std::size_
       thread_local LanePartial scratch[LaneAccumulator::kMergeGroup];
       LaneAccumulator* members[LaneAccumulator::kMergeGroup];
       const LanePartial* parts[LaneAccumulator::kMergeGroup];
+      TimingEngine* timing[LaneAccumulator::kMergeGroup];
       const std::size_t first = task * group, size = std::min(group, lanes - first);
       for (std::size_t j = 0; j < size; ++j) {
         const std::size_t l = first + j;
         lanes_[l]->accumulate(view, 0, count, scratch[j], raw(l), skipped(l));
         members[j] = lanes_[l];
         parts[j] = &scratch[j];
+        timing[j] = timing_[l];
       }
-      LaneAccumulator::merge_group(members, parts, size);
-      for (std::size_t j = 0; j < size; ++j)
-        if (timing_[first + j]) LaneAccumulator::merge_timing(scratch[j], *timing_[first + j]);
+      LaneAccumulator::merge_group(members, parts, timing, size);
     });
     return;
   }
-  // Runs on every thread; the last window's merges (tasks 0 .. merges - 1, handed out first: a
-  // lane's statistics, then its timing, two sequential folds on two threads) go alongside them.
+  // Runs on every thread; the last window's merges (tasks 0 .. merges - 1, one per lane, handed
+  // out first) go alongside them.
   auto& now = partials_[current_];
   const auto& last = partials_[1 - current_];
   for (auto& p : now) p.resize(runs);
   const std::size_t per_run = ceil_div(count, runs);
-  const std::size_t merges = pending_ ? 2 * lanes : 0;
+  const std::size_t merges = pending_ ? lanes : 0;
   pool_.run(merges + lanes * runs, [&](std::size_t task) {
     if (task < merges) {
-      const std::size_t l = task / 2;
-      if (task % 2 == 0) {
-        for (const LanePartial& p : last[l]) lanes_[l]->merge(p);
-      } else if (timing_[l]) {
-        for (const LanePartial& p : last[l]) LaneAccumulator::merge_timing(p, *timing_[l]);
-      }
+      merge(last[task], task);
       return;
     }
     const std::size_t l = (task - merges) / runs, r = (task - merges) % runs;

@@ -253,16 +253,15 @@ class LaneAccumulator {
   bool computes_at_or_below(std::size_t slot, double t) const;
   void accumulate(const RowsView& rows, std::size_t a, std::size_t b, LanePartial& p,
                   std::int64_t* raw, std::uint8_t* skipped) const;
-  void merge(const LanePartial& p);
-  // merge() of parts[j] into lanes[j] for j < count, the sequential folds of kMergeGroup lanes
-  // side by side: each is a chain of dependent operations, which alone leaves the core mostly
-  // idle.
+  // With `timing` (may be null), the partial's skip pattern through the lane's timing
+  // recurrences too, in the same loop as the lane's sequential folds: each is a chain of dependent
+  // operations, which alone leaves the core mostly idle.
+  void merge(const LanePartial& p, TimingEngine* timing = nullptr);
+  // merge() of parts[j] into lanes[j] (timing[j]: may be null) for j < count, the sequential
+  // folds of up to kMergeGroup lanes side by side.
   static constexpr std::size_t kMergeGroup = 4;
   static void merge_group(LaneAccumulator* const* lanes, const LanePartial* const* parts,
-                          std::size_t count);
-  // The partial's skip pattern through a lane's timing recurrences: a sequential fold of its own,
-  // so the engine runs it beside merge().
-  static void merge_timing(const LanePartial& p, TimingEngine& timing);
+                          TimingEngine* const* timing, std::size_t count);
 
  private:
   struct Memo;

@@ -95,6 +95,13 @@ inline std::uint64_t digest_word(std::int64_t out_raw, bool skipped) {
   return static_cast<std::uint64_t>(out_raw) ^ (std::uint64_t{skipped} << 63);
 }
 
+// The sequential folds, in stream order: floating-point sums and the digest do not reassociate.
+// Rows in no scalar statistic add +0, which leaves the sum as it is.
+inline void fold_row(double& sum, std::uint64_t& digest, double square, std::uint64_t word) {
+  sum += square;
+  digest = fold_digest(digest, word);
+}
+
 }  // namespace
 
 // Per slot, the codes its comparator keeps ([first, first + size)); an entry is filled once,
@@ -442,9 +449,8 @@ void LaneAccumulator::merge_counts(const LanePartial& p) {
   for (const auto& [slot, c] : p.folded) memo_->tables[slot].set_folded(c);
 }
 
-// The sequential folds, in stream order: floating-point sums and the digest do not reassociate.
-// Rows in no scalar statistic add +0, which leaves the sum as it is. kLanes lanes at once, each
-// lane's folds in its own order; in locals, as the stores would otherwise reload every member.
+// kLanes lanes' folds at once, each lane's in its own order; in locals, as the stores would
+// otherwise reload every member.
 template <std::size_t kLanes>
 void LaneAccumulator::fold_lanes(LaneAccumulator* const* lanes, const LanePartial* const* parts) {
   double sum[kLanes];
@@ -458,33 +464,41 @@ void LaneAccumulator::fold_lanes(LaneAccumulator* const* lanes, const LanePartia
     word[j] = parts[j]->word.data();
   }
   const std::size_t n = parts[0]->word.size();
-  for (std::size_t k = 0; k < n; ++k) {
-    for (std::size_t j = 0; j < kLanes; ++j) {
-      sum[j] += square[j][k];
-      digest[j] = fold_digest(digest[j], word[j][k]);
-    }
-  }
+  for (std::size_t k = 0; k < n; ++k)
+    for (std::size_t j = 0; j < kLanes; ++j) fold_row(sum[j], digest[j], square[j][k], word[j][k]);
   for (std::size_t j = 0; j < kLanes; ++j) {
     lanes[j]->stats_.total.sum_sq = sum[j];
     lanes[j]->digest_ = digest[j];
   }
 }
 
-void LaneAccumulator::merge(const LanePartial& p) {
-  LaneAccumulator* const self = this;
-  const LanePartial* const part = &p;
-  merge_group(&self, &part, 1);
+void LaneAccumulator::merge(const LanePartial& p, TimingEngine* timing) {
+  merge_counts(p);
+  double sum = stats_.total.sum_sq;
+  std::uint64_t digest = digest_;
+  const double* const square = p.square.data();
+  const std::uint64_t* const word = p.word.data();
+  const auto fold = [&](std::size_t k) { fold_row(sum, digest, square[k], word[k]); };
+  if (timing) {
+    timing->next_words(word, p.word.size(), fold);
+  } else {
+    for (std::size_t k = 0; k < p.word.size(); ++k) fold(k);
+  }
+  stats_.total.sum_sq = sum;
+  digest_ = digest;
 }
 
 void LaneAccumulator::merge_group(LaneAccumulator* const* lanes, const LanePartial* const* parts,
-                                  std::size_t count) {
+                                  TimingEngine* const* timing, std::size_t count) {
   static_assert(kMergeGroup == 4, "the switch below folds up to 4 lanes at once");
-  for (std::size_t j = 0; j < count; ++j) lanes[j]->merge_counts(*parts[j]);
   for (std::size_t at = 0; at < count; at += kMergeGroup) {
-    switch (std::min(kMergeGroup, count - at)) {
-      case 1:
-        fold_lanes<1>(lanes + at, parts + at);
-        break;
+    const std::size_t size = std::min(kMergeGroup, count - at);
+    if (size == 1) {
+      lanes[at]->merge(*parts[at], timing[at]);
+      continue;
+    }
+    for (std::size_t j = at; j < at + size; ++j) lanes[j]->merge_counts(*parts[j]);
+    switch (size) {
       case 2:
         fold_lanes<2>(lanes + at, parts + at);
         break;
@@ -495,11 +509,9 @@ void LaneAccumulator::merge_group(LaneAccumulator* const* lanes, const LaneParti
         fold_lanes<4>(lanes + at, parts + at);
         break;
     }
+    for (std::size_t j = at; j < at + size; ++j)
+      if (timing[j]) timing[j]->next_words(parts[j]->word.data(), parts[j]->word.size());
   }
-}
-
-void LaneAccumulator::merge_timing(const LanePartial& p, TimingEngine& timing) {
-  timing.next_words(p.word.data(), p.word.size());
 }
 
 }  // namespace glint

@@ -100,10 +100,20 @@ class TimingEngine {
   // engine's digest words), with the state in locals: next() keeps every statistic in memory,
   // which cost ~65 instructions a request.
   void next_words(const std::uint64_t* words, std::size_t count) {
+    next_words(words, count, [](std::size_t) {});
+  }
+  // The same, calling also(k) for each request k in the loop: a caller's own sequential fold over
+  // the same requests (the evaluation engine's digest) then overlaps the recurrences' chain of
+  // dependent operations instead of following it.
+  template <class Also>
+  void next_words(const std::uint64_t* words, std::size_t count, const Also& also) {
     State st = state_;
     std::uint64_t* const ring = retire_ring_.data();
     const bool always_ready = sink_.probability >= 1.0;
-    for (std::size_t k = 0; k < count; ++k) step(st, ring, always_ready, (words[k] >> 63) != 0);
+    for (std::size_t k = 0; k < count; ++k) {
+      step(st, ring, always_ready, (words[k] >> 63) != 0);
+      also(k);
+    }
     state_ = st;
   }
   TimingStats stats() const {
