@@ -329,8 +329,7 @@ void LaneAccumulator::accumulate_rows(const RowsView& rows, std::size_t a, std::
   // computed. The maxima of the skipped rows alone are at most those of every row so far, so this
   // pass computes at least the references one pass in stream order would.
   constexpr double kSumFloor = 0x1.0p-13;  // an error whose square is 2^-26
-  for (std::size_t x = 0; x < skipped_count; ++x) {
-    const std::size_t k = skipped_rows[x];
+  const auto add_skipped = [&](std::size_t k) {
     const std::size_t i = a + k;
     const std::size_t s = rows.slot[i];
     const double t = rows.t[i];
@@ -355,7 +354,35 @@ void LaneAccumulator::accumulate_rows(const RowsView& rows, std::size_t a, std::
       // The result's display code is 0; the reference's is not when it rounds up from 0.5.
       mismatch += min1(ref) * display >= 0.5;
     }
+  };
+  // Rows one at a time until the maxima that a skipped row with reference 0 could change are
+  // above 0 and those that a deferred one could change are settled (they only grow; it takes a
+  // few dozen rows on a typical stream). From there such a row changes nothing but its square
+  // (0) and the count of always-skipped rows: the others, listed, go through add_skipped as
+  // before, so that most of a mostly skipped stream costs a few operations a row.
+  constexpr std::size_t kSettledCheck = 64;  // rows between two looks at the maxima
+  std::size_t x = 0;
+  for (; x < skipped_count; ++x) {
+    if (x % kSettledCheck == 0 && ((total1.value >= kSumFloor) & (skip.value > kDeferredBound)))
+      break;
+    add_skipped(skipped_rows[x]);
   }
+  // A deferred row is settled as add_skipped judges it when the weighted maximum is above its
+  // slot's bound; judged here with that maximum as it is now, which can only grow.
+  const double weighted_now = weighted1.value;
+  std::size_t live = 0;
+  for (std::size_t y = x; y < skipped_count; ++y) {
+    const std::size_t k = skipped_rows[y];
+    const std::size_t i = a + k;
+    const std::size_t s = rows.slot[i];
+    const double ref = rows.reference[i];
+    const bool keep = (ref > 0.0) | ((ref < 0.0) & !(weighted_now > kDeferredBound * c_y[s]));
+    square[k] = 0;
+    always_rows += (state[s] == 1) & !keep;
+    skipped_rows[x + live] = static_cast<std::uint32_t>(k);
+    live += keep;
+  }
+  for (std::size_t y = x; y < x + live; ++y) add_skipped(skipped_rows[y]);
   const auto fold_parts = [&](const CodeFacts& f, double t) {
     max_at(approximation, std::fabs(f.approximation), t);
     max_at(parameter, std::fabs(f.parameter), t);
