@@ -7,11 +7,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <regex>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -93,6 +95,42 @@ TEST_F(SweepCli, JobsGiveTheSameBytes) {
   EXPECT_EQ(read_text(file("one.json")), read_text(file("three.json")));
   EXPECT_EQ(read_text(file("one.csv")), read_text(file("three.csv")));
   EXPECT_EQ(one.out, three.out);
+}
+
+// The printed fronts list a configuration tied in both objectives with the one above it only as
+// a count; with the counts, they account for every configuration the report flags.
+TEST_F(SweepCli, PrintedFrontsCountTiedConfigurations) {
+  const std::string args =
+      "sweep " + quote(kTraces + "/phong_basic.vec") + " --grid 'pow:buffer=1..40'";
+  const CliRun text = glint(args);
+  ASSERT_EQ(text.status, 0) << text.err;
+  const json report = glint_json(args + " --json");
+  std::size_t tied_lines = 0;
+  for (const char* name : {"area", "throughput", "area_latency"}) {
+    SCOPED_TRACE(name);
+    std::size_t flagged = 0;
+    for (const json& r : report.at("results")) flagged += r.at("pareto").at(name).get<bool>();
+    const std::string head = std::string("Pareto front, error vs ") + name + " (";
+    const auto at = text.out.find(head);
+    ASSERT_NE(at, std::string::npos) << text.out;
+    std::istringstream section(text.out.substr(at));
+    std::string line;
+    std::getline(section, line);  // the title
+    std::getline(section, line);  // the column names
+    std::size_t listed = 0, counted = 0;
+    while (std::getline(section, line) && line.rfind("Pareto", 0) != 0) {
+      std::size_t more = 0;
+      if (std::sscanf(line.c_str(), " and %zu more tied", &more) == 1) {
+        counted += more;
+        ++tied_lines;
+      } else {
+        ++listed;
+      }
+    }
+    EXPECT_EQ(listed + counted, flagged) << text.out;
+  }
+  // pow's buffer changes timing only: past full throughput every size ties there.
+  EXPECT_GT(tied_lines, 0u) << text.out;
 }
 
 // Shards merged equal the unsharded run, byte for byte (JSON and CSV), whatever order the shard

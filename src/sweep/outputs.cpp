@@ -115,12 +115,27 @@ std::string format_sweep_summary(const nlohmann::json& report) {
                        const double x = a->at(o.key).get<double>(), y = b->at(o.key).get<double>();
                        return o.minimise ? x < y : x > y;
                      });
-    for (const nlohmann::json* r : front) {
+    // Configurations tied with the one above in both objectives (a grid over a timing-only key
+    // such as buffer can tie by the thousand) are counted on one line, not listed: the report and
+    // the CSV flag every one of them.
+    for (std::size_t i = 0; i < front.size();) {
+      const nlohmann::json& r = *front[i];
       out += fmt::format("  {:>5} {:>11} {:>10} {:>8} {:>12} {:>4}  {}\n",
-                         r->at("index").get<std::size_t>(), cell(r->at("error"), "{:.4g}"),
-                         cell(r->at("area_ge"), "{:.0f}"), cell(r->at("throughput"), "{:.4f}"),
-                         cell(r->at("area_latency"), "{:.0f}"), r->at("latency").get<int>(),
-                         r->at("spec").get<std::string>());
+                         r.at("index").get<std::size_t>(), cell(r.at("error"), "{:.4g}"),
+                         cell(r.at("area_ge"), "{:.0f}"), cell(r.at("throughput"), "{:.4f}"),
+                         cell(r.at("area_latency"), "{:.0f}"), r.at("latency").get<int>(),
+                         r.at("spec").get<std::string>());
+      std::size_t j = i + 1;
+      while (j < front.size() && front[j]->at("error") == r.at("error") &&
+             front[j]->at(o.key) == r.at(o.key))
+        ++j;
+      if (j - i > 1)
+        out += fmt::format("        and {} more tied with it in error and {} ({}{})\n", j - i - 1,
+                           o.name, front[i + 1]->at("spec").get<std::string>(),
+                           j - i > 2
+                               ? fmt::format(" ... {}", front[j - 1]->at("spec").get<std::string>())
+                               : std::string());
+      i = j;
     }
   }
   return out;
