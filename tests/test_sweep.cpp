@@ -89,6 +89,10 @@ TEST(SweepGrid, BadGridsNameTheGridAndTheKey) {
       {"horner:degree=2|2", {"key 'degree'", "listed twice"}},
       {"hast:buffer=1..65536|7", {"key 'buffer'", "'7' listed twice"}},
       {"horner:degree=2..82222", {"key 'degree'", "'82222'", "1..10"}},
+      {"hast:d=auto,match=none|width",
+       {"key 'd' = 'auto' is refused alone and with the grid's other values (2 combinations "
+        "tried)",
+        "needs match=minimax"}},
       {"hast:buffer=1..1000,d=1..16,guard=0..7",
        {"128000 configurations exceed the limit of 100000"}},
       {"horner:degree=", {"key 'degree'", "empty value"}},

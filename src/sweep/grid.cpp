@@ -91,11 +91,14 @@ void check_value(const Grid& g, std::size_t axis, const std::string& value) {
   constexpr std::size_t kMaxCombinations = 256;
   std::string why;
   if (builds(UnitSpec{g.unit, {{g.axes[axis].key, value}}}, &why)) return;
+  if (g.axes.size() == 1) throw std::invalid_argument(fmt::format("--grid '{}': {}", g.text, why));
   std::vector<std::size_t> at(g.axes.size(), 0);
-  for (std::size_t tried = 0; tried < kMaxCombinations; ++tried) {
+  std::size_t tried = 0;
+  while (tried < kMaxCombinations) {
     UnitSpec spec{g.unit, {}};
     for (std::size_t a = 0; a < g.axes.size(); ++a)
       spec.keys.emplace_back(g.axes[a].key, a == axis ? value : g.axes[a].values[at[a]]);
+    ++tried;
     if (builds(spec)) return;
     std::size_t a = g.axes.size();
     while (a-- > 0) {
@@ -105,7 +108,12 @@ void check_value(const Grid& g, std::size_t axis, const std::string& value) {
     }
     if (a == static_cast<std::size_t>(-1)) break;  // every combination tried
   }
-  throw std::invalid_argument(fmt::format("--grid '{}': {}", g.text, why));
+  // The reason alone may name another key's default or auto value: say which of the grid's
+  // values it is, and that the grid's other values did not help.
+  throw std::invalid_argument(
+      fmt::format("--grid '{}': key '{}' = '{}' is refused alone and with the grid's other "
+                  "values ({} combination{} tried); alone: {}",
+                  g.text, g.axes[axis].key, value, tried, tried == 1 ? "" : "s", why));
 }
 
 }  // namespace
