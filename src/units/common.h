@@ -46,9 +46,6 @@ inline double pow2(int e) {
   return d;
 }
 
-// Front end: t = r.v or n.h arrives as a float in [-1, 1 + 1e-3]. The unit computes max(0, t)^n, so
-// negative t is clamped to 0 (Källberg eq.1), and t > 1 (normalisation noise of unit vectors) to
-// 1. The clamped value is rounded to nearest-even into the input format.
 // t <= 0 ? 0 : (t >= 1 ? 1 : t), NaN kept, except that -0 stays -0 (which every caller rounds
 // to the code of 0). With SSE2 it is maxsd and minsd: GCC made the plain form, and std::max and
 // std::min too, a branch on t <= 0, which a stream of t either side of 0 takes at random.
@@ -62,6 +59,9 @@ inline double clamp01(double t) {
 #endif
 }
 
+// Front end: t = r.v or n.h arrives as a float in [-1, 1 + 1e-3]. The unit computes max(0, t)^n, so
+// negative t is clamped to 0 (Källberg eq.1), and t > 1 (normalisation noise of unit vectors) to
+// 1. The clamped value is rounded to nearest-even into the input format.
 class InputQuantizer {
  public:
   explicit InputQuantizer(const QFormat& in)
@@ -79,8 +79,7 @@ class InputQuantizer {
       const double x = c * scale_;
       return static_cast<std::int64_t>((x + 0x1.0p52) - 0x1.0p52);
     }
-    const double c = t <= 0.0 ? 0.0 : (t >= 1.0 ? 1.0 : t);
-    return Fixed::from_double(c, in_, Quant::kRndConv, Overflow::kSat).raw();
+    return Fixed::from_double(clamp01(t), in_, Quant::kRndConv, Overflow::kSat).raw();
   }
 
  private:
