@@ -329,6 +329,14 @@ void LaneAccumulator::accumulate_rows(const RowsView& rows, std::size_t a, std::
   // computed. The maxima of the skipped rows alone are at most those of every row so far, so this
   // pass computes at least the references one pass in stream order would.
   constexpr double kSumFloor = 0x1.0p-13;  // an error whose square is 2^-26
+  // The two halves of "settled", shared by add_skipped and the filter below it, which relies on
+  // judging rows as add_skipped would.
+  const auto scalars_settled = [&] {
+    return (total1.value >= kSumFloor) & (skip.value > kDeferredBound);
+  };
+  const auto weighted_settled = [&](double weighted, std::size_t s) {
+    return weighted > kDeferredBound * c_y[s];
+  };
   const auto add_skipped = [&](std::size_t k) {
     const std::size_t i = a + k;
     const std::size_t s = rows.slot[i];
@@ -338,8 +346,7 @@ void LaneAccumulator::accumulate_rows(const RowsView& rows, std::size_t a, std::
     // A deferred reference that can change nothing goes through the statistics below as 0,
     // which changes nothing either (every maximum it enters is larger, its square is 0, its
     // display code 0): no branch on which rows were deferred, which a stream takes at random.
-    const bool settled = (always | ((total1.value >= kSumFloor) & (skip.value > kDeferredBound))) &
-                         (weighted1.value > kDeferredBound * c_y[s]);
+    const bool settled = (always | scalars_settled()) & weighted_settled(weighted1.value, s);
     if ((ref < 0.0) & !settled) ref = reference_value(slots_, s, t);
     ref = select(ref < 0.0, 0.0, ref);  // kDeferredReference is negative, a lobe never
     // The result is 0: the error is -ref, of magnitude ref.
@@ -363,8 +370,7 @@ void LaneAccumulator::accumulate_rows(const RowsView& rows, std::size_t a, std::
   constexpr std::size_t kSettledCheck = 64;  // rows between two looks at the maxima
   std::size_t x = 0;
   for (; x < skipped_count; ++x) {
-    if (x % kSettledCheck == 0 && ((total1.value >= kSumFloor) & (skip.value > kDeferredBound)))
-      break;
+    if (x % kSettledCheck == 0 && scalars_settled()) break;
     add_skipped(skipped_rows[x]);
   }
   // A deferred row is settled as add_skipped judges it when the weighted maximum is above its
@@ -376,7 +382,7 @@ void LaneAccumulator::accumulate_rows(const RowsView& rows, std::size_t a, std::
     const std::size_t i = a + k;
     const std::size_t s = rows.slot[i];
     const double ref = rows.reference[i];
-    const bool keep = (ref > 0.0) | ((ref < 0.0) & !(weighted_now > kDeferredBound * c_y[s]));
+    const bool keep = (ref > 0.0) | ((ref < 0.0) & !weighted_settled(weighted_now, s));
     square[k] = 0;
     always_rows += (state[s] == 1) & !keep;
     skipped_rows[x + live] = static_cast<std::uint32_t>(k);
