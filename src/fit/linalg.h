@@ -23,7 +23,7 @@ struct Matrix {
 // Householder QR factorisation A = QR of a rows >= cols matrix, reflectors kept in place.
 class QR {
  public:
-  explicit QR(Matrix a);
+  explicit QR(const Matrix& a);
 
   // False when some |R_jj| <= 1e-13 * max |R_jj| (numerically rank deficient).
   bool full_rank() const { return full_rank_; }
@@ -39,7 +39,15 @@ class QR {
  private:
   void apply_qt(std::vector<double>& b) const;  // b <- Q' b
 
-  Matrix qr_;                 // R on and above the diagonal, reflector tails below it
+  // Column-major copy of A: every loop of the factorisation and of Q'b runs down a column, so
+  // each is a contiguous, vectorisable sweep (Matrix is row-major for the callers that fill rows).
+  double at(std::size_t r, std::size_t c) const { return qr_[c * rows_ + r]; }
+  const double* column(std::size_t c) const { return &qr_[c * rows_]; }
+  double* column(std::size_t c) { return &qr_[c * rows_]; }
+
+  std::size_t rows_ = 0;
+  std::size_t cols_ = 0;
+  std::vector<double> qr_;    // R on and above the diagonal, reflector tails below it
   std::vector<double> beta_;  // reflector scale: H_j = I - beta_j v_j v_j', v_j(j) = 1
   std::vector<double> diag_;  // R_jj
   bool full_rank_ = true;
