@@ -4,6 +4,8 @@
 // work. In io/, the lowest layer that works on threads.
 #pragma once
 
+#include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstddef>
 #include <cstdint>
@@ -25,6 +27,9 @@ class ThreadPool {
 
   int threads() const { return static_cast<int>(workers_.size()) + 1; }
 
+  // How long a waiting thread spins before it sleeps.
+  static constexpr std::chrono::microseconds kSpin{50};
+
   // Calls task(i) for i in [0, count), each exactly once, on the pool's threads and the caller's;
   // returns when all have returned. Tasks are handed out in index order. The first exception a
   // task throws is rethrown here once every task has stopped (the rest are not started).
@@ -41,6 +46,11 @@ class ThreadPool {
   std::size_t count_ = 0, next_ = 0, running_ = 0;
   std::uint64_t generation_ = 0;
   bool stop_ = false;
+  // Mirrors of generation_ and of "every task of the run has returned", written under the mutex
+  // and read without it by the spinning waits.
+  std::atomic<std::uint64_t> published_{0};
+  std::atomic<bool> finished_{true};
+  std::chrono::nanoseconds done_spin_ = kSpin;  // the caller's spin budget (spin_until)
   std::exception_ptr error_;
 };
 
