@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -83,14 +84,30 @@ std::string engine_run(const SlotMap& slots, const std::vector<VectorRow>& rows,
     timing.push_back(&lanes.timing[u]);
   }
   EvalEngine engine(slots, acc, timing, options);
-  std::size_t at = 0, size = 1;
+  std::size_t at = 0, size = 1, call = 0;
   BatchResults out;
+  // Side work in every call (0 to 3 steps): each step taken once, on one thread at a time, all of
+  // them before add() returns; it changes nothing in the lanes.
+  std::atomic<int> inside{0};
+  int steps = 0, overlapped = 0;
   while (at < rows.size()) {
     const std::size_t n = std::min(size, rows.size() - at);
-    engine.add(rows.data() + at, n, size % 2 ? &out : nullptr);
+    const int wanted = static_cast<int>(call++ % 4);
+    int taken = 0;
+    const EvalEngine::SideWork side = [&] {
+      overlapped += inside.fetch_add(1) != 0;
+      ++taken;
+      inside.fetch_sub(1);
+      return taken < wanted;
+    };
+    engine.add(rows.data() + at, n, size % 2 ? &out : nullptr, wanted > 0 ? side : nullptr);
+    EXPECT_EQ(taken, wanted) << "call " << call;
+    steps += taken;
     at += n;
     size = size * 5 + 3;
   }
+  EXPECT_EQ(overlapped, 0);
+  EXPECT_GT(steps, 0);
   return lanes.report();
 }
 
@@ -101,8 +118,11 @@ void expect_engine_equals_rows(const VectorHeader& header, const std::vector<Vec
     int threads;
     std::size_t window, run;  // run 0: the engine's choice
   };
-  for (const Case& c : {Case{1, 65536, 0}, Case{2, 1000, 0}, Case{3, 4097, 333}, Case{7, 777, 1},
-                        Case{2, 50000, 4099}, Case{7, 65536, 0}}) {
+  // 2 and 3 threads with runs the engine's choice: the 8 lanes take whole windows, spans of them
+  // in any order that keeps each lane's (EvalEngine::add_span).
+  for (const Case& c :
+       {Case{1, 65536, 0}, Case{2, 1000, 0}, Case{3, 4097, 333}, Case{7, 777, 1},
+        Case{2, 50000, 4099}, Case{7, 65536, 0}, Case{3, 4097, 0}, Case{2, 65536, 0}}) {
     EngineOptions options;
     options.threads = c.threads;
     options.window_rows = c.window;
@@ -173,6 +193,32 @@ TEST(ThreadPool, RunsEveryTaskOnceAndRethrows) {
   for (const int h : hits) EXPECT_EQ(h, 201);
 }
 
+// Side work that throws: add() rethrows it once the lanes have stopped, with the lanes' windows
+// taken by whole windows on two threads.
+TEST(Engine, SideWorkErrorReachesTheCaller) {
+  VectorHeader header;
+  header.eps = 1e-3;
+  header.materials.push_back({"m", {1, 1, 1}, 8, Lobe::kPhong, 0});
+  const SlotMap slots = make_slots(header);
+  Lanes lanes(slots, engine_specs());
+  std::vector<LaneAccumulator*> acc;
+  for (auto& a : lanes.acc) acc.push_back(&a);
+  EngineOptions options;
+  options.threads = 2;
+  options.window_rows = 1000;
+  ASSERT_TRUE(EvalEngine::overlaps_side_work(acc.size(), options.threads));
+  EvalEngine engine(slots, acc, {}, options);
+  std::vector<VectorRow> rows(20000);
+  int steps = 0;
+  EXPECT_THROW(engine.add(rows.data(), rows.size(), nullptr,
+                          [&]() -> bool {
+                            if (++steps == 3) throw std::runtime_error("side step 3");
+                            return true;
+                          }),
+               std::runtime_error);
+  EXPECT_EQ(steps, 3);
+}
+
 // A sweep's shard may hold no configuration: the rows go through no lane.
 TEST(Engine, NoLanes) {
   VectorHeader header;
@@ -183,7 +229,9 @@ TEST(Engine, NoLanes) {
   options.threads = 2;
   EvalEngine engine(slots, {}, {}, options);
   std::vector<VectorRow> rows(10000);
-  engine.add(rows.data(), rows.size());
+  int steps = 0;
+  engine.add(rows.data(), rows.size(), nullptr, [&] { return ++steps < 2; });
+  EXPECT_EQ(steps, 2);  // side work still runs
 }
 
 }  // namespace

@@ -682,6 +682,19 @@ TEST(VectorRows, NextBlockAcrossEveryBufferBoundary) {
     ASSERT_EQ(by_line.size(), by_block.size());
     for (std::size_t i = 0; i < by_line.size(); ++i)
       ASSERT_EQ(by_block[i].line, by_line[i].line) << i;
+    // append_block: the same rows after those already held, counted once each.
+    std::istringstream again(text);
+    VectorReader appender(again, "blocks.vec");
+    std::vector<VectorRow> appended(1);
+    while (appender.append_block(appended, threads)) {
+    }
+    ASSERT_EQ(appended.size(), by_line.size() + 1);
+    EXPECT_EQ(appender.rows_read(), by_line.size());
+    EXPECT_EQ(appended[0].line, 0u);
+    appended.erase(appended.begin());
+    expect_same_rows(by_line, appended);
+    for (std::size_t i = 0; i < by_line.size(); ++i)
+      ASSERT_EQ(appended[i].line, by_line[i].line) << i;
   }
 }
 

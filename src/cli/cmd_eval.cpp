@@ -63,20 +63,39 @@ int run_eval(const EvalOptions& o) {
     VectorRow row;
     while (reader.next(row)) ev.add(row, write);
   } else {
-    // Blocks of rows, parsed on the threads, through the evaluation engine (eval/engine.h):
-    // memory stays flat.
-    std::vector<VectorRow> block, rows;
-    const auto flush = [&] {
-      ev.add_rows(rows.data(), rows.size(), threads);
-      rows.clear();
+    // Blocks of rows through the evaluation engine (eval/engine.h): memory stays flat.
+    std::vector<VectorRow> rows, next;
+    const auto shown = [&] {
       if (progress && reader.rows_read() >= 0x100000)
         std::fprintf(stderr, "\r%llu vectors", static_cast<unsigned long long>(reader.rows_read()));
     };
-    while (reader.next_block(block, threads)) {
-      rows.insert(rows.end(), block.begin(), block.end());
-      if (rows.size() >= kEvalBlockRows) flush();
+    if (ev.overlaps_side_work(threads)) {
+      // The next rows are parsed on one thread beside the lanes' work on these (the engine's side
+      // work), a block of input per step: no thread waits for the parse or for the last lane.
+      bool ended = false;
+      const auto read = [&](int parse_threads) {
+        ended = ended || !reader.append_block(next, parse_threads);
+        return !ended && next.size() < kEvalBlockRows;
+      };
+      while (read(threads)) {
+      }
+      while (!next.empty()) {
+        std::swap(rows, next);
+        next.clear();
+        ev.add_rows(rows.data(), rows.size(), threads, [&] { return read(1); });
+        shown();
+      }
+    } else {
+      // Blocks parsed on the threads, then evaluated on them.
+      while (reader.append_block(rows, threads)) {
+        if (rows.size() < kEvalBlockRows) continue;
+        ev.add_rows(rows.data(), rows.size(), threads);
+        rows.clear();
+        shown();
+      }
+      if (!rows.empty()) ev.add_rows(rows.data(), rows.size(), threads);
+      shown();
     }
-    if (!rows.empty()) flush();
   }
   if (progress && reader.rows_read() >= 0x100000) std::fprintf(stderr, "\n");
   outputs.commit();

@@ -8,12 +8,17 @@ void Evaluator::add_batch(const VectorRow* rows, std::size_t count, BatchResults
   run_engine(rows, count, &out, threads);
 }
 
-void Evaluator::add_rows(const VectorRow* rows, std::size_t count, int threads) {
-  run_engine(rows, count, nullptr, threads);
+void Evaluator::add_rows(const VectorRow* rows, std::size_t count, int threads,
+                         const std::function<bool()>& side) {
+  run_engine(rows, count, nullptr, threads, side);
 }
 
-void Evaluator::run_engine(const VectorRow* rows, std::size_t count, BatchResults* out,
-                           int threads) {
+bool Evaluator::overlaps_side_work(int threads) const {
+  return EvalEngine::overlaps_side_work(lanes_.size(), threads);
+}
+
+void Evaluator::run_engine(const VectorRow* rows, std::size_t count, BatchResults* out, int threads,
+                           const std::function<bool()>& side) {
   if (!engine_ || engine_threads_ != threads) {
     std::vector<LaneAccumulator*> lanes;
     for (auto& lane : lanes_) lanes.push_back(&lane);
@@ -23,7 +28,7 @@ void Evaluator::run_engine(const VectorRow* rows, std::size_t count, BatchResult
                                            options);
     engine_threads_ = threads;
   }
-  engine_->add(rows, count, out);
+  engine_->add(rows, count, out, side);
 }
 
 }  // namespace glint

@@ -1,15 +1,27 @@
 #include "eval/engine.h"
 
 #include <algorithm>
+#include <mutex>
 
 namespace glint {
 namespace {
 
 // Rows per run below which splitting a lane's window costs more than it brings.
 constexpr std::size_t kMinRunRows = 4096;
+// Rows of a span, prepared at once (~20 bytes a row) when lanes take whole windows on several
+// threads: enough windows that the threads rarely meet at its end.
+constexpr std::size_t kSpanRows = 262144;
 
 std::size_t ceil_div(std::size_t a, std::size_t b) {
   return (a + b - 1) / b;
+}
+
+// Lane l's results from the stream's row `offset` of an add(), when they are asked for.
+std::int64_t* raw_at(BatchResults* out, std::size_t l, std::size_t offset) {
+  return out ? out->raw.data() + l * out->rows + offset : nullptr;
+}
+std::uint8_t* skipped_at(BatchResults* out, std::size_t l, std::size_t offset) {
+  return out ? out->skipped.data() + l * out->rows + offset : nullptr;
 }
 
 }  // namespace
@@ -37,26 +49,47 @@ EvalEngine::EvalEngine(const SlotMap& slots, std::vector<LaneAccumulator*> lanes
 
 EvalEngine::~EvalEngine() = default;
 
+bool EvalEngine::overlaps_side_work(std::size_t lanes, int threads) {
+  return threads > 1 && lanes >= 2 * static_cast<std::size_t>(threads);
+}
+
+// Enough lanes keep every thread busy with whole windows (no partials kept across tasks).
+bool EvalEngine::whole_windows() const {
+  return options_.run_rows == 0 &&
+         (pool_.threads() == 1 || overlaps_side_work(lanes_.size(), pool_.threads()));
+}
+
 std::size_t EvalEngine::runs_per_lane(std::size_t count) const {
   if (options_.run_rows > 0) return ceil_div(count, options_.run_rows);
+  if (whole_windows()) return 1;
   const std::size_t threads = static_cast<std::size_t>(pool_.threads());
-  // Enough lanes keep every thread busy with whole windows (no partials kept across tasks).
-  if (threads == 1 || lanes_.size() >= 2 * threads) return 1;
   const std::size_t runs = ceil_div(4 * threads, lanes_.size());
   return std::max<std::size_t>(1, std::min(runs, count / kMinRunRows));
 }
 
-void EvalEngine::add(const VectorRow* rows, std::size_t count, BatchResults* out) {
-  if (lanes_.empty()) return;  // a shard without configurations
-  if (out) {
-    out->rows = count;
-    out->reference.resize(count);
-    out->raw.resize(lanes_.size() * count);
-    out->skipped.resize(lanes_.size() * count);
+void EvalEngine::add(const VectorRow* rows, std::size_t count, BatchResults* out,
+                     const SideWork& side) {
+  bool side_more = static_cast<bool>(side);
+  if (!lanes_.empty()) {  // else a shard without configurations
+    if (out) {
+      out->rows = count;
+      out->reference.resize(count);
+      out->raw.resize(lanes_.size() * count);
+      out->skipped.resize(lanes_.size() * count);
+    }
+    const std::size_t window = options_.window_rows;
+    if (whole_windows() && pool_.threads() > 1) {
+      const std::size_t span = std::max<std::size_t>(1, kSpanRows / window) * window;
+      for (std::size_t at = 0; at < count; at += span)
+        add_span(rows + at, std::min(span, count - at), at, out, side, side_more);
+    } else {
+      while (side_more) side_more = side();
+      for (std::size_t at = 0; at < count; at += window)
+        add_window(rows + at, std::min(window, count - at), at, out);
+      merge_pending();
+    }
   }
-  for (std::size_t at = 0; at < count; at += options_.window_rows)
-    add_window(rows + at, std::min(options_.window_rows, count - at), at, out);
-  merge_pending();
+  while (side_more) side_more = side();
 }
 
 void EvalEngine::merge(const std::vector<LanePartial>& runs, std::size_t l) {
@@ -70,13 +103,11 @@ void EvalEngine::merge_pending() {
   pending_ = false;
 }
 
-// Each row's slot and reference, on the threads; then the slots this window uses first, begun in
-// every lane in the order of their first rows.
+// Each row's slot and reference, on the threads, into t_, slot_ and reference_ from index `at`
+// (the caller sizes them); then the slots this window uses first, begun in every lane in the order
+// of their first rows.
 void EvalEngine::prepare(const VectorRow* rows, std::size_t count, std::size_t offset,
-                         BatchResults* out) {
-  t_.resize(count);
-  slot_.resize(count);
-  reference_.resize(count);
+                         BatchResults* out, std::size_t at) {
   const std::size_t runs = std::max<std::size_t>(
       1, std::min(ceil_div(count, kMinRunRows), 4 * static_cast<std::size_t>(pool_.threads())));
   const std::size_t per_run = ceil_div(count, runs);
@@ -84,9 +115,9 @@ void EvalEngine::prepare(const VectorRow* rows, std::size_t count, std::size_t o
   pool_.run(runs, [&](std::size_t r) {
     const std::size_t a = r * per_run, b = std::min(count, a + per_run);
     // Locals: the stores below would otherwise reload every member on every row.
-    double* const t_out = t_.data();
-    std::uint32_t* const slot_out = slot_.data();
-    double* const ref_out = reference_.data();
+    double* const t_out = t_.data() + at;
+    std::uint32_t* const slot_out = slot_.data() + at;
+    double* const ref_out = reference_.data() + at;
     const double* const deferred = deferred_t_.data();
     const double* const defer_cut = defer_t_.data();
     const std::uint8_t* const known = slot_known_.data();
@@ -129,7 +160,9 @@ void EvalEngine::prepare(const VectorRow* rows, std::size_t count, std::size_t o
       ref_out[i] = reference_value(slots_, slot_out[i], t_out[i]);
     }
   });
-  if (out) std::copy(reference_.begin(), reference_.end(), out->reference.begin() + offset);
+  if (out)
+    std::copy(reference_.begin() + at, reference_.begin() + at + count,
+              out->reference.begin() + offset);
   std::vector<std::uint32_t> begun;
   for (const auto& list : fresh)
     for (const std::uint32_t s : list)
@@ -145,39 +178,19 @@ void EvalEngine::prepare(const VectorRow* rows, std::size_t count, std::size_t o
 
 void EvalEngine::add_window(const VectorRow* rows, std::size_t count, std::size_t offset,
                             BatchResults* out) {
+  t_.resize(count);
+  slot_.resize(count);
+  reference_.resize(count);
   prepare(rows, count, offset, out);
   const RowsView view{t_.data(), slot_.data(), reference_.data()};
-  const std::size_t total = out ? out->rows : 0;
-  const auto raw = [&](std::size_t l) {
-    return out ? out->raw.data() + l * total + offset : nullptr;
-  };
-  const auto skipped = [&](std::size_t l) {
-    return out ? out->skipped.data() + l * total + offset : nullptr;
-  };
   const std::size_t lanes = lanes_.size();
   const std::size_t runs = runs_per_lane(count);
   if (runs == 1) {
-    // Each task is the window of a group of lanes: accumulated and merged at once (the group's
-    // folds side by side: LaneAccumulator::merge_group), nothing kept. Groups no larger than
-    // needed to give every thread one.
     merge_pending();
-    const std::size_t threads = static_cast<std::size_t>(pool_.threads());
-    const std::size_t group =
-        std::min(LaneAccumulator::kMergeGroup, std::max<std::size_t>(1, lanes / threads));
+    const std::size_t group = merge_group_size();
     pool_.run(ceil_div(lanes, group), [&](std::size_t task) {
-      thread_local LanePartial scratch[LaneAccumulator::kMergeGroup];
-      LaneAccumulator* members[LaneAccumulator::kMergeGroup];
-      const LanePartial* parts[LaneAccumulator::kMergeGroup];
-      TimingEngine* timing[LaneAccumulator::kMergeGroup];
-      const std::size_t first = task * group, size = std::min(group, lanes - first);
-      for (std::size_t j = 0; j < size; ++j) {
-        const std::size_t l = first + j;
-        lanes_[l]->accumulate(view, 0, count, scratch[j], raw(l), skipped(l));
-        members[j] = lanes_[l];
-        parts[j] = &scratch[j];
-        timing[j] = timing_[l];
-      }
-      LaneAccumulator::merge_group(members, parts, timing, size);
+      const std::size_t first = task * group;
+      run_group(first, std::min(group, lanes - first), view, count, offset, out);
     });
     return;
   }
@@ -195,10 +208,86 @@ void EvalEngine::add_window(const VectorRow* rows, std::size_t count, std::size_
     }
     const std::size_t l = (task - merges) / runs, r = (task - merges) % runs;
     const std::size_t a = std::min(count, r * per_run), b = std::min(count, a + per_run);
-    lanes_[l]->accumulate(view, a, b, now[l][r], raw(l), skipped(l));
+    lanes_[l]->accumulate(view, a, b, now[l][r], raw_at(out, l, offset),
+                          skipped_at(out, l, offset));
   });
   current_ = 1 - current_;
   pending_ = true;
+}
+
+// Lanes whose windows one task takes together (their folds side by side: merge_group), no more
+// than needed to give every thread one.
+std::size_t EvalEngine::merge_group_size() const {
+  const std::size_t threads = static_cast<std::size_t>(pool_.threads());
+  return std::min(LaneAccumulator::kMergeGroup, std::max<std::size_t>(1, lanes_.size() / threads));
+}
+
+// The window of the lanes [first, first + size): accumulated and merged at once, nothing kept.
+void EvalEngine::run_group(std::size_t first, std::size_t size, const RowsView& view,
+                           std::size_t count, std::size_t offset, BatchResults* out) {
+  thread_local LanePartial scratch[LaneAccumulator::kMergeGroup];
+  LaneAccumulator* members[LaneAccumulator::kMergeGroup];
+  const LanePartial* parts[LaneAccumulator::kMergeGroup];
+  TimingEngine* timing[LaneAccumulator::kMergeGroup];
+  for (std::size_t j = 0; j < size; ++j) {
+    const std::size_t l = first + j;
+    lanes_[l]->accumulate(view, 0, count, scratch[j], raw_at(out, l, offset),
+                          skipped_at(out, l, offset));
+    members[j] = lanes_[l];
+    parts[j] = &scratch[j];
+    timing[j] = timing_[l];
+  }
+  LaneAccumulator::merge_group(members, parts, timing, size);
+}
+
+// Whole windows per lane on several threads: the span's windows prepared first, then each thread
+// takes, until none is left that no other thread holds, the side work's next step if no thread
+// has it, else the next window of the group of lanes furthest behind that no thread has. Each
+// group's windows go in stream order, so its folds see the rows as one pass would.
+void EvalEngine::add_span(const VectorRow* rows, std::size_t count, std::size_t offset,
+                          BatchResults* out, const SideWork& side, bool& side_more) {
+  const std::size_t window = options_.window_rows;
+  const std::size_t windows = ceil_div(count, window);
+  t_.resize(count);
+  slot_.resize(count);
+  reference_.resize(count);
+  for (std::size_t w = 0; w < windows; ++w) {
+    const std::size_t at = w * window;
+    prepare(rows + at, std::min(window, count - at), offset + at, out, at);
+  }
+  const std::size_t lanes = lanes_.size();
+  const std::size_t group = merge_group_size();
+  const std::size_t groups = ceil_div(lanes, group);
+  std::mutex mutex;
+  std::vector<std::size_t> next(groups, 0);
+  std::vector<std::uint8_t> busy(groups, 0);
+  bool side_busy = false;
+  pool_.run(static_cast<std::size_t>(pool_.threads()), [&](std::size_t) {
+    std::unique_lock<std::mutex> lock(mutex);
+    for (;;) {
+      if (side_more && !side_busy) {
+        side_busy = true;
+        lock.unlock();
+        const bool more = side();
+        lock.lock();
+        side_busy = false;
+        side_more = more;
+        continue;
+      }
+      std::size_t g = groups;
+      for (std::size_t k = 0; k < groups; ++k)
+        if (!busy[k] && next[k] < windows && (g == groups || next[k] < next[g])) g = k;
+      if (g == groups) return;
+      busy[g] = 1;
+      const std::size_t at = next[g]++ * window;
+      lock.unlock();
+      const RowsView view{t_.data() + at, slot_.data() + at, reference_.data() + at};
+      run_group(g * group, std::min(group, lanes - g * group), view, std::min(window, count - at),
+                offset + at, out);
+      lock.lock();
+      busy[g] = 0;
+    }
+  });
 }
 
 }  // namespace glint

@@ -9,11 +9,15 @@
 // quantization, comparator, the datapath's result from the per-code memo, the statistics that
 // merge exactly) and each lane's runs merged in stream order (LaneAccumulator::merge: the sum of
 // squares, the digest and the timing recurrences, which are sequential folds). With few lanes the
-// merges of one window overlap the runs of the next; with many, each lane's window is one task.
+// merges of one window overlap the runs of the next; with many (at least two per thread), each
+// lane's window is one task, and the threads take the windows of a span of several in any order
+// that keeps each lane's in stream order: no thread waits at the end of a window for the others.
+// Side work (the reader parsing the next rows) then runs beside the lanes' windows.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -37,13 +41,30 @@ class EvalEngine {
              std::vector<TimingEngine*> timing, const EngineOptions& options);
   ~EvalEngine();
 
+  // Work done beside an add()'s rows, a step per call, on one thread at a time: each call returns
+  // whether it wants another. add() returns once it has stopped.
+  using SideWork = std::function<bool()>;
+
   // The next rows of the stream through every lane; each lane's statistics are complete when it
-  // returns. `out` (may be null) receives every row's reference and each lane's results.
-  void add(const VectorRow* rows, std::size_t count, BatchResults* out = nullptr);
+  // returns. `out` (may be null) receives every row's reference and each lane's results. `side`
+  // (may be empty) runs beside the lanes when overlaps_side_work(), else before the rows.
+  void add(const VectorRow* rows, std::size_t count, BatchResults* out = nullptr,
+           const SideWork& side = {});
+
+  // Whether an engine of `lanes` lanes on `threads` threads runs side work beside its lanes:
+  // whole windows per lane (at least two lanes per thread), more than one thread.
+  static bool overlaps_side_work(std::size_t lanes, int threads);
 
  private:
+  bool whole_windows() const;
+  std::size_t merge_group_size() const;
   void add_window(const VectorRow* rows, std::size_t count, std::size_t offset, BatchResults* out);
-  void prepare(const VectorRow* rows, std::size_t count, std::size_t offset, BatchResults* out);
+  void add_span(const VectorRow* rows, std::size_t count, std::size_t offset, BatchResults* out,
+                const SideWork& side, bool& side_more);
+  void prepare(const VectorRow* rows, std::size_t count, std::size_t offset, BatchResults* out,
+               std::size_t at = 0);
+  void run_group(std::size_t first, std::size_t size, const RowsView& view, std::size_t count,
+                 std::size_t offset, BatchResults* out);
   std::size_t runs_per_lane(std::size_t count) const;
   void merge_pending();
   void merge(const std::vector<LanePartial>& runs, std::size_t lane);

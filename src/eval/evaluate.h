@@ -333,8 +333,12 @@ class Evaluator {
   // The same as add() on each row in turn, through the evaluation engine (eval/engine.h) on up to
   // `threads` threads: statistics, digests and results are identical for any thread count.
   void add_batch(const VectorRow* rows, std::size_t count, BatchResults& out, int threads = 1);
-  // The same without the per-row results.
-  void add_rows(const VectorRow* rows, std::size_t count, int threads = 1);
+  // The same without the per-row results. `side` (may be empty): work done beside the rows, a
+  // step per call while it returns true (EvalEngine::add), on one thread at a time.
+  void add_rows(const VectorRow* rows, std::size_t count, int threads = 1,
+                const std::function<bool()>& side = {});
+  // Whether add_rows on `threads` threads runs its side work beside the rows (else before them).
+  bool overlaps_side_work(int threads) const;
   std::vector<UnitStats> stats() const;
   const std::string& label(std::size_t unit) const { return lanes_[unit].stats().name; }
   // The digest of unit u's results so far (LaneAccumulator::digest; sim reports it as "digest").
@@ -351,7 +355,8 @@ class Evaluator {
   std::vector<std::unique_ptr<SpecularUnit>> units_;
   std::vector<LaneAccumulator> lanes_;
   int display_bits_ = 8;
-  void run_engine(const VectorRow* rows, std::size_t count, BatchResults* out, int threads);
+  void run_engine(const VectorRow* rows, std::size_t count, BatchResults* out, int threads,
+                  const std::function<bool()>& side = {});
   std::unique_ptr<EvalEngine> engine_;  // made by the first add_batch or add_rows
   int engine_threads_ = 0;
 };

@@ -17,13 +17,19 @@ BlockParser::BlockParser(const RowParser& rows, int threads)
     : rows_(rows), pool_(std::max(1, threads)) {}
 
 void BlockParser::parse_piece(Piece& piece, std::uint64_t first_line) const {
-  RowParser parser = rows_;
   piece.rows.clear();
   piece.error.reset();
+  piece.lines = parse_lines(piece.begin, piece.end, first_line, piece.rows, piece.error);
+}
+
+std::uint64_t BlockParser::parse_lines(const char* begin, const char* end, std::uint64_t first_line,
+                                       std::vector<VectorRow>& out,
+                                       std::unique_ptr<InputError>& error) const {
+  RowParser parser = rows_;
   std::uint64_t line = first_line;
   try {
-    for (const char* p = piece.begin; p < piece.end; ++line) {
-      const char* const nl = static_cast<const char*>(std::memchr(p, '\n', piece.end - p));
+    for (const char* p = begin; p < end; ++line) {
+      const char* const nl = static_cast<const char*>(std::memchr(p, '\n', end - p));
       std::size_t len = static_cast<std::size_t>(nl - p);
       if (len != 0 && p[len - 1] == '\r') --len;
       // LineReader's rule for every line, and its message.
@@ -32,18 +38,20 @@ void BlockParser::parse_piece(Piece& piece, std::uint64_t first_line) const {
       VectorRow row;
       if (parser.parse(std::string_view(p, len), line, row)) {
         row.line = line;
-        piece.rows.push_back(row);
+        out.push_back(row);
       }
       p = nl + 1;
     }
   } catch (const InputError& e) {
-    piece.error = std::make_unique<InputError>(e);
+    error = std::make_unique<InputError>(e);
   }
-  piece.lines = line - first_line;  // with an error, the lines before it
+  return line - first_line;  // with an error, the lines before it
 }
 
 std::uint64_t BlockParser::parse(const char* begin, const char* end, std::uint64_t first_line,
                                  std::vector<VectorRow>& out, std::unique_ptr<InputError>& error) {
+  // On one thread, the lines go straight into `out`, numbered as they are parsed.
+  if (pool_.threads() == 1) return parse_lines(begin, end, first_line, out, error);
   const auto bytes = static_cast<std::size_t>(end - begin);
   const std::size_t count = std::max<std::size_t>(
       1,

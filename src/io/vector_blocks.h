@@ -34,6 +34,10 @@ class BlockParser {
     std::unique_ptr<InputError> error;
   };
   void parse_piece(Piece& piece, std::uint64_t first_line) const;
+  // The rows of the lines [begin, end), the first of them `first_line`, appended to `out`; returns
+  // the number of lines before a malformed one (kept in `error`) or of all.
+  std::uint64_t parse_lines(const char* begin, const char* end, std::uint64_t first_line,
+                            std::vector<VectorRow>& out, std::unique_ptr<InputError>& error) const;
 
   const RowParser& rows_;
   ThreadPool pool_;

@@ -91,9 +91,9 @@ struct VectorReader::Impl {
     return false;
   }
 
-  bool next_block(std::vector<VectorRow>& out, int threads) {
-    out.clear();
-    while (out.empty()) {
+  bool append_block(std::vector<VectorRow>& out, int threads) {
+    const std::size_t before = out.size();
+    while (out.size() == before) {
       const char *begin = nullptr, *end = nullptr;
       if (!lines.block(begin, end)) {
         // No whole line in the buffer (a line longer than it, a NUL byte, the end): one row, as
@@ -110,10 +110,10 @@ struct VectorReader::Impl {
       std::unique_ptr<InputError> failed;
       const std::uint64_t n = blocks->parse(begin, end, lines.line_number() + 1, out, failed);
       lines.skip_block(end, n);
-      rows_read += out.size();
+      rows_read += out.size() - before;
       if (failed) {
         error = std::move(failed);
-        if (out.empty()) throw *error;
+        if (out.size() == before) throw *error;
       }
     }
     return true;
@@ -166,9 +166,14 @@ bool VectorReader::next(VectorRow& row) {
   }
 }
 bool VectorReader::next_block(std::vector<VectorRow>& rows, int threads) {
+  rows.clear();
+  return append_block(rows, threads);
+}
+
+bool VectorReader::append_block(std::vector<VectorRow>& rows, int threads) {
   if (impl_->error) throw *impl_->error;
   try {
-    return impl_->next_block(rows, threads);
+    return impl_->append_block(rows, threads);
   } catch (const InputError& e) {
     if (!impl_->error) impl_->error = std::make_unique<InputError>(e);
     throw;

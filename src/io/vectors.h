@@ -115,6 +115,8 @@ class VectorReader {
   // parsed on up to `threads` threads; false at the end of the data. The rows, their line numbers
   // and errors are next()'s: the rows before a malformed one come back, and the next call throws.
   bool next_block(std::vector<VectorRow>& rows, int threads);
+  // The same, the rows appended to those `rows` holds.
+  bool append_block(std::vector<VectorRow>& rows, int threads);
 
   std::uint64_t rows_read() const;
 
