@@ -16,6 +16,61 @@ std::size_t ceil_div(std::size_t a, std::size_t b) {
   return (a + b - 1) / b;
 }
 
+// What prepare's scan reads and writes, as plain pointers in a function of its own (scan_rows):
+// as a lambda's captures, GCC kept them on the stack and reloaded them on every row.
+struct RowScan {
+  const VectorRow* rows;
+  const std::uint32_t* slot_of;
+  std::size_t light_stride;
+  const double* deferred;   // per slot (deferred_t)
+  const double* defer_cut;  // the same, 0 where some lane computes such rows
+  const std::uint8_t* known;
+  bool defer;  // no per-row results asked: small references may be left to the lanes
+  double* t_out;
+  std::uint32_t* slot_out;
+  double* ref_out;
+  std::uint32_t* need;
+};
+
+// Rows [a, b): each row's t and slot, its reference's placeholder, and the rows whose reference is
+// computed listed in `need` (returns how many); `unknown` is set if a slot no lane has begun is
+// among them.
+std::size_t scan_rows(const RowScan& scan, std::size_t a, std::size_t b, bool& unknown) {
+  const VectorRow* const __restrict rows = scan.rows;
+  const std::uint32_t* const __restrict slot_of = scan.slot_of;
+  const std::size_t stride = scan.light_stride;
+  const double* const __restrict deferred = scan.deferred;
+  const double* const __restrict defer_cut = scan.defer_cut;
+  const std::uint8_t* const __restrict known = scan.known;
+  const bool defer = scan.defer;
+  double* const __restrict t_out = scan.t_out;
+  std::uint32_t* const __restrict slot_out = scan.slot_out;
+  double* const __restrict ref_out = scan.ref_out;
+  std::uint32_t* const __restrict need = scan.need;
+  std::size_t needed = 0;
+  bool all_known = true;
+  for (std::size_t i = a; i < b; ++i) {
+    const auto s = static_cast<std::uint32_t>(SlotMap::slot_in(slot_of, stride, rows[i]));
+    const double t = rows[i].t;
+    t_out[i] = t;
+    slot_out[i] = s;
+    // deferred[s] > 0: a power lobe, which is 0 at t <= 0. A reference far below what any
+    // statistic can see is left to the lane that needs it (LaneAccumulator::accumulate): on a
+    // stream of mostly skipped requests, most of them.
+    const double cut = deferred[s];
+    const bool zero = (cut > 0.0) & (t <= 0.0);
+    const bool late = defer & (t > 0.0) & (t <= defer_cut[s]);
+    // -late, not late ? kDeferredReference : 0.0, which GCC made a branch taken at random.
+    static_assert(kDeferredReference == -1.0, "the conversion below writes -1 or 0");
+    ref_out[i] = -static_cast<double>(late);
+    need[needed] = static_cast<std::uint32_t>(i);
+    needed += !(zero | late);
+    all_known &= known[s] != 0;
+  }
+  unknown = !all_known;
+  return needed;
+}
+
 // Lane l's results from the stream's row `offset` of an add(), when they are asked for.
 std::int64_t* raw_at(BatchResults* out, std::size_t l, std::size_t offset) {
   return out ? out->raw.data() + l * out->rows + offset : nullptr;
@@ -114,45 +169,37 @@ void EvalEngine::prepare(const VectorRow* rows, std::size_t count, std::size_t o
   std::vector<std::vector<std::uint32_t>> fresh(runs);
   pool_.run(runs, [&](std::size_t r) {
     const std::size_t a = r * per_run, b = std::min(count, a + per_run);
-    // Locals: the stores below would otherwise reload every member on every row.
     double* const t_out = t_.data() + at;
     std::uint32_t* const slot_out = slot_.data() + at;
     double* const ref_out = reference_.data() + at;
-    const double* const deferred = deferred_t_.data();
-    const double* const defer_cut = defer_t_.data();
-    const std::uint8_t* const known = slot_known_.data();
-    const bool defer = out == nullptr;
-    const std::uint32_t* const slot_of = slots_.slot_of.data();
-    const std::size_t stride = slots_.light_stride;
     // Rows whose reference is computed, listed: the calls then run back to back in a loop of
     // their own, where they overlap, instead of one in the middle of each scanned row.
     thread_local std::vector<std::uint32_t> need_list;
     need_list.resize(b - a);
-    std::uint32_t* const need = need_list.data();
-    std::size_t needed = 0;
-    std::vector<bool> listed;
-    for (std::size_t i = a; i < b; ++i) {
-      // From locals: through slots_ the stores below reload slot_of every row.
-      const auto s = static_cast<std::uint32_t>(SlotMap::slot_in(slot_of, stride, rows[i]));
-      const double t = rows[i].t;
-      t_out[i] = t;
-      slot_out[i] = s;
-      // deferred[s] > 0: a power lobe, which is 0 at t <= 0. A reference far below what any
-      // statistic can see is left to the lane that needs it (LaneAccumulator::accumulate): on a
-      // stream of mostly skipped requests, most of them.
-      const double cut = deferred[s];
-      const bool zero = (cut > 0.0) & (t <= 0.0);
-      const bool late = defer & (t > 0.0) & (t <= defer_cut[s]);
-      // -late, not late ? kDeferredReference : 0.0, which GCC made a branch taken at random.
-      static_assert(kDeferredReference == -1.0, "the conversion below writes -1 or 0");
-      ref_out[i] = -static_cast<double>(late);
-      need[needed] = static_cast<std::uint32_t>(i);
-      needed += !(zero | late);
-      if (known[s]) continue;
-      if (listed.empty()) listed.resize(slot_known_.size());
-      if (!listed[s]) {
-        listed[s] = true;
-        fresh[r].push_back(s);
+    RowScan scan{rows,
+                 slots_.slot_of.data(),
+                 slots_.light_stride,
+                 deferred_t_.data(),
+                 defer_t_.data(),
+                 slot_known_.data(),
+                 out == nullptr,
+                 t_out,
+                 slot_out,
+                 ref_out,
+                 need_list.data()};
+    bool unknown = false;
+    const std::size_t needed = scan_rows(scan, a, b, unknown);
+    const std::uint32_t* const need = need_list.data();
+    if (unknown) {
+      // Slots no lane has begun: listed in the order of their first rows (rare: a slot's first
+      // window).
+      std::vector<bool> listed(slot_known_.size());
+      for (std::size_t i = a; i < b; ++i) {
+        const std::uint32_t s = slot_out[i];
+        if (!slot_known_[s] && !listed[s]) {
+          listed[s] = true;
+          fresh[r].push_back(s);
+        }
       }
     }
     for (std::size_t x = 0; x < needed; ++x) {
