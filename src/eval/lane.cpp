@@ -102,6 +102,36 @@ inline void fold_row(double& sum, std::uint64_t& digest, double square, std::uin
   digest = fold_digest(digest, word);
 }
 
+// The first pass of LaneAccumulator::accumulate_rows over rows [a, a + n): each row's input code
+// and comparator, the computed rows listed with their codes and the skipped ones apart (no branch
+// between the two: a stream takes it at random), every row's digest word that of a skipped row
+// (a computed row's is written later). In a function of its own, every pointer a parameter: in
+// the big function, GCC kept several on the stack and reloaded them on every row.
+struct ClassifiedRows {
+  std::size_t computed = 0, skipped = 0;
+};
+
+ClassifiedRows classify_rows(const InputQuantizer& quantize, const double* __restrict t,
+                             const std::uint32_t* __restrict slot,
+                             const std::int64_t* __restrict tau, std::size_t n,
+                             std::uint32_t* __restrict computed, std::int64_t* __restrict code,
+                             std::uint32_t* __restrict skipped_rows,
+                             std::uint64_t* __restrict word) {
+  std::size_t computed_count = 0, skipped_count = 0;
+  const std::uint64_t skipped_word = digest_word(0, true);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::int64_t t_raw = quantize(t[k]);
+    const bool sk = t_raw <= tau[slot[k]];
+    computed[computed_count] = static_cast<std::uint32_t>(k);
+    code[computed_count] = t_raw;
+    computed_count += !sk;
+    skipped_rows[skipped_count] = static_cast<std::uint32_t>(k);
+    skipped_count += sk;
+    word[k] = skipped_word;
+  }
+  return {computed_count, skipped_count};
+}
+
 }  // namespace
 
 // Per slot, the codes its comparator keeps ([first, first + size)); an entry is filled once,
@@ -299,24 +329,18 @@ void LaneAccumulator::accumulate_rows(const RowsView& rows, std::size_t a, std::
   std::uint32_t* const computed = computed_list.data();
   std::uint32_t* const skipped_rows = skipped_list.data();
   std::int64_t* const code = code_list.data();
-  std::size_t computed_count = 0, skipped_count = 0;
   // Three passes: every row's code and comparator, which lists the skipped and the computed
   // rows without a branch between them (a stream takes it at random: half the rows of each of
   // `glint eval`'s five units); then the skipped rows' statistics; then the computed rows'. The
   // maxima that both lists enter keep the row of their first largest value, to be joined as
   // one pass in stream order would have.
-  for (std::size_t k = 0; k < n; ++k) {
-    const std::size_t i = a + k;
-    const std::int64_t t_raw = quantize(rows.t[i]);
-    const bool sk = t_raw <= tau[rows.slot[i]];
-    computed[computed_count] = static_cast<std::uint32_t>(k);
-    code[computed_count] = t_raw;
-    computed_count += !sk;
-    skipped_rows[skipped_count] = static_cast<std::uint32_t>(k);
-    skipped_count += sk;
-    if (raw) raw[i] = 0;
-    if (skipped) skipped[i] = sk;
-    word[k] = digest_word(0, true);  // a computed row's is written by the third pass
+  const ClassifiedRows classified = classify_rows(quantize, rows.t + a, rows.slot + a, tau, n,
+                                                  computed, code, skipped_rows, word);
+  const std::size_t computed_count = classified.computed, skipped_count = classified.skipped;
+  if (raw) std::fill(raw + a, raw + a + n, 0);  // a computed row's is written by the third pass
+  if (skipped) {
+    std::fill(skipped + a, skipped + a + n, 0);
+    for (std::size_t x = 0; x < skipped_count; ++x) skipped[a + skipped_rows[x]] = 1;
   }
   FirstMax total1, weighted1, total2, weighted2;
   LanePartial::MaxAt input{0, 0}, skip{0, 0};
