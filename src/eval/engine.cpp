@@ -134,7 +134,10 @@ void EvalEngine::add(const VectorRow* rows, std::size_t count, BatchResults* out
     }
     const std::size_t window = options_.window_rows;
     if (whole_windows() && pool_.threads() > 1) {
-      const std::size_t span = std::max<std::size_t>(1, kSpanRows / window) * window;
+      // Spans of equal size, at most twice kSpanRows: a short last span would end in a few
+      // windows that the threads cannot share.
+      const std::size_t spans = std::max<std::size_t>(1, count / kSpanRows);
+      const std::size_t span = ceil_div(ceil_div(count, spans), window) * window;
       for (std::size_t at = 0; at < count; at += span)
         add_span(rows + at, std::min(span, count - at), at, out, side, side_more);
     } else {
