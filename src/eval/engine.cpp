@@ -133,7 +133,7 @@ void EvalEngine::add(const VectorRow* rows, std::size_t count, BatchResults* out
       out->skipped.resize(lanes_.size() * count);
     }
     const std::size_t window = options_.window_rows;
-    if (whole_windows() && pool_.threads() > 1) {
+    if (options_.run_rows == 0 && overlaps_side_work(lanes_.size(), pool_.threads())) {
       // Spans of equal size, at most twice kSpanRows: a short last span would end in a few
       // windows that the threads cannot share.
       const std::size_t spans = std::max<std::size_t>(1, count / kSpanRows);

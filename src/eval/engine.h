@@ -47,7 +47,8 @@ class EvalEngine {
 
   // The next rows of the stream through every lane; each lane's statistics are complete when it
   // returns. `out` (may be null) receives every row's reference and each lane's results. `side`
-  // (may be empty) runs beside the lanes when overlaps_side_work(), else before the rows.
+  // (may be empty) runs beside the lanes when overlaps_side_work() and the runs are the engine's
+  // choice (run_rows 0), else before the rows.
   void add(const VectorRow* rows, std::size_t count, BatchResults* out = nullptr,
            const SideWork& side = {});
 
