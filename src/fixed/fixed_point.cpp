@@ -42,7 +42,8 @@ namespace detail {
 void throw_bad_format(int int_bits, int frac_bits, bool is_signed) {
   const QFormat f{int_bits, frac_bits, is_signed};
   throw std::invalid_argument(fmt::format("fixed-point format {} has width {}; allowed 1..{}",
-                                          f.name(), f.width(), QFormat::kMaxWidth));
+                                          f.name(), std::int64_t{int_bits} + frac_bits,
+                                          QFormat::kMaxWidth));
 }
 
 void throw_too_wide(int int_bits, int frac_bits, bool is_signed, const char* op) {
@@ -79,6 +80,13 @@ QFormat parse_q_format(std::string_view text) {
   };
   if (!parse_int(text.substr(0, dot), f.int_bits) || !parse_int(text.substr(dot + 1), f.frac_bits))
     return fail();
+  // A part below -62 leaves no representable bit at either end of a 62-bit word; bounding both
+  // parts from below bounds them from above (width <= 62), so the differences of two formats'
+  // parts that the datapaths compute (shifts between formats) stay far from int overflow.
+  if (f.int_bits < -QFormat::kMaxWidth || f.frac_bits < -QFormat::kMaxWidth)
+    throw std::invalid_argument(fmt::format(
+        "bad fixed-point format '{}': integer and fraction bits must each be at least -{}", orig,
+        QFormat::kMaxWidth));
   check_format(f);
   return f;
 }

@@ -59,7 +59,11 @@ struct QFormat {
   double ulp() const;  // 2^-frac_bits
   double max_value() const;
   double min_value() const;
-  bool valid() const { return width() >= 1 && width() <= kMaxWidth; }
+  // In 64 bits: a format read from text may hold parts whose int sum overflows (e.g. uq2e9.2e9).
+  bool valid() const {
+    const std::int64_t w = std::int64_t{int_bits} + frac_bits;
+    return w >= 1 && w <= kMaxWidth;
+  }
 
   // "uq1.15" / "sq2.14": u or s, then integer bits (sign included), then fraction bits.
   std::string name() const;
@@ -85,7 +89,8 @@ namespace detail {
 
 // Parses "uq1.15", "sq2.14" (also "u1.15", "s2.14"; case-insensitive u/s/q). Integer and
 // fraction bits are decimal integers and may be negative (as SystemC's I may be), e.g.
-// "uq-2.10"; the width must be 1..62. Throws std::invalid_argument.
+// "uq-2.10", but neither below -62, so that both lie in -62..124; the width must be 1..62.
+// Throws std::invalid_argument.
 QFormat parse_q_format(std::string_view text);
 // Throws std::invalid_argument unless 1 <= width <= 62.
 inline void check_format(const QFormat& f) {
