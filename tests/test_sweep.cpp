@@ -89,6 +89,12 @@ TEST(SweepGrid, BadGridsNameTheGridAndTheKey) {
       {"horner:degree=2|2", {"key 'degree'", "listed twice"}},
       {"hast:buffer=1..65536|7", {"key 'buffer'", "'7' listed twice"}},
       {"horner:degree=2..82222", {"key 'degree'", "'82222'", "1..10"}},
+      // Ranges whose hi - lo overflows a long long (found reading the code, UB before).
+      {"horner:degree=-9223372036854775808..9223372036854775807", {"more than 100000 values"}},
+      {"horner:degree=-9223372036854775808..9223372036854775807/9223372036854775807",
+       {"key 'degree'", "'-9223372036854775808'"}},
+      {"horner:degree=-5000000000000000000..5000000000000000000/4000000000000000000",
+       {"key 'degree'", "'-5000000000000000000'"}},
       {"hast:d=auto,match=none|width",
        {"key 'd' = 'auto' is refused alone and with the grid's other values (2 combinations "
         "tried)",

@@ -51,11 +51,17 @@ void expand_alternative(const std::string& grid, const std::string& key, std::st
     throw bad("a range is lo..hi or lo..hi/step with integers lo, hi and step");
   if (lo > hi) throw bad(fmt::format("empty range: {} > {}", lo, hi));
   if (step < 1) throw bad("the step must be at least 1");
-  if ((hi - lo) / step + 1 > kMaxAxisValues)
+  // Distances in unsigned: hi - lo of two long longs overflows (UB) for e.g. -2^63..2^63-1, but
+  // with lo <= hi the true distance fits in 64 unsigned bits.
+  const auto distance = [](long long from, long long to) {
+    return static_cast<unsigned long long>(to) - static_cast<unsigned long long>(from);
+  };
+  const auto ustep = static_cast<unsigned long long>(step);
+  if (distance(lo, hi) / ustep >= static_cast<unsigned long long>(kMaxAxisValues))  // count - 1
     throw bad(fmt::format("more than {} values", kMaxAxisValues));
   for (long long v = lo;; v += step) {
     out.push_back(std::to_string(v));
-    if (hi - v < step) break;
+    if (distance(v, hi) < ustep) break;
   }
   probes.push_back(std::to_string(lo));
   if (out.back() != probes.back()) probes.push_back(out.back());
