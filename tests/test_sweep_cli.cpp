@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -152,14 +153,45 @@ TEST_F(SweepCli, ShardsMergeToTheUnshardedRun) {
   const json s0 = json::parse(read_text(file("shard0.json")));
   EXPECT_EQ(s0.at("shard"), (json{{"index", 0}, {"count", 3}}));
 
+  // A shard nested deeper than a report can be (it once crashed merge's dump(): SIGSEGV) and one
+  // that is not JSON are refused naming the file and the line.
+  {
+    std::ofstream deep(file("deep.json"));
+    deep << "{\"glint_sweep_report\": 1, \"input\":\n"
+         << std::string(100000, '[') << std::string(100000, ']') << "}\n";
+    std::ofstream(file("garbage.json")) << "{\"glint_sweep_report\": 1,\n  oops\n}\n";
+  }
+  // Shards whose numbers would size merge's tables, or whose fields have other types than glint
+  // writes (they once made merge allocate until bad_alloc, or throw nlohmann's errors: exit 3).
+  const auto write_tampered = [&](const std::string& name, const std::string& pointer,
+                                  const json& value) {
+    json t = s0;
+    t[json::json_pointer(pointer)] = value;
+    std::ofstream(file(name)) << t.dump();
+  };
+  write_tampered("huge_count.json", "/shard/count", std::uint64_t{1} << 60);
+  write_tampered("huge_configurations.json", "/configurations", std::uint64_t{1} << 60);
+  write_tampered("text_area.json", "/results/0/area_ge", "big");
+  write_tampered("no_path.json", "/input", json{{"kind", "vectors"}});
+  write_tampered("bits_text.json", "/display_bits", "8");
   // Missing, repeated and foreign shards are refused, and nothing is written.
   const struct {
     const char* args;
     const char* mention;
-  } bad[] = {{"shard0.json shard1.json", "shard 2/3 is missing"},
-             {"shard0.json shard0.json shard1.json", "both shard 0/3"},
-             {"all.json", "not a shard"},
-             {"shard0.json shard1.json nosuch.json", "nosuch.json"}};
+  } bad[] = {
+      {"shard0.json shard1.json", "shard 2/3 is missing"},
+      {"shard0.json shard0.json shard1.json", "both shard 0/3"},
+      {"all.json", "not a shard"},
+      {"shard0.json shard1.json nosuch.json", "nosuch.json"},
+      {"shard0.json shard1.json deep.json", "deep.json:2: field 'json': nested deeper than 32"},
+      {"shard0.json garbage.json shard2.json", "garbage.json:2: field 'json'"},
+      {"huge_count.json shard1.json shard2.json", "huge_count.json: field 'shard'"},
+      {"huge_configurations.json shard1.json shard2.json",
+       "huge_configurations.json: field 'configurations': not a count in 0..100000"},
+      {"text_area.json shard1.json shard2.json",
+       "text_area.json: field 'results[0]/area_ge': wrong type: string"},
+      {"no_path.json shard1.json shard2.json", "no_path.json: field 'input'"},
+      {"bits_text.json shard1.json shard2.json", "bits_text.json: field 'display_bits'"}};
   for (const auto& b : bad) {
     const CliRun r = glint(std::string("merge ") + b.args + " -o bad.json");
     EXPECT_EQ(r.status, 2) << b.args;

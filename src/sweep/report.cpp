@@ -4,12 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <limits>
-#include <sstream>
 #include <stdexcept>
 
 #include "io/input_error.h"
+#include "io/json_text.h"
+#include "sweep/grid.h"
 #include "sweep/measures.h"
 #include "sweep/pareto.h"
 
@@ -86,20 +86,11 @@ std::string report_csv_text(const nlohmann::json& report) {
 }
 
 nlohmann::json read_sweep_report(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, 0, "file", "cannot open");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  const std::string text = ss.str();
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    const std::size_t at = std::min<std::size_t>(e.byte, text.size());
-    const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(at), '\n');
-    throw InputError(path, static_cast<std::uint64_t>(line), "json",
-                     "not valid JSON (a sweep report written by glint sweep -o FILE.json)");
-  }
+  // Read defensively (io/json_text.h), as goldens are: a shard report is a file a user hands
+  // glint, and the merged report is dump()ed, which recurses once per level of nesting.
+  const nlohmann::json j =
+      parse_json_text(read_text_file(path, kSweepReportMaxFileBytes, "sweep report"), path,
+                      kSweepReportMaxJsonDepth);
   if (!j.is_object() || !j.contains("glint_sweep_report"))
     throw InputError(path, 0, "glint_sweep_report",
                      "missing: not a sweep report (glint sweep -o FILE.json)");
@@ -107,14 +98,68 @@ nlohmann::json read_sweep_report(const std::string& path) {
     throw InputError(path, 0, "glint_sweep_report",
                      fmt::format("version {} (this glint reads version {})",
                                  j["glint_sweep_report"].dump(), kSweepReportVersion));
-  for (const char* key : {"input", "results", "configurations", "shard", "error_measure"})
+  for (const char* key :
+       {"input", "results", "configurations", "shard", "error_measure", "display_bits"})
     if (!j.contains(key)) throw InputError(path, 0, key, "missing");
+  // What merge, the CSV and the plots read is checked here, so that no read there can throw
+  // nlohmann's type errors or size vectors from a file's numbers.
+  const nlohmann::json& input = j["input"];
+  if (!input.is_object() || !input.contains("kind") || !input["kind"].is_string() ||
+      !input.contains("path") || !input["path"].is_string() || !input.contains("rows") ||
+      !input["rows"].is_number_unsigned())
+    throw InputError(path, 0, "input", "not an object with a kind, a path and a row count");
+  if (!j["error_measure"].is_string()) throw InputError(path, 0, "error_measure", "not a name");
+  if (!j["display_bits"].is_number_unsigned() || j["display_bits"].get<std::uint64_t>() < 1 ||
+      j["display_bits"].get<std::uint64_t>() > 16)
+    throw InputError(path, 0, "display_bits", "not in 1..16");
+  if (j.contains("image_error") && !j["image_error"].is_boolean())
+    throw InputError(path, 0, "image_error", "not true or false");
+  if (!j["configurations"].is_number_unsigned() ||
+      j["configurations"].get<std::uint64_t>() > kMaxSweepConfigurations)
+    throw InputError(path, 0, "configurations",
+                     fmt::format("not a count in 0..{}", kMaxSweepConfigurations));
+  const nlohmann::json& shard = j["shard"];
+  if (!shard.is_null()) {
+    const auto count_in = [&](const char* key, std::uint64_t lo, std::uint64_t hi) {
+      return shard.is_object() && shard.contains(key) && shard[key].is_number_unsigned() &&
+             shard[key].get<std::uint64_t>() >= lo && shard[key].get<std::uint64_t>() <= hi;
+    };
+    if (!count_in("count", 1, kMaxSweepConfigurations) ||
+        !count_in("index", 0, shard["count"].get<std::uint64_t>() - 1))
+      throw InputError(path, 0, "shard",
+                       fmt::format("not null or {{index: K, count: N}} with 0 <= K < N <= {}",
+                                   kMaxSweepConfigurations));
+  }
   if (!j["results"].is_array()) throw InputError(path, 0, "results", "not an array");
-  if (!j["configurations"].is_number_unsigned())
-    throw InputError(path, 0, "configurations", "not a count");
-  for (const nlohmann::json& row : j["results"])
+  const auto kind_fits = [](const nlohmann::json& v, ColumnKind kind) {
+    switch (kind) {
+      case ColumnKind::kInteger:
+        return v.is_number_integer();
+      case ColumnKind::kNumber:
+        return v.is_number();
+      case ColumnKind::kText:
+        return v.is_string();
+      case ColumnKind::kFlag:
+        return v.is_boolean();
+    }
+    return false;
+  };
+  std::size_t at = 0;
+  for (const nlohmann::json& row : j["results"]) {
+    const std::string where = fmt::format("results[{}]", at++);
     if (!row.is_object() || !row.contains("index") || !row["index"].is_number_unsigned())
-      throw InputError(path, 0, "results", "a row without an index");
+      throw InputError(path, 0, where, "a row without an index");
+    if (!row.contains("refused")) throw InputError(path, 0, where + "/refused", "missing");
+    // A column's value may be absent or null (a refused configuration has no measures), never
+    // of another type.
+    for (const SweepColumn& c : sweep_columns()) {
+      const nlohmann::json::json_pointer pointer(c.pointer);
+      if (!row.contains(pointer)) continue;
+      const nlohmann::json& v = row.at(pointer);
+      if (!v.is_null() && !kind_fits(v, c.kind))
+        throw InputError(path, 0, where + c.pointer, "wrong type: " + std::string(v.type_name()));
+    }
+  }
   return j;
 }
 

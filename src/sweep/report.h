@@ -4,6 +4,7 @@
 // document writes the same bytes as the unsharded run.
 #pragma once
 
+#include <cstddef>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
@@ -35,8 +36,14 @@ std::string report_json_text(const nlohmann::json& report);
 // 4180).
 std::string report_csv_text(const nlohmann::json& report);
 
+// What read_sweep_report accepts: glint's reports nest 7 levels deep and take ~3-5 KB per
+// configuration, ~0.5 GB for the largest sweep (kMaxSweepConfigurations).
+inline constexpr std::size_t kSweepReportMaxFileBytes = std::size_t{1} << 30;
+inline constexpr int kSweepReportMaxJsonDepth = 32;
+
 // Reads a report written by -o FILE.json. Throws InputError naming the file for anything that is
-// not a version-1 sweep report.
+// not a version-1 sweep report, larger than kSweepReportMaxFileBytes or nested deeper than
+// kSweepReportMaxJsonDepth.
 nlohmann::json read_sweep_report(const std::string& path);
 
 // Joins shard reports (path, document) into the unsharded run's document: every shard of the same
