@@ -52,6 +52,7 @@ GLINT_REPLAY(units)
 GLINT_REPLAY(scene)
 GLINT_REPLAY_ON(scene_render, scene)
 GLINT_REPLAY(golden)
+GLINT_REPLAY(report)
 GLINT_REPLAY(options)
 
 }  // namespace

@@ -86,11 +86,13 @@ std::string report_csv_text(const nlohmann::json& report) {
 }
 
 nlohmann::json read_sweep_report(const std::string& path) {
+  return parse_sweep_report(read_text_file(path, kSweepReportMaxFileBytes, "sweep report"), path);
+}
+
+nlohmann::json parse_sweep_report(const std::string& text, const std::string& path) {
   // Read defensively (io/json_text.h), as goldens are: a shard report is a file a user hands
   // glint, and the merged report is dump()ed, which recurses once per level of nesting.
-  const nlohmann::json j =
-      parse_json_text(read_text_file(path, kSweepReportMaxFileBytes, "sweep report"), path,
-                      kSweepReportMaxJsonDepth);
+  const nlohmann::json j = parse_json_text(text, path, kSweepReportMaxJsonDepth);
   if (!j.is_object() || !j.contains("glint_sweep_report"))
     throw InputError(path, 0, "glint_sweep_report",
                      "missing: not a sweep report (glint sweep -o FILE.json)");
@@ -149,12 +151,28 @@ nlohmann::json read_sweep_report(const std::string& path) {
     const std::string where = fmt::format("results[{}]", at++);
     if (!row.is_object() || !row.contains("index") || !row["index"].is_number_unsigned())
       throw InputError(path, 0, where, "a row without an index");
-    if (!row.contains("refused")) throw InputError(path, 0, where + "/refused", "missing");
-    // A column's value may be absent or null (a refused configuration has no measures), never
-    // of another type.
+    const auto field = [&](const char* key, bool (nlohmann::json::*is)() const noexcept,
+                           const char* what) {
+      if (!row.contains(key) || !(row[key].*is)())
+        throw InputError(path, 0, where + "/" + key, what);
+    };
+    field("unit", &nlohmann::json::is_string, "not a unit name");
+    field("spec", &nlohmann::json::is_string, "not a spec");
+    if (!row.contains("refused") || !(row["refused"].is_null() || row["refused"].is_string()))
+      throw InputError(path, 0, where + "/refused", "not null or the reason");
+    // A refused configuration has no measures. Any other row has every column glint writes but
+    // the image-level ones (absent with --no-image) and those merge recomputes (error, pareto),
+    // each of its column's type or null (a measure with no value), and an integer latency (the
+    // summary prints it).
+    const bool refused = row["refused"].is_string();
+    if (!refused) field("latency", &nlohmann::json::is_number_integer, "not a cycle count");
     for (const SweepColumn& c : sweep_columns()) {
       const nlohmann::json::json_pointer pointer(c.pointer);
-      if (!row.contains(pointer)) continue;
+      const bool recomputed = c.name == "error" || c.name.rfind("pareto_", 0) == 0;
+      if (!row.contains(pointer)) {
+        if (refused || c.scene_only || recomputed) continue;
+        throw InputError(path, 0, where + c.pointer, "missing");
+      }
       const nlohmann::json& v = row.at(pointer);
       if (!v.is_null() && !kind_fits(v, c.kind))
         throw InputError(path, 0, where + c.pointer, "wrong type: " + std::string(v.type_name()));

@@ -45,6 +45,8 @@ inline constexpr int kSweepReportMaxJsonDepth = 32;
 // not a version-1 sweep report, larger than kSweepReportMaxFileBytes or nested deeper than
 // kSweepReportMaxJsonDepth.
 nlohmann::json read_sweep_report(const std::string& path);
+// The same from the file's text; `path` names it in messages.
+nlohmann::json parse_sweep_report(const std::string& text, const std::string& path);
 
 // Joins shard reports (path, document) into the unsharded run's document: every shard of the same
 // sweep (the same version, input, grids, settings and shard count), each shard once, every

@@ -22,6 +22,7 @@ int units(const std::uint8_t* data, std::size_t size);
 int scene(const std::uint8_t* data, std::size_t size);
 int scene_render(const std::uint8_t* data, std::size_t size);
 int golden(const std::uint8_t* data, std::size_t size);
+int report(const std::uint8_t* data, std::size_t size);
 int options(const std::uint8_t* data, std::size_t size);
 
 // Reports a finding on stderr and aborts (libFuzzer then saves the input as a crash).
