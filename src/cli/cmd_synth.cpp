@@ -21,6 +21,7 @@
 
 #include "cli/cli.h"
 #include "cli/rtl_input.h"
+#include "cost/liberty.h"
 #include "io/input_error.h"
 #include "io/output_set.h"
 #include "io/signal_cleanup.h"
@@ -136,23 +137,6 @@ std::string yosys_script(const std::string& top, const std::vector<std::string>&
        (liberty.empty() ? std::string("-tech cmos") : "-liberty " + liberty) + "\n";
   s += "write_json " + netlist + "\n";
   return s;
-}
-
-// The sequential cells of a liberty file: those whose group holds an ff( or latch( group.
-std::set<std::string> liberty_registers(const std::string& text) {
-  std::set<std::string> out;
-  static const std::regex cell(R"(cell\s*\(\s*\"?([A-Za-z0-9_$.\[\]]+)\"?\s*\))");
-  std::vector<std::pair<std::size_t, std::string>> cells;
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), cell); it != std::sregex_iterator();
-       ++it)
-    cells.emplace_back(static_cast<std::size_t>(it->position(0)), (*it)[1].str());
-  for (std::size_t i = 0; i < cells.size(); ++i) {
-    const std::size_t end = i + 1 < cells.size() ? cells[i + 1].first : text.size();
-    const std::string body = text.substr(cells[i].first, end - cells[i].first);
-    if (std::regex_search(body, std::regex(R"(\b(ff|latch|ff_bank|latch_bank)\s*\()")))
-      out.insert(cells[i].second);
-  }
-  return out;
 }
 
 // Transistors of a flip-flop that Yosys' `stat -tech cmos` leaves unpriced (it counts $_DFF_P_ and

@@ -1,0 +1,17 @@
+// What `glint synth --liberty FILE` needs from a Liberty cell library: the names of its
+// sequential cells, so that the flip-flops of a mapped netlist are counted by cell name.
+#pragma once
+
+#include <set>
+#include <string>
+#include <string_view>
+
+namespace glint {
+
+// The cells of `text` whose group holds an ff, latch, ff_bank or latch_bank group: every
+// `cell ( NAME )` (NAME optionally quoted) up to the next one. A scanner, not std::regex:
+// libstdc++'s regex recurses once per character a `\s*` matches, and a library with a long run of
+// blanks after `cell` overflowed the stack (SIGSEGV at ~100 000).
+std::set<std::string> liberty_registers(std::string_view text);
+
+}  // namespace glint

@@ -1,0 +1,59 @@
+// liberty_registers (cost/liberty.h): the sequential cells of a Liberty library, which
+// `glint synth --liberty` counts as flip-flops. The shipped test library, the groups that make a
+// cell sequential and the words that must not, and inputs that once overflowed the stack.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <set>
+#include <string>
+
+#include "cost/liberty.h"
+#include "test_support.h"
+
+namespace {
+
+using glint::liberty_registers;
+using Names = std::set<std::string>;
+
+TEST(Liberty, TheTinyLibraryHasOneFlipFlop) {
+  const std::string text = glint::test::read_file(GLINT_SOURCE_DIR "/tests/rtl/tiny.lib");
+  EXPECT_EQ(liberty_registers(text), Names{"DFF"});
+}
+
+TEST(Liberty, SequentialGroupsAndNames) {
+  const std::string lib = R"lib(library(x) {
+    cell ( "DFFR_X1" ) { ff (IQ, IQN) { clocked_on : CK; } }
+    cell(LAT) { latch(IQ, IQN) { enable : G; } }
+    cell(BANK4) { ff_bank ( IQ, IQN, 4 ) { } }
+    cell(LBANK) { latch_bank(IQ, IQN, 2) { } }
+    cell(BUF) { function : "buff(A)"; cell_footprint : ff; }
+    cell(ODD) { stuff(x) ; ffx(y); }
+    cell($weird.name[0]) {
+      ff
+        (IQ) {}
+    }
+    subcell(NOTACELL) { ff(IQ) {} }
+  })lib";
+  EXPECT_EQ(liberty_registers(lib), (Names{"DFFR_X1", "LAT", "BANK4", "LBANK", "$weird.name[0]"}));
+  EXPECT_TRUE(liberty_registers("").empty());
+  EXPECT_TRUE(liberty_registers("cell").empty());
+  EXPECT_TRUE(liberty_registers("cell(").empty());
+  EXPECT_TRUE(liberty_registers("cell(\"A").empty());
+  EXPECT_TRUE(liberty_registers("cell()  ff(").empty());
+  EXPECT_EQ(liberty_registers("cell(A)ff("), Names{"A"});
+}
+
+// std::regex recursed once per blank after `cell` and died near 100 000 of them.
+TEST(Liberty, LongRunsOfBlanksAndManyCells) {
+  const std::string blanks(2'000'000, ' ');
+  EXPECT_EQ(liberty_registers("cell" + blanks + "(A" + blanks + ") { ff" + blanks + "(IQ) }"),
+            Names{"A"});
+  std::string many;
+  for (int i = 0; i < 200'000; ++i) many += "cell(C" + std::to_string(i) + ") { ff(IQ) }\n";
+  EXPECT_EQ(liberty_registers(many).size(), 200'000u);
+  std::string opens;
+  for (int i = 0; i < 1'000'000; ++i) opens += "cell(";
+  EXPECT_TRUE(liberty_registers(opens).empty());
+}
+
+}  // namespace
