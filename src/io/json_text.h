@@ -1,7 +1,7 @@
-// Reading a JSON input file (a scene, a regression golden) into a document, defensively: a size
-// limit, a nesting limit checked before the parser sees the text, parse errors reported with their
-// line, and duplicate keys (which nlohmann would silently resolve to the last one) rejected like
-// unknown keys.
+// Reading a JSON input file (a scene, a regression golden, a sweep report to merge) into a
+// document, defensively: a size limit, a nesting limit checked before the parser sees the text,
+// parse errors reported with their line, and duplicate keys (which nlohmann would silently resolve
+// to the last one) rejected like unknown keys.
 #pragma once
 
 #include <cstddef>
