@@ -4,11 +4,11 @@
 // The stream is generated on the fly (no storage, so memory stays flat in N): t uniform over
 // [T, 1] (--t-min, default -1) from a fixed-seed generator, one white Blinn material n = 50, eps =
 // 1e-3. Clocked mode gives every lane its own generator (same seed, same rows); the sink is always
-// ready. --vcd (and
-// --vcd-window) trace the clocked run as `glint sim --vcd` does.
+// ready. --vcd (and --vcd-window) trace the clocked run as `glint sim --vcd` does.
 #include <fmt/format.h>
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
@@ -18,26 +18,82 @@
 #include <systemc>
 #include <vector>
 
+#include "io/thread_pool.h"
 #include "rtl_model/clocked_sim.h"
 #include "rtl_model/fast_sim.h"
 #include "rtl_model/row_stream.h"
 
 namespace {
 
-// The benchmark stream: `count` rows from a 64-bit LCG.
+// The benchmark stream: `count` rows from a 64-bit LCG, row k from the generator's state after k
+// + 1 steps. Besides a row at a time (clocked mode), a block at a time on several threads, as
+// `glint sim` parses a block of a file on its threads (VectorReader::next_block): each part of the
+// block starts from its own state (jump-ahead, the same rows), and four rows a step break the
+// LCG's chain of dependent multiplies.
 class GeneratedRows {
  public:
+  static constexpr std::uint64_t kMul = 6364136223846793005ULL, kAdd = 1442695040888963407ULL;
   GeneratedRows(std::uint64_t count, double t_min) : count_(count), t_min_(t_min) {}
+
   bool next(glint::VectorRow& row) {
     if (produced_ == count_) return false;
-    state_ = state_ * 6364136223846793005ULL + 1442695040888963407ULL;
-    row.t = t_min_ + static_cast<double>(state_ >> 11) * 0x1.0p-53 * (1.0 - t_min_);
-    row.material = 0;
-    row.line = ++produced_;
+    state_ = state_ * kMul + kAdd;
+    row = make_row(state_, ++produced_);
+    return true;
+  }
+
+  // The next rows (at most block.size()) into `block`, on `pool`'s threads; false at the end.
+  bool next_block(std::vector<glint::VectorRow>& block, glint::ThreadPool& pool) {
+    const std::uint64_t n = std::min<std::uint64_t>(block.size(), count_ - produced_);
+    block.resize(n);
+    if (n == 0) return false;
+    const std::uint64_t parts = static_cast<std::uint64_t>(pool.threads());
+    const std::uint64_t per_part = (n + parts - 1) / parts;
+    pool.run(parts, [&](std::size_t p) {
+      const std::uint64_t a = std::min(n, p * per_part), b = std::min(n, a + per_part);
+      fill(block.data(), a, b, jump(state_, a));
+    });
+    state_ = jump(state_, n);
+    produced_ += n;
     return true;
   }
 
  private:
+  glint::VectorRow make_row(std::uint64_t state, std::uint64_t line) const {
+    glint::VectorRow row;
+    row.t = t_min_ + static_cast<double>(state >> 11) * 0x1.0p-53 * (1.0 - t_min_);
+    row.line = line;
+    return row;
+  }
+
+  // The state `steps` steps after `state`: x -> kMul x + kAdd applied by squaring.
+  static std::uint64_t jump(std::uint64_t state, std::uint64_t steps) {
+    std::uint64_t mul = 1, add = 0, step_mul = kMul, step_add = kAdd;
+    for (; steps > 0; steps >>= 1) {
+      if (steps & 1) {
+        mul *= step_mul;
+        add = add * step_mul + step_add;
+      }
+      step_add = step_add * (step_mul + 1);
+      step_mul *= step_mul;
+    }
+    return state * mul + add;
+  }
+
+  // Rows [a, b) of a block whose row 0 follows `state` (the state before row a).
+  void fill(glint::VectorRow* rows, std::uint64_t a, std::uint64_t b, std::uint64_t state) const {
+    static const std::uint64_t mul4 = jump(1, 4) - jump(0, 4), add4 = jump(0, 4);
+    std::uint64_t s[4];
+    for (int j = 0; j < 4; ++j) s[j] = jump(state, static_cast<std::uint64_t>(j) + 1);
+    std::uint64_t k = a;
+    for (; k + 4 <= b; k += 4)
+      for (int j = 0; j < 4; ++j) {
+        rows[k + j] = make_row(s[j], produced_ + k + j + 1);
+        s[j] = s[j] * mul4 + add4;
+      }
+    for (int j = 0; k < b; ++k, ++j) rows[k] = make_row(s[j], produced_ + k + 1);
+  }
+
   std::uint64_t count_, produced_ = 0, state_ = 0x243F6A8885A308D3ULL;
   double t_min_;
 };
@@ -106,6 +162,7 @@ int sc_main(int argc, char* argv[]) {
   std::vector<glint::TimingStats> stats;
   if (mode == "fast") {
     GeneratedRows rows(vectors, t_min);
+    glint::ThreadPool generator_pool(threads);
     glint::FastOptions options;
     options.threads = threads;
     // A block at a time, as `glint sim` reads a file (VectorReader::next_block).
@@ -113,10 +170,7 @@ int sc_main(int argc, char* argv[]) {
         units, slots,
         [&](std::vector<glint::VectorRow>& block) {
           block.resize(glint::kEngineBatch);
-          std::size_t n = 0;
-          while (n < block.size() && rows.next(block[n])) ++n;
-          block.resize(n);
-          return n > 0;
+          return rows.next_block(block, generator_pool);
         },
         options, &acc);
     for (std::size_t i = 0; i < units.size(); ++i) skipped[i] = acc[i].stats().skipped;
