@@ -162,6 +162,9 @@ TEST(Engine, EqualsRowByRowOnAGeneratedStream) {
   header.materials.push_back({"shiny", {1, 1, 1}, 50, Lobe::kBlinn, 0});
   header.materials.push_back({"gold", {1, 0.77, 0.34}, 8, Lobe::kPhong, 0});
   header.materials.push_back({"soft", {0.5, 0.5, 0.5}, 0, Lobe::kGaussian, 0.3});
+  // First used at row 120001, in the middle of a window: the runs before it go through the lanes
+  // at once, those from it on once its slots have begun.
+  header.materials.push_back({"late", {0.8, 0.8, 0.8}, 20, Lobe::kBlinn, 0});
   std::vector<VectorRow> rows(150000);
   std::uint64_t state = 0x9E3779B97F4A7C15ULL;
   for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -169,7 +172,7 @@ TEST(Engine, EqualsRowByRowOnAGeneratedStream) {
     // t over [-1, 1.001], a few exact 0 and 1.
     const double u = static_cast<double>(state >> 11) * 0x1.0p-53;
     rows[i].t = i % 97 == 0 ? 0.0 : i % 89 == 0 ? 1.0 : -1.0 + 2.001 * u;
-    rows[i].material = static_cast<std::uint32_t>((state >> 7) % 3);
+    rows[i].material = static_cast<std::uint32_t>((state >> 7) % (i >= 120000 ? 4 : 3));
     rows[i].light = static_cast<std::int32_t>((state >> 17) % 3);
     rows[i].line = i + 1;
   }

@@ -117,8 +117,9 @@ bool EvalEngine::whole_windows() const {
 std::size_t EvalEngine::runs_per_lane(std::size_t count) const {
   if (options_.run_rows > 0) return ceil_div(count, options_.run_rows);
   if (whole_windows()) return 1;
-  const std::size_t threads = static_cast<std::size_t>(pool_.threads());
-  const std::size_t runs = ceil_div(4 * threads, lanes_.size());
+  // Each run goes through every lane in one task (add_window): four tasks per thread whatever the
+  // lanes, so that the last to finish waits little.
+  const std::size_t runs = 4 * static_cast<std::size_t>(pool_.threads());
   return std::max<std::size_t>(1, std::min(runs, count / kMinRunRows));
 }
 
@@ -161,6 +162,68 @@ void EvalEngine::merge_pending() {
   pending_ = false;
 }
 
+// Rows [a, b) of a window's `count` (its first in t_, slot_ and reference_ at index `at`): each
+// row's slot and reference; the slots among them that no lane has begun go to `fresh` in the
+// order of their first rows (the caller begins them: begin_fresh).
+void EvalEngine::prepare_run(const VectorRow* rows, std::size_t a, std::size_t b,
+                             std::size_t offset, BatchResults* out, std::size_t at,
+                             std::vector<std::uint32_t>& fresh) {
+  double* const t_out = t_.data() + at;
+  std::uint32_t* const slot_out = slot_.data() + at;
+  double* const ref_out = reference_.data() + at;
+  // Rows whose reference is computed, listed: the calls then run back to back in a loop of their
+  // own, where they overlap, instead of one in the middle of each scanned row.
+  thread_local std::vector<std::uint32_t> need_list;
+  need_list.resize(b - a);
+  RowScan scan{rows,
+               slots_.slot_of.data(),
+               slots_.light_stride,
+               deferred_t_.data(),
+               defer_t_.data(),
+               slot_known_.data(),
+               out == nullptr,
+               t_out,
+               slot_out,
+               ref_out,
+               need_list.data()};
+  bool unknown = false;
+  const std::size_t needed = scan_rows(scan, a, b, unknown);
+  const std::uint32_t* const need = need_list.data();
+  if (unknown) {
+    // Slots no lane has begun (rare: a slot's first window).
+    std::vector<bool> listed(slot_known_.size());
+    for (std::size_t i = a; i < b; ++i) {
+      const std::uint32_t s = slot_out[i];
+      if (!slot_known_[s] && !listed[s]) {
+        listed[s] = true;
+        fresh.push_back(s);
+      }
+    }
+  }
+  for (std::size_t x = 0; x < needed; ++x) {
+    const std::size_t i = need[x];
+    ref_out[i] = reference_value(slots_, slot_out[i], t_out[i]);
+  }
+  if (out) std::copy(ref_out + a, ref_out + b, out->reference.begin() + offset + a);
+}
+
+// The slots of `fresh` (per run, in stream order) begun in every lane, in that order; returns
+// whether there were any.
+bool EvalEngine::begin_fresh(const std::vector<std::vector<std::uint32_t>>& fresh) {
+  std::vector<std::uint32_t> begun;
+  for (const auto& list : fresh)
+    for (const std::uint32_t s : list)
+      if (!slot_known_[s]) {
+        slot_known_[s] = 1;
+        begun.push_back(s);
+      }
+  if (begun.empty()) return false;
+  pool_.run(lanes_.size(), [&](std::size_t l) {
+    for (const std::uint32_t s : begun) lanes_[l]->begin_slot(s);
+  });
+  return true;
+}
+
 // Each row's slot and reference, on the threads, into t_, slot_ and reference_ from index `at`
 // (the caller sizes them); then the slots this window uses first, begun in every lane in the order
 // of their first rows.
@@ -172,58 +235,9 @@ void EvalEngine::prepare(const VectorRow* rows, std::size_t count, std::size_t o
   std::vector<std::vector<std::uint32_t>> fresh(runs);
   pool_.run(runs, [&](std::size_t r) {
     const std::size_t a = r * per_run, b = std::min(count, a + per_run);
-    double* const t_out = t_.data() + at;
-    std::uint32_t* const slot_out = slot_.data() + at;
-    double* const ref_out = reference_.data() + at;
-    // Rows whose reference is computed, listed: the calls then run back to back in a loop of
-    // their own, where they overlap, instead of one in the middle of each scanned row.
-    thread_local std::vector<std::uint32_t> need_list;
-    need_list.resize(b - a);
-    RowScan scan{rows,
-                 slots_.slot_of.data(),
-                 slots_.light_stride,
-                 deferred_t_.data(),
-                 defer_t_.data(),
-                 slot_known_.data(),
-                 out == nullptr,
-                 t_out,
-                 slot_out,
-                 ref_out,
-                 need_list.data()};
-    bool unknown = false;
-    const std::size_t needed = scan_rows(scan, a, b, unknown);
-    const std::uint32_t* const need = need_list.data();
-    if (unknown) {
-      // Slots no lane has begun: listed in the order of their first rows (rare: a slot's first
-      // window).
-      std::vector<bool> listed(slot_known_.size());
-      for (std::size_t i = a; i < b; ++i) {
-        const std::uint32_t s = slot_out[i];
-        if (!slot_known_[s] && !listed[s]) {
-          listed[s] = true;
-          fresh[r].push_back(s);
-        }
-      }
-    }
-    for (std::size_t x = 0; x < needed; ++x) {
-      const std::size_t i = need[x];
-      ref_out[i] = reference_value(slots_, slot_out[i], t_out[i]);
-    }
+    prepare_run(rows, a, b, offset, out, at, fresh[r]);
   });
-  if (out)
-    std::copy(reference_.begin() + at, reference_.begin() + at + count,
-              out->reference.begin() + offset);
-  std::vector<std::uint32_t> begun;
-  for (const auto& list : fresh)
-    for (const std::uint32_t s : list)
-      if (!slot_known_[s]) {
-        slot_known_[s] = 1;
-        begun.push_back(s);
-      }
-  if (begun.empty()) return;
-  pool_.run(lanes_.size(), [&](std::size_t l) {
-    for (const std::uint32_t s : begun) lanes_[l]->begin_slot(s);
-  });
+  begin_fresh(fresh);
 }
 
 void EvalEngine::add_window(const VectorRow* rows, std::size_t count, std::size_t offset,
@@ -231,11 +245,11 @@ void EvalEngine::add_window(const VectorRow* rows, std::size_t count, std::size_
   t_.resize(count);
   slot_.resize(count);
   reference_.resize(count);
-  prepare(rows, count, offset, out);
   const RowsView view{t_.data(), slot_.data(), reference_.data()};
   const std::size_t lanes = lanes_.size();
   const std::size_t runs = runs_per_lane(count);
   if (runs == 1) {
+    prepare(rows, count, offset, out);
     merge_pending();
     const std::size_t group = merge_group_size();
     pool_.run(ceil_div(lanes, group), [&](std::size_t task) {
@@ -244,23 +258,39 @@ void EvalEngine::add_window(const VectorRow* rows, std::size_t count, std::size_
     });
     return;
   }
-  // Runs on every thread; the last window's merges (tasks 0 .. merges - 1, one per lane, handed
-  // out first) go alongside them.
+  // Runs of rows on every thread, each prepared and then taken through every lane in one task
+  // (its rows still in the core's cache, one wait for the threads a window); the last window's
+  // merges (tasks 0 .. merges - 1, one per lane, handed out first) go alongside them. A run whose
+  // rows meet a slot no lane has begun waits for the slots to begin, in stream order, after the
+  // others.
   auto& now = partials_[current_];
   const auto& last = partials_[1 - current_];
   for (auto& p : now) p.resize(runs);
   const std::size_t per_run = ceil_div(count, runs);
   const std::size_t merges = pending_ ? lanes : 0;
-  pool_.run(merges + lanes * runs, [&](std::size_t task) {
+  std::vector<std::vector<std::uint32_t>> fresh(runs);
+  const auto run_lanes = [&](std::size_t r) {
+    const std::size_t a = std::min(count, r * per_run), b = std::min(count, a + per_run);
+    for (std::size_t l = 0; l < lanes; ++l)
+      lanes_[l]->accumulate(view, a, b, now[l][r], raw_at(out, l, offset),
+                            skipped_at(out, l, offset));
+  };
+  pool_.run(merges + runs, [&](std::size_t task) {
     if (task < merges) {
       merge(last[task], task);
       return;
     }
-    const std::size_t l = (task - merges) / runs, r = (task - merges) % runs;
+    const std::size_t r = task - merges;
     const std::size_t a = std::min(count, r * per_run), b = std::min(count, a + per_run);
-    lanes_[l]->accumulate(view, a, b, now[l][r], raw_at(out, l, offset),
-                          skipped_at(out, l, offset));
+    prepare_run(rows, a, b, offset, out, 0, fresh[r]);
+    if (fresh[r].empty()) run_lanes(r);
   });
+  if (begin_fresh(fresh)) {
+    std::vector<std::size_t> held;
+    for (std::size_t r = 0; r < runs; ++r)
+      if (!fresh[r].empty()) held.push_back(r);
+    pool_.run(held.size(), [&](std::size_t h) { run_lanes(held[h]); });
+  }
   current_ = 1 - current_;
   pending_ = true;
 }

@@ -8,10 +8,12 @@
 // (their contracts), then each lane's rows in runs on threads (LaneAccumulator::accumulate:
 // quantization, comparator, the datapath's result from the per-code memo, the statistics that
 // merge exactly) and each lane's runs merged in stream order (LaneAccumulator::merge: the sum of
-// squares, the digest and the timing recurrences, which are sequential folds). With few lanes the
-// merges of one window overlap the runs of the next; with many (at least two per thread), each
-// lane's window is one task, and the threads take the windows of a span of several in any order
-// that keeps each lane's in stream order: no thread waits at the end of a window for the others.
+// squares, the digest and the timing recurrences, which are sequential folds). With few lanes a
+// run's shared work and its pass through every lane are one task (while its rows are in the
+// core's cache; a run that meets a slot not yet begun waits for it), and the merges of one window
+// overlap the runs of the next; with many (at least two per thread), each lane's window is one
+// task, and the threads take the windows of a span of several in any order that keeps each lane's
+// in stream order: no thread waits at the end of a window for the others.
 // Side work (the reader parsing the next rows) then runs beside the lanes' windows.
 #pragma once
 
@@ -64,6 +66,9 @@ class EvalEngine {
                 const SideWork& side, bool& side_more);
   void prepare(const VectorRow* rows, std::size_t count, std::size_t offset, BatchResults* out,
                std::size_t at = 0);
+  void prepare_run(const VectorRow* rows, std::size_t a, std::size_t b, std::size_t offset,
+                   BatchResults* out, std::size_t at, std::vector<std::uint32_t>& fresh);
+  bool begin_fresh(const std::vector<std::vector<std::uint32_t>>& fresh);
   void run_group(std::size_t first, std::size_t size, const RowsView& view, std::size_t count,
                  std::size_t offset, BatchResults* out);
   std::size_t runs_per_lane(std::size_t count) const;
