@@ -48,7 +48,9 @@ class FastLanes : public sc_core::sc_module {
     }
   }
 
-  // Temporal decoupling: one wait per batch, by the cycles the batch spanned.
+  // Temporal decoupling: one wait per batch, by the cycles the batch spanned (in the engine, the
+  // cycles merged so far: a batch's last window is merged beside the next batch's rows, and the
+  // last wait after EvalEngine::finish()).
   void advance(std::uint64_t& now_cycles) {
     std::uint64_t end = now_cycles;
     for (const TimingEngine& e : engines_) end = std::max(end, e.stats().cycles);
@@ -89,17 +91,19 @@ class FastLanes : public sc_core::sc_module {
       if (more && rows.empty() && block.size() >= batch) {
         // A block as large as a batch goes in as it is: no copy, and the source keeps its
         // storage (a vector it refills in place).
-        engine.add(block.data(), block.size());
+        engine.add_open(block.data(), block.size());
         advance(now_cycles);
         continue;
       }
       if (more) rows.insert(rows.end(), block.begin(), block.end());
       if (!rows.empty() && (rows.size() >= batch || !more)) {
-        engine.add(rows.data(), rows.size());
+        engine.add_open(rows.data(), rows.size());
         advance(now_cycles);
         rows.clear();
       }
     }
+    engine.finish();
+    advance(now_cycles);
   }
 
   void work_by_row() {

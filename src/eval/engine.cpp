@@ -125,6 +125,19 @@ std::size_t EvalEngine::runs_per_lane(std::size_t count) const {
 
 void EvalEngine::add(const VectorRow* rows, std::size_t count, BatchResults* out,
                      const SideWork& side) {
+  add_rows(rows, count, out, side, true);
+}
+
+void EvalEngine::add_open(const VectorRow* rows, std::size_t count) {
+  add_rows(rows, count, nullptr, {}, false);
+}
+
+void EvalEngine::finish() {
+  merge_pending();
+}
+
+void EvalEngine::add_rows(const VectorRow* rows, std::size_t count, BatchResults* out,
+                          const SideWork& side, bool complete) {
   bool side_more = static_cast<bool>(side);
   if (!lanes_.empty()) {  // else a shard without configurations
     if (out) {
@@ -145,7 +158,7 @@ void EvalEngine::add(const VectorRow* rows, std::size_t count, BatchResults* out
       while (side_more) side_more = side();
       for (std::size_t at = 0; at < count; at += window)
         add_window(rows + at, std::min(window, count - at), at, out);
-      merge_pending();
+      if (complete) merge_pending();
     }
   }
   while (side_more) side_more = side();

@@ -53,12 +53,19 @@ class EvalEngine {
   // choice (run_rows 0), else before the rows.
   void add(const VectorRow* rows, std::size_t count, BatchResults* out = nullptr,
            const SideWork& side = {});
+  // add() but for the last window's merges, which may wait for the next add_open() or add() to
+  // run beside its rows (a stream read in blocks would otherwise merge on one thread at the end of
+  // every block): the lanes' statistics and timing are complete after finish().
+  void add_open(const VectorRow* rows, std::size_t count);
+  void finish();
 
   // Whether an engine of `lanes` lanes on `threads` threads runs side work beside its lanes:
   // whole windows per lane (at least two lanes per thread), more than one thread.
   static bool overlaps_side_work(std::size_t lanes, int threads);
 
  private:
+  void add_rows(const VectorRow* rows, std::size_t count, BatchResults* out, const SideWork& side,
+                bool complete);
   bool whole_windows() const;
   std::size_t merge_group_size() const;
   void add_window(const VectorRow* rows, std::size_t count, std::size_t offset, BatchResults* out);
