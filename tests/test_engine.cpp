@@ -186,6 +186,33 @@ TEST(Engine, EqualsRowByRowOnAGeneratedStream) {
   expect_engine_equals_rows(header, rows);
 }
 
+// A lane leaves out rows it skips with a reference below kDeferredBound only once every slot's
+// weighted maximum is above the bound times the slot's weight: here a dim material settles the
+// scalar maxima early (t = 0.8355: reference 1.26e-4 >= 2^-13, weighted 2.5e-7), while a material
+// under a light of 1e7 has skipped rows of reference up to 4.4e-13 (t < 0.566), weighted up to
+// 4.4e-6: leaving them out after the scalars settle would lose the weighted maximum.
+TEST(Engine, LeavesRowsOutOnlyWhenEveryWeightIsSettled) {
+  VectorHeader header;
+  header.eps = 1e-3;
+  header.lights = 2;
+  header.light_intensity = {{1, 1, 1}, {1e7, 1e7, 1e7}};
+  header.has_light = true;
+  header.materials.push_back({"dim", {0.002, 0.002, 0.002}, 50, Lobe::kBlinn, 0});
+  header.materials.push_back({"bright", {1, 1, 1}, 50, Lobe::kBlinn, 0});
+  std::vector<VectorRow> rows(20000);
+  std::uint64_t state = 0x2545F4914F6CDD1DULL;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    const double u = static_cast<double>(state >> 11) * 0x1.0p-53;
+    const bool dim = i % 16 < 4;
+    rows[i].material = dim ? 0 : 1;
+    rows[i].light = dim ? 0 : 1;
+    rows[i].t = dim ? 0.8355 : 0.54 + 0.0259 * u;
+    rows[i].line = i + 1;
+  }
+  expect_engine_equals_rows(header, rows);
+}
+
 // The engine's pool: every task once per run, over many short runs, and a task's exception
 // rethrown by run() with the pool still usable.
 TEST(ThreadPool, RunsEveryTaskOnceAndRethrows) {

@@ -291,6 +291,13 @@ class LaneAccumulator {
   // with the same threshold and lobe share one sweep (a file of many identical materials).
   std::map<ContractKey, std::size_t> contract_of_;  // index into stats_.slots
   std::unique_ptr<Memo> memo_;                      // null: inputs too wide to memoise
+  // Per slot, the largest t at or below which a row is skipped and its reference at most
+  // kDeferredBound (-inf: none; accumulate_rows leaves such rows out once its statistics are
+  // settled); whether any slot has one, whether some begun slot is always skipped, and the largest
+  // slot weight.
+  std::vector<double> drop_t_;
+  bool drops_any_ = false, any_always_ = false;
+  double max_c_y_ = 0;
 };
 
 // One evaluated request for the optional per-vector dump.

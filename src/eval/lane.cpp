@@ -102,34 +102,49 @@ inline void fold_row(double& sum, std::uint64_t& digest, double square, std::uin
   digest = fold_digest(digest, word);
 }
 
-// The first pass of LaneAccumulator::accumulate_rows over rows [a, a + n): each row's input code
-// and comparator, the computed rows listed with their codes and the skipped ones apart (no branch
-// between the two: a stream takes it at random), every row's digest word that of a skipped row
-// (a computed row's is written later). In a function of its own, every pointer a parameter: in
-// the big function, GCC kept several on the stack and reloaded them on every row.
+// The first pass of LaneAccumulator::accumulate_rows over the rows row_at(0 .. n - 1) of a run
+// (consecutive rows, or those of a list): each row's input code and comparator, the computed rows
+// listed with their codes and the skipped ones apart (no branch between the two: a stream takes it
+// at random), every row's digest word that of a skipped row (a computed row's is written later).
+// In a function of its own, every pointer a parameter: in the big function, GCC kept several on
+// the stack and reloaded them on every row.
 struct ClassifiedRows {
   std::size_t computed = 0, skipped = 0;
 };
 
+template <class RowAt>
 ClassifiedRows classify_rows(const InputQuantizer& quantize, const double* __restrict t,
                              const std::uint32_t* __restrict slot,
-                             const std::int64_t* __restrict tau, std::size_t n,
+                             const std::int64_t* __restrict tau, RowAt row_at, std::size_t n,
                              std::uint32_t* __restrict computed, std::int64_t* __restrict code,
                              std::uint32_t* __restrict skipped_rows,
                              std::uint64_t* __restrict word) {
   std::size_t computed_count = 0, skipped_count = 0;
   const std::uint64_t skipped_word = digest_word(0, true);
-  for (std::size_t k = 0; k < n; ++k) {
+  for (std::size_t x = 0; x < n; ++x) {
+    const std::uint32_t k = row_at(x);
     const std::int64_t t_raw = quantize(t[k]);
     const bool sk = t_raw <= tau[slot[k]];
-    computed[computed_count] = static_cast<std::uint32_t>(k);
+    computed[computed_count] = k;
     code[computed_count] = t_raw;
     computed_count += !sk;
-    skipped_rows[skipped_count] = static_cast<std::uint32_t>(k);
+    skipped_rows[skipped_count] = k;
     skipped_count += sk;
     word[k] = skipped_word;
   }
   return {computed_count, skipped_count};
+}
+
+// The rows of [k0, k1) above their slot's drop_t into `out`; returns how many.
+std::size_t list_rows(const double* __restrict t, const std::uint32_t* __restrict slot,
+                      const double* __restrict drop_t, std::size_t k0, std::size_t k1,
+                      std::uint32_t* __restrict out) {
+  std::size_t n = 0;
+  for (std::size_t k = k0; k < k1; ++k) {
+    out[n] = static_cast<std::uint32_t>(k);
+    n += t[k] > drop_t[slot[k]];
+  }
+  return n;
 }
 
 }  // namespace
@@ -189,6 +204,17 @@ LaneAccumulator::LaneAccumulator(const SpecularUnit& unit, const SlotMap& slots,
   slot_state_.assign(unit.slots(), -1);
   tau_.resize(unit.slots());
   for (std::size_t s = 0; s < tau_.size(); ++s) tau_[s] = unit.tau_raw(s);
+  for (const double w : slots.c_y) max_c_y_ = std::max(max_c_y_, w);
+  // At or below min(deferred_t, the value of tau's code) a power lobe's row is skipped (quantizing
+  // is monotone, and tau's own value quantizes to tau) and its reference at most kDeferredBound.
+  const std::vector<double> small = deferred_t(slots);
+  drop_t_.assign(tau_.size(), -std::numeric_limits<double>::infinity());
+  for (std::size_t s = 0; s < tau_.size(); ++s) {
+    if (s >= small.size() || small[s] <= 0.0 || tau_[s] < 0) continue;  // Gaussian, or none skipped
+    const double t = std::min(small[s], static_cast<double>(tau_[s]) * in_ulp_);
+    if (!computes_at_or_below(s, t)) drop_t_[s] = t;  // a check beside the argument above
+    drops_any_ = drops_any_ || drop_t_[s] > -std::numeric_limits<double>::infinity();
+  }
   const int width = unit.in_format().width();
   if (width <= 16 && unit.slots() << width <= kMemoCodes) {
     memo_ = std::make_unique<Memo>();
@@ -212,6 +238,7 @@ void LaneAccumulator::begin_slot(std::size_t slot) {
     stats_.slots.push_back(std::move(c));
   }
   slot_state_[slot] = stats_.slots.back().always_skipped ? 1 : 0;
+  any_always_ = any_always_ || slot_state_[slot] == 1;
   if (memo_) {
     Memo::Table& table = memo_->tables[slot];
     table.first = std::max<std::int64_t>(tau_[slot] + 1, 0);
@@ -321,27 +348,16 @@ void LaneAccumulator::accumulate_rows(const RowsView& rows, std::size_t a, std::
   const double ulp = ulp_, display = display_;
   double* const square = p.square.data();
   std::uint64_t* const word = p.word.data();
-  thread_local std::vector<std::uint32_t> computed_list, skipped_list;
+  thread_local std::vector<std::uint32_t> computed_list, skipped_list, row_list;
   thread_local std::vector<std::int64_t> code_list;
   computed_list.resize(n);
   skipped_list.resize(n);
+  row_list.resize(n);
   code_list.resize(n);
   std::uint32_t* const computed = computed_list.data();
   std::uint32_t* const skipped_rows = skipped_list.data();
+  std::uint32_t* const listed = row_list.data();
   std::int64_t* const code = code_list.data();
-  // Three passes: every row's code and comparator, which lists the skipped and the computed
-  // rows without a branch between them (a stream takes it at random: half the rows of each of
-  // `glint eval`'s five units); then the skipped rows' statistics; then the computed rows'. The
-  // maxima that both lists enter keep the row of their first largest value, to be joined as
-  // one pass in stream order would have.
-  const ClassifiedRows classified = classify_rows(quantize, rows.t + a, rows.slot + a, tau, n,
-                                                  computed, code, skipped_rows, word);
-  const std::size_t computed_count = classified.computed, skipped_count = classified.skipped;
-  if (raw) std::fill(raw + a, raw + a + n, 0);  // a computed row's is written by the third pass
-  if (skipped) {
-    std::fill(skipped + a, skipped + a + n, 0);
-    for (std::size_t x = 0; x < skipped_count; ++x) skipped[a + skipped_rows[x]] = 1;
-  }
   FirstMax total1, weighted1, total2, weighted2;
   LanePartial::MaxAt input{0, 0}, skip{0, 0};
   LanePartial::MaxAt approximation{0, 0}, parameter{0, 0}, datapath{0, 0};
@@ -386,33 +402,73 @@ void LaneAccumulator::accumulate_rows(const RowsView& rows, std::size_t a, std::
       mismatch += min1(ref) * display >= 0.5;
     }
   };
-  // Rows one at a time until the maxima that a skipped row with reference 0 could change are
-  // above 0 and those that a deferred one could change are settled (they only grow; it takes a
-  // few dozen rows on a typical stream). From there such a row changes nothing but its square
-  // (0) and the count of always-skipped rows: the others, listed, go through add_skipped as
-  // before, so that most of a mostly skipped stream costs a few operations a row.
+  // The passes: every row's code and comparator (classify_rows), which lists the skipped and the
+  // computed rows without a branch between them (a stream takes it at random); the skipped rows'
+  // statistics; then the computed rows'. The maxima that both lists enter keep the row of their
+  // first largest value, to be joined as one pass in stream order would have.
+  // classify: rows k0 .. k0 + count - 1, or those of `at` (not null).
+  const auto classify = [&](const std::uint32_t* at, std::size_t k0, std::size_t count,
+                            std::size_t& computed_at) {
+    const auto sort = [&](auto row_at) {
+      return classify_rows(quantize, rows.t + a, rows.slot + a, tau, row_at, count,
+                           computed + computed_at, code + computed_at, skipped_rows, word);
+    };
+    const ClassifiedRows c =
+        at ? sort([at](std::size_t x) { return at[x]; })
+           : sort([k0](std::size_t x) { return static_cast<std::uint32_t>(k0 + x); });
+    computed_at += c.computed;
+    return c.skipped;
+  };
+  // Rows a few dozen at a time, every skipped row through add_skipped, until the maxima that a
+  // skipped row with reference 0 could change are above 0 and those that a deferred one could
+  // change are settled (they only grow; it takes a few dozen rows on a typical stream).
   constexpr std::size_t kSettledCheck = 64;  // rows between two looks at the maxima
-  std::size_t x = 0;
-  for (; x < skipped_count; ++x) {
-    if (x % kSettledCheck == 0 && scalars_settled()) break;
-    add_skipped(skipped_rows[x]);
+  std::size_t computed_count = 0, skipped_count = 0, k = 0;
+  for (; k < n && !scalars_settled(); k = std::min(n, k + kSettledCheck)) {
+    const std::size_t some =
+        classify(nullptr, k, std::min(n, k + kSettledCheck) - k, computed_count);
+    skipped_count += some;
+    for (std::size_t x = 0; x < some; ++x) add_skipped(skipped_rows[x]);
   }
-  // A deferred row is settled as add_skipped judges it when the weighted maximum is above its
-  // slot's bound; judged here with that maximum as it is now, which can only grow.
+  // From there a skipped row of reference at most kDeferredBound (0, deferred or computed) in a
+  // slot whose weighted maximum is settled changes nothing but its square (0) and the count of
+  // always-skipped rows. When every slot's is, the rows at or below their slot's drop_t are left
+  // out at once; the others go through the passes as before, so that most of a mostly skipped
+  // stream costs a few operations a row.
   const double weighted_now = weighted1.value;
+  const bool drop = drops_any_ && weighted_now > kDeferredBound * max_c_y_;
+  const std::size_t count =
+      drop ? list_rows(rows.t + a, rows.slot + a, drop_t_.data(), k, n, listed) : n - k;
+  if (drop) {
+    std::fill(word + k, word + n, digest_word(0, true));
+    std::fill(square + k, square + n, 0.0);
+    skipped_count += (n - k) - count;
+    if (any_always_)
+      for (std::size_t j = k; j < n; ++j) {
+        const std::size_t s = rows.slot[a + j];
+        always_rows += (rows.t[a + j] <= drop_t_[s]) & (state[s] == 1);
+      }
+  }
+  const std::size_t rest = classify(drop ? listed : nullptr, k, count, computed_count);
+  skipped_count += rest;
   std::size_t live = 0;
-  for (std::size_t y = x; y < skipped_count; ++y) {
-    const std::size_t k = skipped_rows[y];
-    const std::size_t i = a + k;
+  for (std::size_t y = 0; y < rest; ++y) {
+    const std::size_t j = skipped_rows[y];
+    const std::size_t i = a + j;
     const std::size_t s = rows.slot[i];
     const double ref = rows.reference[i];
     const bool keep = (ref > 0.0) | ((ref < 0.0) & !weighted_settled(weighted_now, s));
-    square[k] = 0;
+    square[j] = 0;
     always_rows += (state[s] == 1) & !keep;
-    skipped_rows[x + live] = static_cast<std::uint32_t>(k);
+    skipped_rows[live] = static_cast<std::uint32_t>(j);
     live += keep;
   }
-  for (std::size_t y = x; y < x + live; ++y) add_skipped(skipped_rows[y]);
+  for (std::size_t y = 0; y < live; ++y) add_skipped(skipped_rows[y]);
+  if (raw) std::fill(raw + a, raw + a + n, 0);  // a computed row's is written below
+  if (skipped) {
+    std::fill(skipped + a, skipped + a + n, 1);
+    for (std::size_t x = 0; x < computed_count; ++x) skipped[a + computed[x]] = 0;
+  }
   const auto fold_parts = [&](const CodeFacts& f, double t) {
     max_at(approximation, std::fabs(f.approximation), t);
     max_at(parameter, std::fabs(f.parameter), t);
