@@ -419,51 +419,66 @@ void LaneAccumulator::accumulate_rows(const RowsView& rows, std::size_t a, std::
     computed_at += c.computed;
     return c.skipped;
   };
-  // Rows a few dozen at a time, every skipped row through add_skipped, until the maxima that a
-  // skipped row with reference 0 could change are above 0 and those that a deferred one could
-  // change are settled (they only grow; it takes a few dozen rows on a typical stream).
+  // Skipped rows in order through add_skipped until the maxima that a skipped row with reference
+  // 0 could change are above 0 and those that a deferred one could change are settled (they only
+  // grow; it takes a few dozen rows on a typical stream). From there a skipped row of reference
+  // at most kDeferredBound (0, deferred or computed) in a slot whose weighted maximum is settled
+  // changes nothing but its square (0) and the count of always-skipped rows: the rest of the
+  // skipped rows are filtered (`settle` below), the others going through add_skipped as before.
   constexpr std::size_t kSettledCheck = 64;  // rows between two looks at the maxima
-  std::size_t computed_count = 0, skipped_count = 0, k = 0;
-  for (; k < n && !scalars_settled(); k = std::min(n, k + kSettledCheck)) {
-    const std::size_t some =
-        classify(nullptr, k, std::min(n, k + kSettledCheck) - k, computed_count);
-    skipped_count += some;
-    for (std::size_t x = 0; x < some; ++x) add_skipped(skipped_rows[x]);
+  const auto settle = [&](std::size_t x, std::size_t end) {
+    const double weighted_now = weighted1.value;
+    std::size_t live = 0;
+    for (std::size_t y = x; y < end; ++y) {
+      const std::size_t j = skipped_rows[y];
+      const std::size_t i = a + j;
+      const std::size_t s = rows.slot[i];
+      const double ref = rows.reference[i];
+      const bool keep = (ref > 0.0) | ((ref < 0.0) & !weighted_settled(weighted_now, s));
+      square[j] = 0;
+      always_rows += (state[s] == 1) & !keep;
+      skipped_rows[live] = static_cast<std::uint32_t>(j);
+      live += keep;
+    }
+    for (std::size_t y = 0; y < live; ++y) add_skipped(skipped_rows[y]);
+  };
+  std::size_t computed_count = 0, skipped_count = 0;
+  if (!drops_any_) {
+    skipped_count = classify(nullptr, 0, n, computed_count);
+    std::size_t x = 0;
+    for (; x < skipped_count; ++x) {
+      if (x % kSettledCheck == 0 && scalars_settled()) break;
+      add_skipped(skipped_rows[x]);
+    }
+    settle(x, skipped_count);
+  } else {
+    // The same a chunk of rows at a time; once the scalar maxima and every slot's weighted
+    // maximum are settled, the rows at or below their slot's drop_t are left out at once, so that
+    // most of a mostly skipped stream costs a few operations a row.
+    std::size_t k = 0;
+    for (; k < n && !scalars_settled(); k = std::min(n, k + kSettledCheck)) {
+      const std::size_t some =
+          classify(nullptr, k, std::min(n, k + kSettledCheck) - k, computed_count);
+      skipped_count += some;
+      for (std::size_t x = 0; x < some; ++x) add_skipped(skipped_rows[x]);
+    }
+    const bool drop = weighted1.value > kDeferredBound * max_c_y_;
+    const std::size_t count =
+        drop ? list_rows(rows.t + a, rows.slot + a, drop_t_.data(), k, n, listed) : n - k;
+    if (drop) {
+      std::fill(word + k, word + n, digest_word(0, true));
+      std::fill(square + k, square + n, 0.0);
+      skipped_count += (n - k) - count;
+      if (any_always_)
+        for (std::size_t j = k; j < n; ++j) {
+          const std::size_t s = rows.slot[a + j];
+          always_rows += (rows.t[a + j] <= drop_t_[s]) & (state[s] == 1);
+        }
+    }
+    const std::size_t rest = classify(drop ? listed : nullptr, k, count, computed_count);
+    skipped_count += rest;
+    settle(0, rest);
   }
-  // From there a skipped row of reference at most kDeferredBound (0, deferred or computed) in a
-  // slot whose weighted maximum is settled changes nothing but its square (0) and the count of
-  // always-skipped rows. When every slot's is, the rows at or below their slot's drop_t are left
-  // out at once; the others go through the passes as before, so that most of a mostly skipped
-  // stream costs a few operations a row.
-  const double weighted_now = weighted1.value;
-  const bool drop = drops_any_ && weighted_now > kDeferredBound * max_c_y_;
-  const std::size_t count =
-      drop ? list_rows(rows.t + a, rows.slot + a, drop_t_.data(), k, n, listed) : n - k;
-  if (drop) {
-    std::fill(word + k, word + n, digest_word(0, true));
-    std::fill(square + k, square + n, 0.0);
-    skipped_count += (n - k) - count;
-    if (any_always_)
-      for (std::size_t j = k; j < n; ++j) {
-        const std::size_t s = rows.slot[a + j];
-        always_rows += (rows.t[a + j] <= drop_t_[s]) & (state[s] == 1);
-      }
-  }
-  const std::size_t rest = classify(drop ? listed : nullptr, k, count, computed_count);
-  skipped_count += rest;
-  std::size_t live = 0;
-  for (std::size_t y = 0; y < rest; ++y) {
-    const std::size_t j = skipped_rows[y];
-    const std::size_t i = a + j;
-    const std::size_t s = rows.slot[i];
-    const double ref = rows.reference[i];
-    const bool keep = (ref > 0.0) | ((ref < 0.0) & !weighted_settled(weighted_now, s));
-    square[j] = 0;
-    always_rows += (state[s] == 1) & !keep;
-    skipped_rows[live] = static_cast<std::uint32_t>(j);
-    live += keep;
-  }
-  for (std::size_t y = 0; y < live; ++y) add_skipped(skipped_rows[y]);
   if (raw) std::fill(raw + a, raw + a + n, 0);  // a computed row's is written below
   if (skipped) {
     std::fill(skipped + a, skipped + a + n, 1);
