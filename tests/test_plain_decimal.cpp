@@ -48,6 +48,10 @@ TEST(PlainDecimal, SameBitsAsFromChars) {
     std::snprintf(text, sizeof text, "%.*f", decimals(rng), v);
     taken += check(text);
     ++tried;
+    // Followed by the rest of a row: the digits after the point read eight bytes at a time.
+    static const char* const kRest[] = {" bench", "\tx", ",1", "#c", "        ", " 12345678"};
+    taken += check(std::string(text) + kRest[i % 6]);
+    ++tried;
     // Digits that do not come from a double: every digit string of the form is its own test.
     std::string digits = std::to_string(rng() % 100000000000000000ULL);
     const std::size_t point = rng() % (digits.size() + 1);
@@ -64,6 +68,20 @@ TEST(PlainDecimal, SameBitsAsFromChars) {
   // Followed by what ends a field: the number stops there.
   EXPECT_TRUE(check("0.25 bench"));
   EXPECT_TRUE(check("-1,2"));
+  // Every count of digits after the point, 1 to 18, before each byte that can end them, with
+  // eight bytes or more to read.
+  std::string fraction;
+  for (int k = 1; k <= 18; ++k) {
+    fraction += static_cast<char>('0' + (k * 7) % 10);
+    for (const char* rest :
+         {" bench", "\tlight 1", ",gold", "#comment", "/ 0", ": 9", "        "}) {
+      // The fast path takes every such number of up to 15 digits (below 2^53); check() tests the
+      // longer ones too when it takes them.
+      const bool short_taken = check("0." + fraction + rest);
+      const bool long_taken = check("-12." + fraction + rest);
+      EXPECT_TRUE(k > 13 || (short_taken && long_taken)) << k << rest;
+    }
+  }
 }
 
 TEST(PlainDecimal, LeavesOtherFormsToTheGeneralPath) {
