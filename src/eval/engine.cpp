@@ -49,7 +49,14 @@ std::size_t scan_rows(const RowScan& scan, std::size_t a, std::size_t b, bool& u
   std::uint32_t* const __restrict need = scan.need;
   std::size_t needed = 0;
   bool all_known = true;
+  // The rows are usually beyond the core's cache (a block of a quarter of a million rows, filled
+  // by the reader's threads): fetched 2 KiB ahead, which the hardware's prefetcher, stopping at
+  // every 4 KiB page, does not do on its own (x1.04 on the skipped stream).
+  // The address is worked out as an integer: past the block's end it is only a hint.
+  constexpr std::uintptr_t kAhead = 64 * sizeof(VectorRow);
   for (std::size_t i = a; i < b; ++i) {
+    __builtin_prefetch(
+        reinterpret_cast<const void*>(reinterpret_cast<std::uintptr_t>(rows + i) + kAhead));
     const auto s = static_cast<std::uint32_t>(SlotMap::slot_in(slot_of, stride, rows[i]));
     const double t = rows[i].t;
     t_out[i] = t;
