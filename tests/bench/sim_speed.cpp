@@ -38,7 +38,7 @@ class GeneratedRows {
   bool next(glint::VectorRow& row) {
     if (produced_ == count_) return false;
     state_ = state_ * kMul + kAdd;
-    row = make_row(state_, ++produced_);
+    row = make_row(state_, ++produced_, t_min_);
     return true;
   }
 
@@ -59,9 +59,9 @@ class GeneratedRows {
   }
 
  private:
-  glint::VectorRow make_row(std::uint64_t state, std::uint64_t line) const {
+  static glint::VectorRow make_row(std::uint64_t state, std::uint64_t line, double t_min) {
     glint::VectorRow row;
-    row.t = t_min_ + static_cast<double>(state >> 11) * 0x1.0p-53 * (1.0 - t_min_);
+    row.t = t_min + static_cast<double>(state >> 11) * 0x1.0p-53 * (1.0 - t_min);
     row.line = line;
     return row;
   }
@@ -81,17 +81,21 @@ class GeneratedRows {
   }
 
   // Rows [a, b) of a block whose row 0 follows `state` (the state before row a).
+  // The members in locals: the rows' stores could otherwise change them, as far as the compiler
+  // knows, and each row would load them again.
   void fill(glint::VectorRow* rows, std::uint64_t a, std::uint64_t b, std::uint64_t state) const {
-    static const std::uint64_t mul4 = jump(1, 4) - jump(0, 4), add4 = jump(0, 4);
+    const std::uint64_t mul4 = jump(1, 4) - jump(0, 4), add4 = jump(0, 4);
+    const std::uint64_t line = produced_ + 1;
+    const double t_min = t_min_;
     std::uint64_t s[4];
     for (int j = 0; j < 4; ++j) s[j] = jump(state, static_cast<std::uint64_t>(j) + 1);
     std::uint64_t k = a;
     for (; k + 4 <= b; k += 4)
       for (int j = 0; j < 4; ++j) {
-        rows[k + j] = make_row(s[j], produced_ + k + j + 1);
+        rows[k + j] = make_row(s[j], line + k + j, t_min);
         s[j] = s[j] * mul4 + add4;
       }
-    for (int j = 0; k < b; ++k, ++j) rows[k] = make_row(s[j], produced_ + k + 1);
+    for (int j = 0; k < b; ++k, ++j) rows[k] = make_row(s[j], line + k, t_min);
   }
 
   std::uint64_t count_, produced_ = 0, state_ = 0x243F6A8885A308D3ULL;
