@@ -289,8 +289,10 @@ void EvalEngine::add_window(const VectorRow* rows, std::size_t count, std::size_
   const std::size_t per_run = ceil_div(count, runs);
   const std::size_t merges = pending_ ? lanes : 0;
   std::vector<std::vector<std::uint32_t>> fresh(runs);
+  const auto run_begin = [&](std::size_t r) { return std::min(count, r * per_run); };
+  const auto run_end = [&](std::size_t r) { return std::min(count, run_begin(r) + per_run); };
   const auto run_lanes = [&](std::size_t r) {
-    const std::size_t a = std::min(count, r * per_run), b = std::min(count, a + per_run);
+    const std::size_t a = run_begin(r), b = run_end(r);
     for (std::size_t l = 0; l < lanes; ++l)
       lanes_[l]->accumulate(view, a, b, now[l][r], raw_at(out, l, offset),
                             skipped_at(out, l, offset));
@@ -301,8 +303,7 @@ void EvalEngine::add_window(const VectorRow* rows, std::size_t count, std::size_
       return;
     }
     const std::size_t r = task - merges;
-    const std::size_t a = std::min(count, r * per_run), b = std::min(count, a + per_run);
-    prepare_run(rows, a, b, offset, out, 0, fresh[r]);
+    prepare_run(rows, run_begin(r), run_end(r), offset, out, 0, fresh[r]);
     if (fresh[r].empty()) run_lanes(r);
   });
   if (begin_fresh(fresh)) {

@@ -212,8 +212,9 @@ LaneAccumulator::LaneAccumulator(const SpecularUnit& unit, const SlotMap& slots,
   for (std::size_t s = 0; s < tau_.size(); ++s) {
     if (s >= small.size() || small[s] <= 0.0 || tau_[s] < 0) continue;  // Gaussian, or none skipped
     const double t = std::min(small[s], static_cast<double>(tau_[s]) * in_ulp_);
-    if (!computes_at_or_below(s, t)) drop_t_[s] = t;  // a check beside the argument above
-    drops_any_ = drops_any_ || drop_t_[s] > -std::numeric_limits<double>::infinity();
+    if (computes_at_or_below(s, t)) continue;  // a check beside the argument above
+    drop_t_[s] = t;
+    drops_any_ = true;
   }
   const int width = unit.in_format().width();
   if (width <= 16 && unit.slots() << width <= kMemoCodes) {
