@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -28,6 +29,14 @@ std::vector<UnitSpec> engine_specs() {
   // No comparator, a narrow input, and an input too wide for the per-code memo.
   for (const char* s : {"horner:skip=off", "lut:in=uq1.9,out=uq1.9", "hast:in=uq1.20,out=uq1.18"})
     specs.push_back(parse_unit_spec(s));
+  return specs;
+}
+
+// Units by their specs: one or two lanes let the shared pass defer small references (no lane
+// computes them), which the eight of engine_specs() do not.
+std::vector<UnitSpec> specs_of(const std::vector<std::string>& texts) {
+  std::vector<UnitSpec> specs;
+  for (const std::string& t : texts) specs.push_back(parse_unit_spec(t));
   return specs;
 }
 
@@ -57,8 +66,9 @@ struct Lanes {
   std::vector<TimingEngine> timing;
 };
 
-std::string row_by_row(const SlotMap& slots, const std::vector<VectorRow>& rows) {
-  Lanes lanes(slots, engine_specs());
+std::string row_by_row(const SlotMap& slots, const std::vector<VectorRow>& rows,
+                       const std::vector<UnitSpec>& specs) {
+  Lanes lanes(slots, specs);
   for (const VectorRow& row : rows) {
     const std::size_t slot = slots.slot(row);
     const RowReference ref = make_reference(slots, slot, row.t, 8);
@@ -75,8 +85,8 @@ std::string row_by_row(const SlotMap& slots, const std::vector<VectorRow>& rows)
 
 // The stream through an engine, in calls of uneven sizes.
 std::string engine_run(const SlotMap& slots, const std::vector<VectorRow>& rows,
-                       const EngineOptions& options) {
-  Lanes lanes(slots, engine_specs());
+                       const EngineOptions& options, const std::vector<UnitSpec>& specs) {
+  Lanes lanes(slots, specs);
   std::vector<LaneAccumulator*> acc;
   std::vector<TimingEngine*> timing;
   for (std::size_t u = 0; u < lanes.acc.size(); ++u) {
@@ -118,9 +128,10 @@ std::string engine_run(const SlotMap& slots, const std::vector<VectorRow>& rows,
   return lanes.report();
 }
 
-void expect_engine_equals_rows(const VectorHeader& header, const std::vector<VectorRow>& rows) {
+void expect_engine_equals_rows(const VectorHeader& header, const std::vector<VectorRow>& rows,
+                               const std::vector<UnitSpec>& specs = engine_specs()) {
   const SlotMap slots = make_slots(header);
-  const std::string expected = row_by_row(slots, rows);
+  const std::string expected = row_by_row(slots, rows, specs);
   struct Case {
     int threads;
     std::size_t window, run;  // run 0: the engine's choice
@@ -134,8 +145,9 @@ void expect_engine_equals_rows(const VectorHeader& header, const std::vector<Vec
     options.threads = c.threads;
     options.window_rows = c.window;
     options.run_rows = c.run;
-    EXPECT_EQ(engine_run(slots, rows, options), expected)
-        << c.threads << " threads, window " << c.window << ", runs of " << c.run;
+    EXPECT_EQ(engine_run(slots, rows, options, specs), expected)
+        << specs.size() << " lanes, " << c.threads << " threads, window " << c.window
+        << ", runs of " << c.run;
   }
 }
 
@@ -184,6 +196,44 @@ TEST(Engine, EqualsRowByRowOnAGeneratedStream) {
     rows[i].line = i + 1;
   }
   expect_engine_equals_rows(header, rows);
+  expect_engine_equals_rows(header, rows, specs_of({"horner"}));
+}
+
+// With few lanes the shared pass leaves references to the lanes up to a bound that grows with
+// their sums of squares (LaneAccumulator::deferred_exponent). One material, n = 50, t over [-1,
+// 1]: the sum passes 2^-12 within the first few thousand rows, which allows 2^-33, and the
+// stream has rows of reference just above each bound it reaches (t in (0.63, 0.67]): a bound
+// larger than the sum allows leaves their squares out of it. A second stream has only rows of
+// reference 2^-39 and 2^-41.5 in turn: the maxima settle at once, but the sum (of squares near
+// 2^-78) does not allow to leave out the squares of the second kind.
+TEST(Engine, DefersUpToWhatTheSumOfSquaresAllows) {
+  VectorHeader header;
+  header.eps = 1e-3;
+  header.materials.push_back({"shiny", {1, 1, 1}, 50, Lobe::kBlinn, 0});
+  std::vector<VectorRow> rows(150000), small(4000);
+  std::uint64_t state = 0x6A09E667F3BCC909ULL;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    rows[i].t = -1.0 + 2.0 * static_cast<double>(state >> 11) * 0x1.0p-53;
+    rows[i].line = i + 1;
+  }
+  for (std::size_t i = 0; i < small.size(); ++i) {
+    small[i].t = std::exp2((i % 2 ? -41.5 : -39.0) / 50);
+    small[i].line = i + 1;
+  }
+  for (const auto& units : std::vector<std::vector<std::string>>{
+           {"horner"}, {"horner", "hast"}, {"lut:bits=4", "horner:degree=3"}}) {
+    expect_engine_equals_rows(header, rows, specs_of(units));
+    expect_engine_equals_rows(header, small, specs_of(units));
+  }
+  // The bound did grow: the test above is about it.
+  const SlotMap slots = make_slots(header);
+  Lanes lanes(slots, specs_of({"horner"}));
+  EngineOptions options;
+  options.threads = 2;
+  EvalEngine engine(slots, {&lanes.acc[0]}, {}, options);
+  engine.add(rows.data(), rows.size());
+  EXPECT_GE(engine.deferred_exponent(), -33);
 }
 
 // A lane leaves out rows it skips with a reference below kDeferredBound only once every slot's

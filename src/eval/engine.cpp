@@ -1,6 +1,7 @@
 #include "eval/engine.h"
 
 #include <algorithm>
+#include <limits>
 #include <mutex>
 
 namespace glint {
@@ -99,14 +100,29 @@ EvalEngine::EvalEngine(const SlotMap& slots, std::vector<LaneAccumulator*> lanes
   options_.window_rows = std::max<std::size_t>(1, options_.window_rows);
   slot_known_.assign(slots.params.size(), 0);
   deferred_t_ = deferred_t(slots);
-  // A slot's small references are deferred only when no lane computes rows there (a comparator
-  // that keeps such t, or none): a lane that does would make each call in the middle of its rows,
-  // where this pass makes them back to back.
-  defer_t_ = deferred_t_;
-  for (std::size_t s = 0; s < defer_t_.size(); ++s)
+  for (auto& p : partials_) p.resize(lanes_.size());
+}
+
+// The deferral bound of the next rows, 2^e for the e every lane's sum of squares allows
+// (LaneAccumulator::deferred_exponent), given to every lane; called between windows, while no
+// lane works. A slot's small references are deferred only up to where some lane computes rows
+// (its comparator's threshold): a lane that computes them would make each call in the middle of its
+// rows, where this pass makes them back to back.
+void EvalEngine::update_deferral() {
+  if (lanes_.empty()) return;
+  int e = std::numeric_limits<int>::max();
+  for (const LaneAccumulator* lane : lanes_) e = std::min(e, lane->deferred_exponent());
+  for (LaneAccumulator* lane : lanes_) lane->set_deferred_exponent(e);
+  if (e == deferred_exponent_) return;
+  deferred_exponent_ = e;
+  defer_t_ = deferred_t(slots_, e);
+  for (std::size_t s = 0; s < defer_t_.size(); ++s) {
+    for (const LaneAccumulator* lane : lanes_)
+      defer_t_[s] = std::min(defer_t_[s], lane->skips_at_or_below(s));
+    defer_t_[s] = std::max(defer_t_[s], 0.0);
     for (const LaneAccumulator* lane : lanes_)
       if (defer_t_[s] > 0.0 && lane->computes_at_or_below(s, defer_t_[s])) defer_t_[s] = 0.0;
-  for (auto& p : partials_) p.resize(lanes_.size());
+  }
 }
 
 EvalEngine::~EvalEngine() = default;
@@ -262,6 +278,7 @@ void EvalEngine::prepare(const VectorRow* rows, std::size_t count, std::size_t o
 
 void EvalEngine::add_window(const VectorRow* rows, std::size_t count, std::size_t offset,
                             BatchResults* out) {
+  update_deferral();
   t_.resize(count);
   slot_.resize(count);
   reference_.resize(count);
@@ -349,6 +366,7 @@ void EvalEngine::add_span(const VectorRow* rows, std::size_t count, std::size_t 
                           BatchResults* out, const SideWork& side, bool& side_more) {
   const std::size_t window = options_.window_rows;
   const std::size_t windows = ceil_div(count, window);
+  update_deferral();
   t_.resize(count);
   slot_.resize(count);
   reference_.resize(count);

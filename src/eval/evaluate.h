@@ -207,20 +207,22 @@ struct LanePartial {
 };
 
 // The rows of a window, prepared once for every lane: t, slot and the float reference, or
-// kDeferredReference where the lobe is at most kDeferredBound and no lane may need its value (a
-// lane computes it when it does: LaneAccumulator::accumulate).
+// kDeferredReference where the lobe is at most the window's deferral bound (2^e, e the exponent
+// the engine gave every lane: LaneAccumulator::set_deferred_exponent) and no lane may need its
+// value (a lane computes it when it does: LaneAccumulator::accumulate).
 struct RowsView {
   const double* t = nullptr;
   const std::uint32_t* slot = nullptr;
   const double* reference = nullptr;
 };
 inline constexpr double kDeferredReference = -1.0;
+// The least deferral bound, 2^kDeferredExponent: a run's own rows settle it (accumulate_rows).
+inline constexpr int kDeferredExponent = -40;
 inline constexpr double kDeferredBound = 0x1.0p-40;
 
-// Per slot, the largest t at or below which the slot's reference is surely at most
-// kDeferredBound (libm's pow within an ulp, a margin beside); 0 for lobes it does not bound
-// (Gaussian ones).
-std::vector<double> deferred_t(const SlotMap& slots);
+// Per slot, the largest t at or below which the slot's reference is surely at most 2^exponent
+// (libm's pow within an ulp, a margin beside); 0 for lobes it does not bound (Gaussian ones).
+std::vector<double> deferred_t(const SlotMap& slots, int exponent = kDeferredExponent);
 
 // Accuracy statistics of one lane (a unit): fed one result at a time by `glint eval --dump`
 // and the clocked mode's scoreboard (add), or a run of rows at a time by the evaluation engine
@@ -251,6 +253,19 @@ class LaneAccumulator {
   bool slot_begun(std::size_t slot) const { return slot_state_[slot] >= 0; }
   // Whether the comparator of `slot` keeps some t at or below `t` (computes its row).
   bool computes_at_or_below(std::size_t slot, double t) const;
+  // The largest t the comparator of `slot` surely skips (the value of its threshold's code;
+  // -inf when it skips nothing).
+  double skips_at_or_below(std::size_t slot) const;
+  // The largest deferral exponent e this lane's statistics allow from here on: a skipped row
+  // whose reference is at most 2^e changes nothing once the maxima are above it, its square being
+  // below half an ulp of the sum of squares so far (which only grows) and its display code 0. At
+  // least kDeferredExponent (which a run's own rows settle). Read between windows (no merge
+  // running).
+  int deferred_exponent() const;
+  // The deferral exponent of the next windows (the engine's, at most every lane's
+  // deferred_exponent()): deferred references are at most 2^e, and the rows this lane skips at or
+  // below 2^e are left out once settled. Between windows only (no accumulate running).
+  void set_deferred_exponent(int e);
   void accumulate(const RowsView& rows, std::size_t a, std::size_t b, LanePartial& p,
                   std::int64_t* raw, std::uint8_t* skipped) const;
   // With `timing` (may be null), the partial's skip pattern through the lane's timing
@@ -291,13 +306,21 @@ class LaneAccumulator {
   // with the same threshold and lobe share one sweep (a file of many identical materials).
   std::map<ContractKey, std::size_t> contract_of_;  // index into stats_.slots
   std::unique_ptr<Memo> memo_;                      // null: inputs too wide to memoise
-  // Per slot, the largest t at or below which a row is skipped and its reference at most
-  // kDeferredBound (-inf: none; accumulate_rows leaves such rows out once its statistics are
+  // The deferral bound 2^e of the current windows (set_deferred_exponent), and whether the sum
+  // of squares before them already puts the bound's square below half its ulp (else a run's own
+  // rows must: accumulate_rows).
+  int deferred_exponent_ = kDeferredExponent;
+  double deferred_bound_ = kDeferredBound;
+  bool sum_settled_ = false;
+  // Per slot, the largest t at or below which a row is skipped and its reference at most the
+  // deferral bound (-inf: none; accumulate_rows leaves such rows out once its statistics are
   // settled); whether any slot has one, whether some begun slot is always skipped, and the largest
   // slot weight.
   std::vector<double> drop_t_;
   bool drops_any_ = false, any_always_ = false;
   double max_c_y_ = 0;
+  void set_drop_t(int e);
+  int sum_exponent() const;  // deferred_exponent() but for its floor and cap
 };
 
 // One evaluated request for the optional per-vector dump.

@@ -205,17 +205,7 @@ LaneAccumulator::LaneAccumulator(const SpecularUnit& unit, const SlotMap& slots,
   tau_.resize(unit.slots());
   for (std::size_t s = 0; s < tau_.size(); ++s) tau_[s] = unit.tau_raw(s);
   for (const double w : slots.c_y) max_c_y_ = std::max(max_c_y_, w);
-  // At or below min(deferred_t, the value of tau's code) a power lobe's row is skipped (quantizing
-  // is monotone, and tau's own value quantizes to tau) and its reference at most kDeferredBound.
-  const std::vector<double> small = deferred_t(slots);
-  drop_t_.assign(tau_.size(), -std::numeric_limits<double>::infinity());
-  for (std::size_t s = 0; s < tau_.size(); ++s) {
-    if (s >= small.size() || small[s] <= 0.0 || tau_[s] < 0) continue;  // Gaussian, or none skipped
-    const double t = std::min(small[s], static_cast<double>(tau_[s]) * in_ulp_);
-    if (computes_at_or_below(s, t)) continue;  // a check beside the argument above
-    drop_t_[s] = t;
-    drops_any_ = true;
-  }
+  set_drop_t(kDeferredExponent);
   const int width = unit.in_format().width();
   if (width <= 16 && unit.slots() << width <= kMemoCodes) {
     memo_ = std::make_unique<Memo>();
@@ -258,6 +248,49 @@ void LaneAccumulator::begin_slot(std::size_t slot) {
 bool LaneAccumulator::computes_at_or_below(std::size_t slot, double t) const {
   // Quantization is monotone: the rows at or below t have codes at or below t's.
   return tau_[slot] < InputQuantizer(unit_.in_format())(t);
+}
+
+double LaneAccumulator::skips_at_or_below(std::size_t slot) const {
+  // Quantizing is monotone, and tau's own value quantizes to tau.
+  return tau_[slot] < 0 ? -std::numeric_limits<double>::infinity()
+                        : static_cast<double>(tau_[slot]) * in_ulp_;
+}
+
+// At or below min(deferred_t(e), the value of tau's code) a power lobe's row is skipped and its
+// reference at most 2^e. The slots that have such a t do not change with e (it only moves the t).
+void LaneAccumulator::set_drop_t(int e) {
+  const std::vector<double> small = deferred_t(slots_, e);
+  drop_t_.assign(tau_.size(), -std::numeric_limits<double>::infinity());
+  for (std::size_t s = 0; s < tau_.size(); ++s) {
+    if (s >= small.size() || small[s] <= 0.0 || tau_[s] < 0) continue;  // Gaussian, or none skipped
+    const double t = std::min(small[s], skips_at_or_below(s));
+    if (computes_at_or_below(s, t)) continue;  // a check beside the argument above
+    drop_t_[s] = t;
+    drops_any_ = true;
+  }
+}
+
+// A square x^2 leaves a sum S >= 2^E (E = ilogb(S)) as it is when below half its ulp, 2^(E-53):
+// x <= 2^e does for 2e <= E - 54. -inf (INT_MIN) while the sum is 0 or subnormal.
+int LaneAccumulator::sum_exponent() const {
+  const double sum = stats_.total.sum_sq;
+  if (!(sum >= std::numeric_limits<double>::min())) return std::numeric_limits<int>::min();
+  return static_cast<int>(std::floor((std::ilogb(sum) - 54) / 2.0));
+}
+
+int LaneAccumulator::deferred_exponent() const {
+  // The display code of a reference at most 2^e is 0 while 2^e display < 0.5: display < 2^(k+1)
+  // for k = ilogb(display), so e <= -k - 3 keeps it below 0.25.
+  const int cap = -std::ilogb(display_) - 3;
+  return std::max(kDeferredExponent, std::min(sum_exponent(), cap));
+}
+
+void LaneAccumulator::set_deferred_exponent(int e) {
+  deferred_bound_ = std::ldexp(1.0, e);
+  sum_settled_ = sum_exponent() >= e;
+  if (e == deferred_exponent_) return;
+  deferred_exponent_ = e;
+  set_drop_t(e);
 }
 
 CodeFacts LaneAccumulator::compute_facts(std::size_t slot, std::int64_t t_raw) const {
@@ -359,24 +392,29 @@ void LaneAccumulator::accumulate_rows(const RowsView& rows, std::size_t a, std::
   std::uint32_t* const skipped_rows = skipped_list.data();
   std::uint32_t* const listed = row_list.data();
   std::int64_t* const code = code_list.data();
+  const double bound = deferred_bound_;
+  const bool sum_settled = sum_settled_;
   FirstMax total1, weighted1, total2, weighted2;
   LanePartial::MaxAt input{0, 0}, skip{0, 0};
   LanePartial::MaxAt approximation{0, 0}, parameter{0, 0}, datapath{0, 0};
   std::uint64_t always_rows = 0, mismatch = 0;
-  // A skipped row whose reference was deferred (at most kDeferredBound) changes nothing once
-  // earlier rows of this run are larger in every maximum it enters, and one squared error is
-  // at least 2^-26, which puts kDeferredBound^2 below half an ulp of the running sum (it is at
-  // least that row's square: sums of non-negative terms round monotonically). Else it is
-  // computed. The maxima of the skipped rows alone are at most those of every row so far, so this
-  // pass computes at least the references one pass in stream order would.
+  // A skipped row whose reference was deferred (at most `bound`) changes nothing once earlier
+  // rows of this run are larger in every maximum it enters and its square is below half an ulp
+  // of the running sum: the sum before this window's rows puts it there (sum_settled_: the sum
+  // only grows, sums of non-negative terms rounding monotonically), or else, for the least bound
+  // 2^-40, one squared error of this run of at least 2^-26 does. Else it is computed. The maxima
+  // of the skipped rows alone are at most those of every row so far, so this pass computes at
+  // least the references one pass in stream order would.
   constexpr double kSumFloor = 0x1.0p-13;  // an error whose square is 2^-26
+  static_assert(kDeferredBound * kDeferredBound < 0x1.0p-26 * 0x1.0p-53, "half an ulp of 2^-26");
   // The two halves of "settled", shared by add_skipped and the filter below it, which relies on
   // judging rows as add_skipped would.
   const auto scalars_settled = [&] {
-    return (total1.value >= kSumFloor) & (skip.value > kDeferredBound);
+    const bool sum = sum_settled | ((bound <= kDeferredBound) & (total1.value >= kSumFloor));
+    return sum & (total1.value > bound) & (skip.value > bound);
   };
   const auto weighted_settled = [&](double weighted, std::size_t s) {
-    return weighted > kDeferredBound * c_y[s];
+    return weighted > bound * c_y[s];
   };
   const auto add_skipped = [&](std::size_t k) {
     const std::size_t i = a + k;
@@ -423,7 +461,7 @@ void LaneAccumulator::accumulate_rows(const RowsView& rows, std::size_t a, std::
   // Skipped rows in order through add_skipped until the maxima that a skipped row with reference
   // 0 could change are above 0 and those that a deferred one could change are settled (they only
   // grow; it takes a few dozen rows on a typical stream). From there a skipped row of reference
-  // at most kDeferredBound (0, deferred or computed) in a slot whose weighted maximum is settled
+  // at most the bound (0, deferred or computed) in a slot whose weighted maximum is settled
   // changes nothing but its square (0) and the count of always-skipped rows: the rest of the
   // skipped rows are filtered (`settle` below), the others going through add_skipped as before.
   constexpr std::size_t kSettledCheck = 64;  // rows between two looks at the maxima
@@ -463,7 +501,7 @@ void LaneAccumulator::accumulate_rows(const RowsView& rows, std::size_t a, std::
       skipped_count += some;
       for (std::size_t x = 0; x < some; ++x) add_skipped(skipped_rows[x]);
     }
-    const bool drop = weighted1.value > kDeferredBound * max_c_y_;
+    const bool drop = weighted1.value > bound * max_c_y_;
     const std::size_t count =
         drop ? list_rows(rows.t + a, rows.slot + a, drop_t_.data(), k, n, listed) : n - k;
     if (drop) {
