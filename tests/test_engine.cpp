@@ -23,21 +23,27 @@
 namespace glint {
 namespace {
 
-std::vector<UnitSpec> engine_specs() {
-  std::vector<UnitSpec> specs;
-  for (const std::string& name : unit_names()) specs.push_back(parse_unit_spec(name));
-  // No comparator, a narrow input, and an input too wide for the per-code memo.
-  for (const char* s : {"horner:skip=off", "lut:in=uq1.9,out=uq1.9", "hast:in=uq1.20,out=uq1.18"})
-    specs.push_back(parse_unit_spec(s));
-  return specs;
-}
-
 // Units by their specs: one or two lanes let the shared pass defer small references (no lane
 // computes them), which the eight of engine_specs() do not.
 std::vector<UnitSpec> specs_of(const std::vector<std::string>& texts) {
   std::vector<UnitSpec> specs;
   for (const std::string& t : texts) specs.push_back(parse_unit_spec(t));
   return specs;
+}
+
+std::vector<UnitSpec> engine_specs() {
+  std::vector<std::string> texts = unit_names();
+  // No comparator, a narrow input, and an input too wide for the per-code memo.
+  texts.insert(texts.end(),
+               {"horner:skip=off", "lut:in=uq1.9,out=uq1.9", "hast:in=uq1.20,out=uq1.18"});
+  return specs_of(texts);
+}
+
+// The generated streams' numbers: a 64-bit LCG's next state, its top 53 bits as a double in [0,
+// 1).
+double next_uniform(std::uint64_t& state) {
+  state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+  return static_cast<double>(state >> 11) * 0x1.0p-53;
 }
 
 struct Lanes {
@@ -187,9 +193,8 @@ TEST(Engine, EqualsRowByRowOnAGeneratedStream) {
   std::vector<VectorRow> rows(150000);
   std::uint64_t state = 0x9E3779B97F4A7C15ULL;
   for (std::size_t i = 0; i < rows.size(); ++i) {
-    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
     // t over [-1, 1.001], a few exact 0 and 1.
-    const double u = static_cast<double>(state >> 11) * 0x1.0p-53;
+    const double u = next_uniform(state);
     rows[i].t = i % 97 == 0 ? 0.0 : i % 89 == 0 ? 1.0 : -1.0 + 2.001 * u;
     rows[i].material = static_cast<std::uint32_t>((state >> 7) % (i >= 120000 ? 4 : 3));
     rows[i].light = static_cast<std::int32_t>((state >> 17) % 3);
@@ -213,8 +218,7 @@ TEST(Engine, DefersUpToWhatTheSumOfSquaresAllows) {
   std::vector<VectorRow> rows(150000), small(4000);
   std::uint64_t state = 0x6A09E667F3BCC909ULL;
   for (std::size_t i = 0; i < rows.size(); ++i) {
-    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-    rows[i].t = -1.0 + 2.0 * static_cast<double>(state >> 11) * 0x1.0p-53;
+    rows[i].t = -1.0 + 2.0 * next_uniform(state);
     rows[i].line = i + 1;
   }
   for (std::size_t i = 0; i < small.size(); ++i) {
@@ -252,8 +256,7 @@ TEST(Engine, LeavesRowsOutOnlyWhenEveryWeightIsSettled) {
   std::vector<VectorRow> rows(20000);
   std::uint64_t state = 0x2545F4914F6CDD1DULL;
   for (std::size_t i = 0; i < rows.size(); ++i) {
-    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-    const double u = static_cast<double>(state >> 11) * 0x1.0p-53;
+    const double u = next_uniform(state);
     const bool dim = i % 16 < 4;
     rows[i].material = dim ? 0 : 1;
     rows[i].light = dim ? 0 : 1;

@@ -310,7 +310,6 @@ class LaneAccumulator {
   // of squares before them already puts the bound's square below half its ulp (else a run's own
   // rows must: accumulate_rows).
   int deferred_exponent_ = kDeferredExponent;
-  double deferred_bound_ = kDeferredBound;
   bool sum_settled_ = false;
   // Per slot, the largest t at or below which a row is skipped and its reference at most the
   // deferral bound (-inf: none; accumulate_rows leaves such rows out once its statistics are

@@ -286,7 +286,6 @@ int LaneAccumulator::deferred_exponent() const {
 }
 
 void LaneAccumulator::set_deferred_exponent(int e) {
-  deferred_bound_ = std::ldexp(1.0, e);
   sum_settled_ = sum_exponent() >= e;
   if (e == deferred_exponent_) return;
   deferred_exponent_ = e;
@@ -392,7 +391,7 @@ void LaneAccumulator::accumulate_rows(const RowsView& rows, std::size_t a, std::
   std::uint32_t* const skipped_rows = skipped_list.data();
   std::uint32_t* const listed = row_list.data();
   std::int64_t* const code = code_list.data();
-  const double bound = deferred_bound_;
+  const double bound = std::ldexp(1.0, deferred_exponent_);
   const bool sum_settled = sum_settled_;
   FirstMax total1, weighted1, total2, weighted2;
   LanePartial::MaxAt input{0, 0}, skip{0, 0};
