@@ -105,9 +105,9 @@ EvalEngine::EvalEngine(const SlotMap& slots, std::vector<LaneAccumulator*> lanes
 
 // The deferral bound of the next rows, 2^e for the e every lane's sum of squares allows
 // (LaneAccumulator::deferred_exponent), given to every lane; called between windows, while no
-// lane works. A slot's small references are deferred only up to where some lane computes rows
-// (its comparator's threshold): a lane that computes them would make each call in the middle of its
-// rows, where this pass makes them back to back.
+// lane works. A slot's small references are deferred only up to where every lane skips its rows
+// with a reference at most the bound (the smallest of the lanes' drop_t): a lane that computes
+// them would make each call in the middle of its rows, where this pass makes them back to back.
 void EvalEngine::update_deferral() {
   if (lanes_.empty()) return;
   int e = std::numeric_limits<int>::max();
@@ -115,13 +115,10 @@ void EvalEngine::update_deferral() {
   for (LaneAccumulator* lane : lanes_) lane->set_deferred_exponent(e);
   if (e == deferred_exponent_) return;
   deferred_exponent_ = e;
-  defer_t_ = deferred_t(slots_, e);
+  defer_t_.assign(slots_.params.size(), std::numeric_limits<double>::infinity());
   for (std::size_t s = 0; s < defer_t_.size(); ++s) {
-    for (const LaneAccumulator* lane : lanes_)
-      defer_t_[s] = std::min(defer_t_[s], lane->skips_at_or_below(s));
+    for (const LaneAccumulator* lane : lanes_) defer_t_[s] = std::min(defer_t_[s], lane->drop_t(s));
     defer_t_[s] = std::max(defer_t_[s], 0.0);
-    for (const LaneAccumulator* lane : lanes_)
-      if (defer_t_[s] > 0.0 && lane->computes_at_or_below(s, defer_t_[s])) defer_t_[s] = 0.0;
   }
 }
 

@@ -95,8 +95,8 @@ class EvalEngine {
   ThreadPool pool_;
   std::vector<std::uint8_t> slot_known_;  // slots begun in every lane
   std::vector<double> deferred_t_;        // per slot (deferred_t)
-  // Per slot, the largest t whose reference is deferred: at most 2^deferred_exponent_ (deferred_t)
-  // and skipped by every lane; 0 for none.
+  // Per slot, the largest t whose reference is deferred: at most 2^deferred_exponent_ and skipped
+  // by every lane (LaneAccumulator::drop_t); 0 for none.
   std::vector<double> defer_t_;
   int deferred_exponent_ = std::numeric_limits<int>::min();  // none yet (update_deferral)
   std::vector<double> t_;

@@ -253,9 +253,10 @@ class LaneAccumulator {
   bool slot_begun(std::size_t slot) const { return slot_state_[slot] >= 0; }
   // Whether the comparator of `slot` keeps some t at or below `t` (computes its row).
   bool computes_at_or_below(std::size_t slot, double t) const;
-  // The largest t the comparator of `slot` surely skips (the value of its threshold's code;
-  // -inf when it skips nothing).
-  double skips_at_or_below(std::size_t slot) const;
+  // The largest t at or below which this lane skips the rows of `slot` and their reference is at
+  // most the deferral bound (set_deferred_exponent); -inf for none (a Gaussian lobe, a slot whose
+  // comparator skips nothing).
+  double drop_t(std::size_t slot) const { return drop_t_[slot]; }
   // The largest deferral exponent e this lane's statistics allow from here on: a skipped row
   // whose reference is at most 2^e changes nothing once the maxima are above it, its square being
   // below half an ulp of the sum of squares so far (which only grows) and its display code 0. At
@@ -319,6 +320,9 @@ class LaneAccumulator {
   bool drops_any_ = false, any_always_ = false;
   double max_c_y_ = 0;
   void set_drop_t(int e);
+  // The largest t the comparator of `slot` surely skips (the value of its threshold's code;
+  // -inf when it skips nothing).
+  double skips_at_or_below(std::size_t slot) const;
   int sum_exponent() const;  // deferred_exponent() but for its floor and cap
 };
 
