@@ -1,0 +1,99 @@
+// Verilator's cycle rate on the lane `glint rtl` writes: the hardware simulator that issue 9 sets
+// glint's fast mode against ("at the speed of the hardware simulators"). Not built by CMake: it
+// drives the C++ model Verilator makes of the generated Verilog, and tests/bench/verilator_speed.sh
+// builds the two together (Verilator's `--prefix Vlane`, so this file names no unit).
+//   verilator_speed CYCLES [T_MIN]
+// One request offered every cycle, the sink always ready, no trace: what a Verilator testbench of
+// this lane does at its fastest. t is uniform over [T_MIN, 1] (default -1) from the same 64-bit LCG
+// and seed as sim_speed's stream, quantized to the lane's input code as glint's front end does
+// (clamped to [0, 1], rounded to nearest, ties to even), one row a cycle, inline.
+#include <chrono>
+#include <cinttypes>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+
+#include "Vlane.h"
+#include "verilated.h"
+
+namespace {
+
+constexpr std::uint64_t kMul = 6364136223846793005ULL, kAdd = 1442695040888963407ULL;
+
+// The input code of t for a uq1.F port of `bits` bits (F = bits - 1).
+std::uint32_t input_code(double t, int bits) {
+  const double scale = std::ldexp(1.0, bits - 1);
+  const double clamped = std::fmin(std::fmax(t, 0.0), 1.0);
+  return static_cast<std::uint32_t>(std::nearbyint(clamped * scale));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: verilator_speed CYCLES [T_MIN]\n");
+    return 2;
+  }
+  const std::uint64_t cycles = std::strtoull(argv[1], nullptr, 10);
+  const double t_min = argc > 2 ? std::strtod(argv[2], nullptr) : -1.0;
+  const int in_bits = GLINT_IN_BITS;
+
+  auto context = std::make_unique<VerilatedContext>();
+  auto lane = std::make_unique<Vlane>(context.get());
+  const auto edge = [&] {
+    lane->clk = 1;
+    lane->eval();
+    lane->clk = 0;
+    lane->eval();
+  };
+  lane->clk = 0;
+  lane->rst = 1;
+  lane->in_valid = 0;
+  lane->in_slot = 0;
+  lane->out_ready = 1;
+  lane->eval();
+  for (int i = 0; i < 4; ++i) edge();
+  lane->rst = 0;
+  lane->in_valid = 1;
+
+  std::uint64_t state = 0x243F6A8885A308D3ULL, retired = 0, skipped = 0, sum = 0;
+  const auto start = std::chrono::steady_clock::now();
+  for (std::uint64_t c = 0; c < cycles; ++c) {
+    state = state * kMul + kAdd;
+    const double t = t_min + static_cast<double>(state >> 11) * 0x1.0p-53 * (1.0 - t_min);
+    lane->in_t = input_code(t, in_bits);
+    if (lane->out_valid) {
+      ++retired;
+      skipped += lane->out_skipped;
+      sum += lane->out_result;
+    }
+    edge();
+  }
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  // Drain (not timed): every request offered must leave, one result each. A lane that stalled would
+  // have dropped requests (the loop offers the next one whatever in_ready said; reading in_ready
+  // would need a second eval a cycle) and retired fewer.
+  lane->in_valid = 0;
+  for (int i = 0; i < 256 && retired < cycles; ++i) {
+    lane->eval();
+    if (lane->out_valid) {
+      ++retired;
+      skipped += lane->out_skipped;
+      sum += lane->out_result;
+    }
+    edge();
+  }
+  lane->final();
+  if (retired != cycles) {
+    std::fprintf(stderr, "verilator_speed: %" PRIu64 " requests offered, %" PRIu64 " results\n",
+                 cycles, retired);
+    return 1;
+  }
+  std::printf("verilator cycles %" PRIu64 ": %.3f s, %.2f M cycles/s (results %" PRIu64
+              ", skipped %" PRIu64 ", result sum %" PRIu64 ")\n",
+              cycles, seconds, static_cast<double>(cycles) / seconds * 1e-6, retired, skipped, sum);
+  return 0;
+}
