@@ -4,9 +4,12 @@
 // builds the two together (Verilator's `--prefix Vlane`, so this file names no unit).
 //   verilator_speed CYCLES [T_MIN]
 // One request offered every cycle, the sink always ready, no trace: what a Verilator testbench of
-// this lane does at its fastest. t is uniform over [T_MIN, 1] (default -1) from the same 64-bit LCG
-// and seed as sim_speed's stream, quantized to the lane's input code as glint's front end does
-// (clamped to [0, 1], rounded to nearest, ties to even), one row a cycle, inline.
+// this lane does at its fastest. Built with GLINT_DATAPATH_LATENCY=L it drives the datapath module
+// alone instead (no comparator, no merge buffer: a request started every cycle, II = 1, its result
+// read L cycles later), the least RTL that computes the lobe: Verilator's rate at its highest. t is
+// uniform over [T_MIN, 1] (default -1) from the same 64-bit LCG and seed as sim_speed's stream,
+// quantized to the lane's input code as glint's front end does (clamped to [0, 1], rounded to
+// nearest, ties to even), one row a cycle, inline.
 #include <chrono>
 #include <cinttypes>
 #include <cmath>
@@ -41,34 +44,65 @@ int main(int argc, char** argv) {
   const int in_bits = GLINT_IN_BITS;
 
   auto context = std::make_unique<VerilatedContext>();
-  auto lane = std::make_unique<Vlane>(context.get());
+  auto top = std::make_unique<Vlane>(context.get());
   const auto edge = [&] {
-    lane->clk = 1;
-    lane->eval();
-    lane->clk = 0;
-    lane->eval();
+    top->clk = 1;
+    top->eval();
+    top->clk = 0;
+    top->eval();
   };
-  lane->clk = 0;
-  lane->rst = 1;
-  lane->in_valid = 0;
-  lane->in_slot = 0;
-  lane->out_ready = 1;
-  lane->eval();
-  for (int i = 0; i < 4; ++i) edge();
-  lane->rst = 0;
-  lane->in_valid = 1;
-
   std::uint64_t state = 0x243F6A8885A308D3ULL, retired = 0, skipped = 0, sum = 0;
-  const auto start = std::chrono::steady_clock::now();
-  for (std::uint64_t c = 0; c < cycles; ++c) {
+  const auto next_code = [&] {
     state = state * kMul + kAdd;
     const double t = t_min + static_cast<double>(state >> 11) * 0x1.0p-53 * (1.0 - t_min);
-    lane->in_t = input_code(t, in_bits);
-    if (lane->out_valid) {
+    return input_code(t, in_bits);
+  };
+#if defined(GLINT_DATAPATH_LATENCY)
+  // The result of the request started at edge c is read before edge c + L.
+  constexpr std::uint64_t kLatency = GLINT_DATAPATH_LATENCY;
+  top->clk = 0;
+  top->start = 1;
+  top->start_group = 0;
+  const auto retire = [&](std::uint64_t c) {
+    if (c >= kLatency) {
       ++retired;
-      skipped += lane->out_skipped;
-      sum += lane->out_result;
+      sum += top->result;
     }
+  };
+  const auto start = std::chrono::steady_clock::now();
+  for (std::uint64_t c = 0; c < cycles; ++c) {
+    top->start_t = next_code();
+    retire(c);
+    edge();
+  }
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  top->start = 0;
+  for (std::uint64_t c = cycles; c < cycles + kLatency; ++c) {
+    retire(c);
+    edge();
+  }
+#else
+  top->clk = 0;
+  top->rst = 1;
+  top->in_valid = 0;
+  top->in_slot = 0;
+  top->out_ready = 1;
+  top->eval();
+  for (int i = 0; i < 4; ++i) edge();
+  top->rst = 0;
+  top->in_valid = 1;
+  const auto retire = [&] {
+    if (top->out_valid) {
+      ++retired;
+      skipped += top->out_skipped;
+      sum += top->out_result;
+    }
+  };
+  const auto start = std::chrono::steady_clock::now();
+  for (std::uint64_t c = 0; c < cycles; ++c) {
+    top->in_t = next_code();
+    retire();
     edge();
   }
   const double seconds =
@@ -76,17 +110,14 @@ int main(int argc, char** argv) {
   // Drain (not timed): every request offered must leave, one result each. A lane that stalled would
   // have dropped requests (the loop offers the next one whatever in_ready said; reading in_ready
   // would need a second eval a cycle) and retired fewer.
-  lane->in_valid = 0;
+  top->in_valid = 0;
+  top->eval();
   for (int i = 0; i < 256 && retired < cycles; ++i) {
-    lane->eval();
-    if (lane->out_valid) {
-      ++retired;
-      skipped += lane->out_skipped;
-      sum += lane->out_result;
-    }
+    retire();
     edge();
   }
-  lane->final();
+#endif
+  top->final();
   if (retired != cycles) {
     std::fprintf(stderr, "verilator_speed: %" PRIu64 " requests offered, %" PRIu64 " results\n",
                  cycles, retired);
