@@ -15,6 +15,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "generated_stream.h"
+
 namespace {
 
 // The file, unless it is there with this many rows already (its name carries the count).
@@ -27,10 +29,10 @@ void write_rows(const std::string& path, std::uint64_t rows) {
       "glint-vectors 1\neps 1e-3\nlights 1\nmaterial bench specular=1,1,1 shininess=50 "
       "lobe=blinn\ncolumns t material\ndata\n",
       f);
-  std::uint64_t state = 0x243F6A8885A308D3ULL;
+  std::uint64_t state = glint::bench::kStreamSeed;
   for (std::uint64_t i = 0; i < rows; ++i) {
-    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-    std::fprintf(f, "%.6f bench\n", static_cast<double>(state >> 11) * 0x1.0p-52 - 1.0);
+    state = glint::bench::lcg_step(state);
+    std::fprintf(f, "%.6f bench\n", glint::bench::stream_t(state, -1.0));
   }
   if (std::fclose(f) != 0) throw std::runtime_error("cannot write " + tmp);
   std::filesystem::rename(tmp, path);

@@ -18,6 +18,7 @@
 #include <systemc>
 #include <vector>
 
+#include "generated_stream.h"
 #include "io/thread_pool.h"
 #include "rtl_model/clocked_sim.h"
 #include "rtl_model/fast_sim.h"
@@ -25,19 +26,17 @@
 
 namespace {
 
-// The benchmark stream: `count` rows from a 64-bit LCG, row k from the generator's state after k
-// + 1 steps. Besides a row at a time (clocked mode), a block at a time on several threads, as
-// `glint sim` parses a block of a file on its threads (VectorReader::next_block): each part of the
-// block starts from its own state (jump-ahead, the same rows), and four rows a step break the
-// LCG's chain of dependent multiplies.
+// The benchmark stream (generated_stream.h): `count` rows. Besides a row at a time (clocked mode),
+// a block at a time on several threads, as `glint sim` parses a block of a file on its threads
+// (VectorReader::next_block): each part of the block starts from its own state (jump-ahead, the
+// same rows), and four rows a step break the LCG's chain of dependent multiplies.
 class GeneratedRows {
  public:
-  static constexpr std::uint64_t kMul = 6364136223846793005ULL, kAdd = 1442695040888963407ULL;
   GeneratedRows(std::uint64_t count, double t_min) : count_(count), t_min_(t_min) {}
 
   bool next(glint::VectorRow& row) {
     if (produced_ == count_) return false;
-    state_ = state_ * kMul + kAdd;
+    state_ = glint::bench::lcg_step(state_);
     row = make_row(state_, ++produced_, t_min_);
     return true;
   }
@@ -59,19 +58,17 @@ class GeneratedRows {
   }
 
  private:
-  static double make_t(std::uint64_t state, double t_min) {
-    return t_min + static_cast<double>(state >> 11) * 0x1.0p-53 * (1.0 - t_min);
-  }
   static glint::VectorRow make_row(std::uint64_t state, std::uint64_t line, double t_min) {
     glint::VectorRow row;
-    row.t = make_t(state, t_min);
+    row.t = glint::bench::stream_t(state, t_min);
     row.line = line;
     return row;
   }
 
-  // The state `steps` steps after `state`: x -> kMul x + kAdd applied by squaring.
+  // The state `steps` steps after `state`: lcg_step applied by squaring.
   static std::uint64_t jump(std::uint64_t state, std::uint64_t steps) {
-    std::uint64_t mul = 1, add = 0, step_mul = kMul, step_add = kAdd;
+    std::uint64_t mul = 1, add = 0, step_mul = glint::bench::kLcgMul,
+                  step_add = glint::bench::kLcgAdd;
     for (; steps > 0; steps >>= 1) {
       if (steps & 1) {
         mul *= step_mul;
@@ -98,17 +95,17 @@ class GeneratedRows {
     std::uint64_t k = a;
     for (; k + 4 <= b; k += 4)
       for (int j = 0; j < 4; ++j) {
-        rows[k + j].t = make_t(s[j], t_min);
+        rows[k + j].t = glint::bench::stream_t(s[j], t_min);
         rows[k + j].line = line + k + j;
         s[j] = s[j] * mul4 + add4;
       }
     for (int j = 0; k < b; ++k, ++j) {
-      rows[k].t = make_t(s[j], t_min);
+      rows[k].t = glint::bench::stream_t(s[j], t_min);
       rows[k].line = line + k;
     }
   }
 
-  std::uint64_t count_, produced_ = 0, state_ = 0x243F6A8885A308D3ULL;
+  std::uint64_t count_, produced_ = 0, state_ = glint::bench::kStreamSeed;
   double t_min_;
 };
 

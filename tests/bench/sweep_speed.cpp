@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "generated_stream.h"
 #include "io/vectors.h"
 #include "sweep/engine.h"
 #include "sweep/grid.h"
@@ -84,15 +85,15 @@ int main(int argc, char* argv[]) {
 
   const auto t_stream = Clock::now();
   std::vector<glint::VectorRow> chunk(settings.chunk_rows);
-  std::uint64_t state = 0x243F6A8885A308D3ULL, produced = 0;
+  std::uint64_t state = glint::bench::kStreamSeed, produced = 0;
   for (;;) {
     std::size_t n = 0;
     if (reader) {
       while (n < chunk.size() && reader->next(chunk[n])) ++n;
     } else {
       for (; n < chunk.size() && produced < vectors; ++n) {
-        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-        chunk[n].t = t_min + static_cast<double>(state >> 11) * 0x1.0p-53 * (1.0 - t_min);
+        state = glint::bench::lcg_step(state);
+        chunk[n].t = glint::bench::stream_t(state, t_min);
         chunk[n].material = 0;
         chunk[n].line = ++produced;
       }

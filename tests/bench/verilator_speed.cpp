@@ -7,9 +7,9 @@
 // this lane does at its fastest. Built with GLINT_DATAPATH_LATENCY=L it drives the datapath module
 // alone instead (no comparator, no merge buffer: a request started every cycle, II = 1, its result
 // read L cycles later), the least RTL that computes the lobe: Verilator's rate at its highest. t is
-// uniform over [T_MIN, 1] (default -1) from the same 64-bit LCG and seed as sim_speed's stream,
-// quantized to the lane's input code as glint's front end does (clamped to [0, 1], rounded to
-// nearest, ties to even), one row a cycle, inline.
+// sim_speed's stream (generated_stream.h, t uniform over [T_MIN, 1], default -1), quantized to the
+// lane's input code as glint's front end does (clamped to [0, 1], rounded to nearest, ties to
+// even), one row a cycle, inline.
 #include <chrono>
 #include <cinttypes>
 #include <cmath>
@@ -19,11 +19,10 @@
 #include <memory>
 
 #include "Vlane.h"
+#include "generated_stream.h"
 #include "verilated.h"
 
 namespace {
-
-constexpr std::uint64_t kMul = 6364136223846793005ULL, kAdd = 1442695040888963407ULL;
 
 // The input code of t for a uq1.F port of `bits` bits (F = bits - 1).
 std::uint32_t input_code(double t, int bits) {
@@ -51,11 +50,10 @@ int main(int argc, char** argv) {
     top->clk = 0;
     top->eval();
   };
-  std::uint64_t state = 0x243F6A8885A308D3ULL, retired = 0, skipped = 0, sum = 0;
+  std::uint64_t state = glint::bench::kStreamSeed, retired = 0, skipped = 0, sum = 0;
   const auto next_code = [&] {
-    state = state * kMul + kAdd;
-    const double t = t_min + static_cast<double>(state >> 11) * 0x1.0p-53 * (1.0 - t_min);
-    return input_code(t, in_bits);
+    state = glint::bench::lcg_step(state);
+    return input_code(glint::bench::stream_t(state, t_min), in_bits);
   };
 #if defined(GLINT_DATAPATH_LATENCY)
   // The result of the request started at edge c is read before edge c + L.
@@ -111,7 +109,6 @@ int main(int argc, char** argv) {
   // have dropped requests (the loop offers the next one whatever in_ready said; reading in_ready
   // would need a second eval a cycle) and retired fewer.
   top->in_valid = 0;
-  top->eval();
   for (int i = 0; i < 256 && retired < cycles; ++i) {
     retire();
     edge();
