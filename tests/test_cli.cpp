@@ -900,7 +900,8 @@ TEST_F(CliTest, VersionPrintsProjectVersion) {
 }
 
 TEST_F(CliTest, UnknownSubcommandIsNamed) {
-  for (const char* word : {"frobnicate", "evl", "help"}) {
+  // `help` was once among these words; it is a command now (glint help, below).
+  for (const char* word : {"frobnicate", "evl", "hlep"}) {
     const CliRun r = glint(std::string(word) + " --json");
     EXPECT_EQ(r.status, 2) << word;
     EXPECT_NE(r.err.find(std::string("unknown subcommand '") + word + "'"), std::string::npos)
@@ -910,6 +911,29 @@ TEST_F(CliTest, UnknownSubcommandIsNamed) {
       EXPECT_NE(r.err.find(sub), std::string::npos) << sub << " not in: " << r.err;
     EXPECT_TRUE(r.out.empty()) << r.out;
   }
+}
+
+// glint help: the program's help, one command's, and the Markdown reference of every command
+// (src/cli/reference.md, which ctest docs.reference compares with it).
+TEST_F(CliTest, HelpDescribesEveryCommand) {
+  const CliRun all = glint("help");
+  EXPECT_EQ(all.status, 0) << all.err;
+  const CliRun sim = glint("help sim");
+  EXPECT_EQ(sim.status, 0) << sim.err;
+  EXPECT_NE(sim.out.find("--sink-ready"), std::string::npos) << sim.out;
+  const CliRun md = glint("help --markdown");
+  EXPECT_EQ(md.status, 0) << md.err;
+  for (const char* sub : {"tau", "fit", "eval", "units", "sim", "regress", "render", "sweep",
+                          "size", "merge", "rtl", "synth", "help"}) {
+    EXPECT_NE(all.out.find(sub), std::string::npos) << sub << " not in: " << all.out;
+    EXPECT_NE(md.out.find(std::string("\n## glint ") + sub + "\n"), std::string::npos) << sub;
+  }
+  // Every option of a command is a row of its table, with its range.
+  EXPECT_NE(md.out.find("| `--display-bits` | `INT:INT in [1 - 16]` | `8` |"), std::string::npos);
+  const CliRun bad = glint("help frobnicate");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("unknown command 'frobnicate'"), std::string::npos) << bad.err;
+  EXPECT_EQ(glint("help --markdown sim").status, 2);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -58,6 +58,7 @@ int run(int argc, char** argv) {
   add_merge_command(app, status);
   add_rtl_command(app, status);
   add_synth_command(app, status);
+  add_help_command(app, status);
   if (!check_subcommand(app, argc, argv)) return kExitBadInput;
   try {
     app.parse(argc, argv);

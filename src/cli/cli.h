@@ -81,5 +81,7 @@ void add_size_command(CLI::App& app, int& status);
 void add_merge_command(CLI::App& app, int& status);
 void add_rtl_command(CLI::App& app, int& status);
 void add_synth_command(CLI::App& app, int& status);
+// glint help [COMMAND] [--markdown]: needs `app` whole, so it is added last.
+void add_help_command(CLI::App& app, int& status);
 
 }  // namespace glint::cli
