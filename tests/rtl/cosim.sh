@@ -19,6 +19,10 @@ for f in "$work"/glint_*; do cmp "$f" "$work/again/${f##*/}"; done
 design="$work/glint_${unit}_lane.v $work/glint_${unit}_datapath.v"
 # shellcheck disable=SC2086 # two file names
 verilator --lint-only -Wall --top-module "glint_${unit}_lane" $design
+# Verilator's makefiles put $OBJCACHE before every compile: with ccache, Verilator's runtime
+# sources (the same in every case) and a lane already built once (glint rtl is deterministic) come
+# from the cache.
+if [ -z "${OBJCACHE:-}" ] && command -v ccache > /dev/null; then export OBJCACHE=ccache; fi
 # -O1 C++: the model runs a few hundred thousand cycles, so compiling it fast matters more.
 # shellcheck disable=SC2086
 verilator --binary --top-module "glint_${unit}_tb" -Mdir "$work/obj" -CFLAGS -O1 \

@@ -1,0 +1,68 @@
+# shellcheck shell=bash
+# Shared by the .ci scripts: package lists, the configure-and-build step, and timed phases.
+
+# What building and running glint needs (Debian packages). gtkwave: vcd2fst for --vcd t.fst;
+# yosys: glint synth; verilator: the RTL co-simulations; ninja-build and ccache: the builds.
+GLINT_PACKAGES=(g++ cmake ninja-build ccache pkg-config libsystemc-dev libfmt-dev libcli11-dev
+  nlohmann-json3-dev libtinyobjloader-dev libstb-dev fonts-dejavu-core libfast-float-dev gtkwave
+  yosys)
+# What the test suite and the benchmarks need on top: GoogleTest, Google Benchmark, RapidCheck,
+# MPFR (the 200-bit oracle), GNU parallel (the sharded-sweep test), Verilator, Python 3 (the
+# documentation checks); clang, its sanitizer and libFuzzer runtimes and llvm-symbolizer for the
+# sanitizer and fuzz build.
+GLINT_TEST_PACKAGES=(libgtest-dev libgmock-dev libbenchmark-dev librapidcheck-dev libmpfr-dev
+  parallel verilator python3 clang libclang-rt-dev llvm)
+
+# ccache keys on paths relative to the checkout, so a clone elsewhere on the machine still hits.
+export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$PWD}
+export CCACHE_NOHASHDIR=${CCACHE_NOHASHDIR:-1}
+
+# glint_build DIR TARGET CMAKE_ARGS...: configure DIR (Ninja and ccache when a new build folder
+# is made and they are installed) and build TARGET ("all" for everything). CMake's and the
+# compiler's output goes to stderr; results of the later steps go to stdout.
+glint_build() {
+  local dir=$1 target=$2
+  shift 2
+  local args=()
+  if [[ ! -f $dir/CMakeCache.txt ]] && command -v ninja >/dev/null; then
+    args+=(-G Ninja)
+  fi
+  if command -v ccache >/dev/null; then
+    args+=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+  fi
+  # `|| return`: errexit does not hold inside a function called from `phase`'s `||`.
+  cmake -S . -B "$dir" "${args[@]}" "$@" >&2 || return
+  cmake --build "$dir" -j "$(nproc)" --target "$target" >&2 || return
+}
+
+# phase NAME COMMAND...: runs COMMAND and prints "ci: NAME: S s" (its wall time) on stderr, and
+# adds the line to the summary that phase_summary prints. A failing command fails the phase.
+GLINT_PHASES=()
+phase() {
+  local name=$1
+  shift
+  local start=$SECONDS status=0
+  echo "ci: $name ..." >&2
+  "$@" || status=$?
+  local line
+  line=$(printf 'ci: %-22s %5d s' "$name" $((SECONDS - start)))
+  ((status == 0)) || line+="  FAILED (exit $status)"
+  echo "$line" >&2
+  GLINT_PHASES+=("$line")
+  return "$status"
+}
+phase_summary() {
+  printf '%s\n' "${GLINT_PHASES[@]}" >&2
+}
+
+# The clang build of CI: AddressSanitizer and UndefinedBehaviorSanitizer (any finding aborts:
+# -fno-sanitize-recover), warnings as errors, the libraries instrumented for libFuzzer. One build
+# serves both the sanitizer suite (.ci/sanitize) and the fuzz harnesses (.ci/fuzz). No benchmarks:
+# nothing runs them under the sanitizers.
+glint_clang_build() {
+  local dir=$1
+  shift
+  glint_build "$dir" all -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DGLINT_SANITIZE=address,undefined -DGLINT_FUZZ=ON -DGLINT_WERROR=ON \
+    -DGLINT_BUILD_TESTS=ON -DGLINT_BUILD_BENCHMARKS=OFF "$@"
+}
