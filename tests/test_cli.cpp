@@ -823,8 +823,8 @@ TEST_F(CliTest, EvalEmptyStreamIsValid) {
   EXPECT_EQ(lines_of(read_text(dir_ / "out.csv")).size(), 1u);  // the header only
 }
 
-// A --dump path that cannot be created is a bad option (README: exit status 2), not an internal
-// error.
+// A --dump path that cannot be created is a bad option (src/cli/README.md: exit status 2), not an
+// internal error.
 TEST_F(CliTest, EvalUncreatableDumpIsBadInput) {
   const CliRun r = glint("eval " + quote(kPhongBasic) + " --dump no_such_dir/out.csv");
   EXPECT_EQ(r.status, 2);
@@ -955,8 +955,8 @@ TEST_F(CliTest, ReportsCarrySchemaVersions) {
   const json s = glint_json("sim " + quote(kPhongBasic) + " --json --report r.json");
   ASSERT_TRUE(e.is_object());
   ASSERT_TRUE(s.is_object());
-  // eval 4 / sim 3: the scene's elaboration (README); eval 3 / sim 2 decomposed the errors into
-  // parts with bounds; eval 2 nested v1's keys.
+  // eval 4 / sim 3: the scene's elaboration (src/eval/sim_report.md); eval 3 / sim 2 decomposed the
+  // errors into parts with bounds; eval 2 nested v1's keys.
   EXPECT_EQ(e.at("glint_eval_report"), 4);
   EXPECT_EQ(s.at("glint_sim_report"), 3);
   EXPECT_EQ(json::parse(read_text(dir_ / "r.json")).at("glint_sim_report"), 3);

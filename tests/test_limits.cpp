@@ -1,8 +1,9 @@
-// Resources proportional to the input, with stated limits (issue 11, item 5; README "Limits and
-// guarantees"): slots and light x material pairs per stream, units x slots per run, the accuracy
-// contracts' sweep per run and lut's tables per unit are refused beyond their limits with a message
-// naming the limit, before the memory or time is spent; slots that share a datapath, threshold and
-// lobe share one contract sweep (a file of many identical materials costs what one material does).
+// Resources proportional to the input, with stated limits (issue 11, item 5; src/cli/README.md
+// "Limits and guarantees"): slots and light x material pairs per stream, units x slots per run, the
+// accuracy contracts' sweep per run and lut's tables per unit are refused beyond their limits with
+// a message naming the limit, before the memory or time is spent; slots that share a datapath,
+// threshold and lobe share one contract sweep (a file of many identical materials costs what one
+// material does).
 #include <gtest/gtest.h>
 
 #include <string>

@@ -298,7 +298,7 @@ TEST_F(SweepCli, SizePicksTheCheapestAndExitsOneWhenNoneMeets) {
   EXPECT_NE(none.out.find("no configuration meets the budget"), std::string::npos) << none.out;
 }
 
-// The default grids run on every shipped trace (README quotes the time).
+// The default grids run on every shipped trace (src/cli/guide/size.md lists them).
 TEST_F(SweepCli, SizeDefaultGridsOnTheTraces) {
   std::string inputs;
   for (const char* f : {"/phong_basic.vec", "/multi_light.vec", "/eight_lights.vec"})

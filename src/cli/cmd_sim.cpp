@@ -220,7 +220,7 @@ SimRun run_fast_mode(const SimOptions& o, VectorReader& reader, SimLanes& lanes,
   return run;
 }
 
-// The JSON report (schema in README.md): run settings, then one entry per lane.
+// The JSON report (schema in src/eval/sim_report.md): run settings, then one entry per lane.
 nlohmann::json build_report(const SimOptions& o, bool clocked, const SimLanes& lanes,
                             const SimRun& run) {
   nlohmann::json report = {{"glint_sim_report", kSimReportVersion},

@@ -82,7 +82,7 @@ void add_size_command(CLI::App& app, int& status) {
       ->capture_default_str();
   sub->add_option("--grid", o->grids,
                   "Grids to choose from (as glint sweep; repeatable); default: a grid per unit "
-                  "family (README)")
+                  "family (src/cli/guide/size.md)")
       ->allow_extra_args(false);
   add_display_bits_option(sub, o->display_bits);
   add_slots_option(sub, o->slots);

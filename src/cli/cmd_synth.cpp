@@ -1,7 +1,8 @@
-// glint synth: the Verilog of `glint rtl` through Yosys, with a documented flow (README, "glint
-// synth"), reported as JSON: cells by type, gate equivalents (CMOS transistors / 4, Yosys' `stat
-// -tech cmos`) or a cell library's area (--liberty), flip-flops, and the logic depth (gates on the
-// longest path) into each stage's registers, computed here from Yosys' JSON netlist.
+// glint synth: the Verilog of `glint rtl` through Yosys, with a documented flow
+// (src/cli/guide/synth.md), reported as JSON: cells by type, gate equivalents (CMOS transistors /
+// 4, Yosys' `stat -tech cmos`) or a cell library's area (--liberty), flip-flops, and the logic
+// depth (gates on the longest path) into each stage's registers, computed here from Yosys' JSON
+// netlist.
 #include <fcntl.h>
 #include <fmt/format.h>
 #include <spawn.h>

@@ -301,7 +301,7 @@ nlohmann::json UnitStats::errors_json() const {
 
 nlohmann::json UnitStats::to_json() const {
   // `glint sim` reports the same "errors" object, so one script reads both reports. `count`,
-  // `skipped_fraction` and `description` are eval's own (README, eval report schema).
+  // `skipped_fraction` and `description` are eval's own (src/eval/eval_report.md).
   return {{"unit", name},
           {"spec", spec},
           {"vectors", vectors},

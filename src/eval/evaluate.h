@@ -59,9 +59,10 @@ class SlotCapacityError : public std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
-// Limits that keep a run's memory and time bounded and proportional to its input (README, "Limits
-// and guarantees"); a stream or run beyond them is refused with ResourceLimitError, whose message
-// names the limit (the CLI reports it against the input file, exit 2).
+// Limits that keep a run's memory and time bounded and proportional to its input
+// (src/cli/README.md, "Limits and guarantees"); a stream or run beyond them is refused with
+// ResourceLimitError, whose message names the limit (the CLI reports it against the input file,
+// exit 2).
 //
 // Slots of one stream, one per (material, c_y): each unit keeps ~15 KB per slot (its threshold,
 // the slot's contract, accumulators and the elaboration's entries), so 65536 slots are ~1 GB per
@@ -336,11 +337,12 @@ struct EvalRecord {
   bool skipped;
 };
 
-// Schema version of the `glint eval` JSON report (key "glint_eval_report", schema in README.md).
-// Version 1 is the unversioned layout before eval took `glint sim`'s key names (error_vs_reference,
-// datapath_error_ulps, top-level mismatch_8bit_fraction and error_bound); 2 nests them in "errors";
-// 3 decomposes them (errors.parts, bounds per slot, display and weighted errors, contract); 4 adds
-// the scene's elaboration (datapath_groups, slot_capacity, description.elaboration).
+// Schema version of the `glint eval` JSON report (key "glint_eval_report", schema in
+// src/eval/eval_report.md). Version 1 is the unversioned layout before eval took `glint sim`'s key
+// names (error_vs_reference, datapath_error_ulps, top-level mismatch_8bit_fraction and
+// error_bound); 2 nests them in "errors"; 3 decomposes them (errors.parts, bounds per slot, display
+// and weighted errors, contract); 4 adds the scene's elaboration (datapath_groups, slot_capacity,
+// description.elaboration).
 inline constexpr int kEvalReportVersion = 4;
 
 // The results of one batch of rows through every unit of an Evaluator: unit u's result for row i

@@ -74,7 +74,7 @@ struct Field {
   Kind kind;
 };
 
-// The sim report's fixed part (README, "Sim report schema (version 3)"): its top level and each
+// The sim report's fixed part (src/eval/sim_report.md, version 3): its top level and each
 // unit's keys. tests/test_golden.cpp checks that a report of this build passes.
 constexpr Field kReportFields[] = {{"glint_sim_report", Kind::kUnsigned},
                                    {"vectors_file", Kind::kString},

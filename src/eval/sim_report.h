@@ -1,4 +1,5 @@
-// The `glint sim` report: structured data first (JSON, schema in README.md), text second.
+// The `glint sim` report: structured data first (JSON, schema in src/eval/sim_report.md), text
+// second.
 #pragma once
 
 #include <cstdint>
@@ -13,7 +14,7 @@
 namespace glint {
 
 // 2: errors decomposed; 3: the scene's elaboration (datapath_groups, slot_capacity, per unit
-// "elaboration") (README).
+// "elaboration") (src/eval/sim_report.md).
 inline constexpr int kSimReportVersion = 3;
 
 // One unit's report: config, elaboration, counts, timing, operations, area and critical path,

@@ -1,5 +1,5 @@
 // Grids of unit specs for `glint sweep` and `glint size`: "horner:degree=2..8,in=uq1.11|uq1.15"
-// is the cross product of each key's values (README, "Grid syntax"):
+// is the cross product of each key's values (src/cli/guide/sweep.md, "Grid syntax"):
 //   a|b|c         alternatives
 //   lo..hi        every integer from lo to hi (inclusive)
 //   lo..hi/step   every step-th integer from lo, up to hi
@@ -18,7 +18,7 @@
 namespace glint {
 
 // At most this many configurations over all grids of one run: a sweep keeps every configuration's
-// unit and accumulators in memory (see README for the memory per configuration).
+// unit and accumulators in memory (src/cli/guide/sweep.md: the memory per configuration).
 inline constexpr std::size_t kMaxSweepConfigurations = 100000;
 
 struct GridAxis {
@@ -54,7 +54,7 @@ std::vector<SweepConfig> expand_grids(const std::vector<Grid>& grids,
                                       std::size_t cap = kMaxSweepConfigurations);
 
 // The configurations a shard K of N runs: index i goes to shard i mod N (round robin, so every
-// shard gets a share of every grid; README, "Beyond one machine").
+// shard gets a share of every grid; src/cli/guide/sweep.md, "Threads, memory and shards").
 std::vector<SweepConfig> shard_configs(const std::vector<SweepConfig>& all, std::size_t k,
                                        std::size_t n);
 

@@ -1,4 +1,4 @@
-// The sweep report (key "glint_sweep_report", schema in README.md, "Sweep report schema"): what
+// The sweep report (key "glint_sweep_report", schema in src/sweep/sweep_report.md): what
 // was swept over which input, and one row per configuration with its Pareto flags. The JSON and
 // the CSV are both functions of the document alone, so a merge of shards that rebuilds the
 // document writes the same bytes as the unsharded run.

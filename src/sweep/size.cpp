@@ -33,7 +33,7 @@ const char* to_string(SizeObjective o) {
 const std::vector<std::string>& default_size_grids() {
   // Each family's main accuracy knobs at display-relevant widths: the input format (where t's
   // rounding matters: 10 to 16 fraction bits), the output format (8-bit displays need 10-12) and
-  // the unit's own size key. 224 configurations; README quotes the time on traces/*.vec.
+  // the unit's own size key. 224 configurations (src/cli/guide/size.md lists them).
   static const std::vector<std::string> grids = {
       "pow:in=uq1.10|uq1.12|uq1.14|uq1.16,out=uq1.10|uq1.12,log_bits=4..8/2,exp_bits=4|6",
       "schlick:in=uq1.10|uq1.12|uq1.14|uq1.16,out=uq1.10|uq1.12,match=none|width|minimax",

@@ -1,5 +1,5 @@
 // `glint size`: the cheapest configuration of a sweep, per unit family and overall, that meets an
-// error budget on every input (README, "glint size").
+// error budget on every input (src/cli/guide/size.md).
 #pragma once
 
 #include <cstddef>
@@ -22,7 +22,8 @@ enum class SizeObjective { kArea, kThroughput, kAreaLatency };
 SizeObjective parse_size_objective(const std::string& text);
 const char* to_string(SizeObjective o);
 
-// The grids `glint size` sweeps without --grid: a few per unit family (README lists them).
+// The grids `glint size` sweeps without --grid: a few per unit family (src/cli/guide/size.md lists
+// them).
 const std::vector<std::string>& default_size_grids();
 
 struct SizePick {

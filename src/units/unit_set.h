@@ -167,7 +167,8 @@ class UnitSet final : public SpecularUnit {
  private:
   const Datapath& dp(std::size_t s) const { return datapaths_[group_[s]]; }
 
-  // What the scene made the unit build, and why (README, "Only the hardware a scene needs").
+  // What the scene made the unit build, and why (src/eval/README.md, "Only the hardware a scene
+  // needs").
   nlohmann::json elaboration() const {
     const bool fixed = capacity_ > 0;
     nlohmann::json e{{"slots", group_.size()},

@@ -1,8 +1,9 @@
-// The cost proxy against Yosys on the calibration set (README, "Against Yosys"): for each stored
-// `glint synth` result (tests/calibration/set.json, written by synth_set.py) the lane is built
-// again for the same spec and vector file, its proxy computed (units/lane_cost.h), and a markdown
-// table printed: proxy GE, Yosys GE, their ratio, the proxy's critical path and the synthesized
-// depth of the slowest stage. No Yosys run: it reads what is stored.
+// The cost proxy against Yosys on the calibration set (src/cost/README.md, "Calibration against
+// Yosys"): for each stored `glint synth` result (tests/calibration/set.json, written by
+// synth_set.py) the lane is built again for the same spec and vector file, its proxy computed
+// (units/lane_cost.h), and a markdown table printed: proxy GE, Yosys GE, their ratio, the proxy's
+// critical path and the synthesized depth of the slowest stage. No Yosys run: it reads what is
+// stored.
 //
 //   calibration_report SET_JSON [--check [MIN]]
 //

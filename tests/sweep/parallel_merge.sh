@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # A sweep split into 4 shards run side by side by GNU parallel (Debian package `parallel`, which
 # .ci/bootstrap installs), merged with `glint merge`: the merged JSON and CSV must be the bytes of
-# the unsharded run. The README recipe, as a test (ctest: sweep_parallel).
+# the unsharded run. The recipe of src/cli/guide/sweep.md, as a test (ctest: sweep_parallel).
 # Usage: parallel_merge.sh GLINT TRACES_DIR
 set -euo pipefail
 glint=$1

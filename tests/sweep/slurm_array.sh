@@ -108,7 +108,7 @@ input=$traces/multi_light.vec
 grids=(--grid 'horner:degree=2..5,in=uq1.11|uq1.15' --grid 'lut:bits=4..8' --grid pow
        --grid 'hast:d=2..4' --grid 'schlick:divider=pipelined|iterative')
 printf -v grid_words '%q ' "${grids[@]}"
-# The README's recipe: one array task per shard, each writing shardK.json.
+# The recipe of src/cli/guide/sweep.md: one array task per shard, each writing shardK.json.
 cat >"$work/sweep.sbatch" <<JOB
 #!/usr/bin/env bash
 #SBATCH --array=0-3
