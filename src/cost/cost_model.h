@@ -142,7 +142,7 @@ struct CostConstants {
   double shift_bit_ge = 2.67;  // per bit and level; 12 shifters 12-24 bits x 2-5; worst +16 %
   double lzd_bit_ge = 4.67;    // 3 priority chains 12-24 bits; worst +33 % (12 bits)
   double rom_node_ge = 1.75;   // per decision-diagram node; 24 ROMs of 9-257 entries x 8, 16 bits,
-                               // random and t^n contents: median residual 13 %, worst +995 % (a
+                               // random and t^n contents: median residual 22 %, worst +995 % (a
                                // t^n table that is almost all zeros, which ABC folds further)
   double rom_bit_ge = 0.54;    // unknown contents, per bit (random ROMs of 2-257 entries)
   double ram_bit_ge = 7.77;    // registers with a write port: 20 arrays 1-257 x 8, 16; worst 11 %

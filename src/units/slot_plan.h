@@ -1,7 +1,7 @@
 // What a unit is elaborated for: the scene's slots and the datapath groups that serve them.
 //
-// A slot is one comparator threshold. Källberg & Larsson ("Faster Phong shading by skipping
-// imperceptible highlights", eq.3) make tau depend on the material's lobe and on c_y, the luminance
+// A slot is one comparator threshold. Källberg & Larsson ("Optimized Phong and Blinn-Phong Glossy
+// Highlights", eq.3) make tau depend on the material's lobe and on c_y, the luminance
 // of light x specular colour; with white lights it is the material's own luminance (eq.6). So the
 // scene needs one slot per distinct (material, c_y) pair: lights that leave c_y unchanged (white
 // ones among them) share the material's slot, and a light that changes c_y gets a slot of its own
