@@ -145,6 +145,9 @@ TEST_F(CliOptions, Sim) {
            {base + "--display-bits 99", "--display-bits"},
            {base + "--slots 2000000", "--slots"},
            {base + "--mode fast --vcd t.vcd", "--vcd"},
+           // An option that does nothing without another names both (issue 29, item 4).
+           {base + "--vcd-window 1:2", "--vcd-window selects the vectors --vcd traces"},
+           {base + "--mode clocked --vcd-window 1:2", "it needs --vcd"},
        })
     expect_refused(c.args, c.names);
   // The limits themselves are accepted.

@@ -93,7 +93,12 @@ void check_sim_options(const SimOptions& o, SimPlan& plan) {
   plan.clocked = o.mode == "clocked" || (o.mode == "auto" && !o.vcd.empty());
   if (!plan.clocked && !o.vcd.empty())
     throw std::invalid_argument("--vcd needs the clocked mode (--mode clocked or auto)");
-  if (!o.vcd_window.empty()) parse_vcd_window(o.vcd_window, plan.clocked_options);
+  if (!o.vcd_window.empty()) {
+    parse_vcd_window(o.vcd_window, plan.clocked_options);
+    // The window selects what the trace holds: without a trace it would be ignored in silence.
+    if (o.vcd.empty())
+      throw std::invalid_argument("--vcd-window selects the vectors --vcd traces: it needs --vcd");
+  }
   if (options_only()) return;
   OutputSet& out = plan.outputs;
   out.add_input("VECTORS", o.vectors);
@@ -314,7 +319,7 @@ void add_sim_command(CLI::App& app, int& status) {
                   "VCD trace (clocked mode) + GTKWave save file beside it; .fst: FST; - : VCD "
                   "on stdout (no save file)");
   sub->add_option("--vcd-window", o->vcd_window,
-                  "FIRST:LAST vector indices to trace (0..2^64-1, FIRST <= LAST)");
+                  "FIRST:LAST vector indices to trace (0..2^64-1, FIRST <= LAST; needs --vcd)");
   sub->add_option("--mode", o->mode, "fast | clocked | auto (clocked when --vcd is given)")
       ->check(CLI::IsMember({"fast", "clocked", "auto"}))
       ->capture_default_str();
