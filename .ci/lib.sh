@@ -13,7 +13,8 @@ GLINT_PACKAGES=(g++ cmake ninja-build ccache pkg-config libsystemc-dev libfmt-de
 GLINT_TEST_PACKAGES=(libgtest-dev libgmock-dev libbenchmark-dev librapidcheck-dev libmpfr-dev
   parallel verilator python3 clang libclang-rt-dev llvm)
 
-# ccache keys on paths relative to the checkout, so a clone elsewhere on the machine still hits.
+# ccache keys on paths relative to the checkout (BASEDIR) and leaves the build folder out of the
+# key of objects with debug information (NOHASHDIR), so a clone elsewhere on the machine still hits.
 export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$PWD}
 export CCACHE_NOHASHDIR=${CCACHE_NOHASHDIR:-1}
 
@@ -35,7 +36,7 @@ glint_build() {
   cmake --build "$dir" -j "$(nproc)" --target "$target" >&2 || return
 }
 
-# phase NAME COMMAND...: runs COMMAND and prints "ci: NAME: S s" (its wall time) on stderr, and
+# phase NAME COMMAND...: runs COMMAND and prints "ci: NAME  S s" (its wall time) on stderr, and
 # adds the line to the summary that phase_summary prints. A failing command fails the phase.
 GLINT_PHASES=()
 phase() {

@@ -8,8 +8,8 @@ add_test(NAME docs.schemas
 set_tests_properties(docs.schemas PROPERTIES LABELS docs TIMEOUT 120
                                              PASS_REGULAR_EXPRESSION "PASS: ")
 
-# `glint synth --json` (src/cli/synth_report.md) runs Yosys: only where it is installed.
-find_program(GLINT_YOSYS yosys)
+# `glint synth --json` (src/cli/synth_report.md) runs Yosys: only where it is installed
+# (GLINT_YOSYS, looked up by tests/CMakeLists.txt for the rtl tests).
 if(GLINT_YOSYS)
   add_test(NAME docs.schemas_synth
            COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tests/docs/check_schemas.py
