@@ -175,6 +175,45 @@ TEST_F(CliOptions, RegressAndRender) {
     expect_refused(c.args, c.names);
 }
 
+// An option that has no effect without another is refused naming both (issue 29, item 4), before
+// any input is read; with its partner it is accepted.
+TEST_F(CliOptions, OptionWithoutItsPartnerIsRefused) {
+  const std::string sim = "sim " + kPhong + " --unit pow ";
+  const std::string sweep = "sweep " + kPhong + " --grid pow:in=uq1.12 ";
+  const std::string scene = kTraces + "/scenes/small.json";
+  for (const Case& c : std::vector<Case>{
+           {sim + "--seed 5",
+            "--seed sets the pattern of a sink that is not always ready: it "
+            "needs --sink-ready below 1"},
+           {sim + "--seed 5 --sink-ready 1", "needs --sink-ready below 1"},
+           {sweep + "--seed 5", "needs --sink-ready below 1"},
+           {"rtl pow --vectors " + kPhong + " -o out --seed 5", "needs --sink-ready below 1"},
+           {sim + "--mode clocked --batch 64",
+            "--batch sets fast mode's requests per time "
+            "quantum: --mode clocked has none"},
+           // The default value given explicitly is still a request the clocked mode ignores.
+           {sim + "--mode clocked --batch 4096", "--batch"},
+           {sim + "--vcd t.vcd --batch 64", "--vcd (clocked mode) has none"},
+           {sim + "--mode clocked --threads 2",
+            "--threads sets fast mode's threads: --mode "
+            "clocked runs on one"},
+           {sim + "--vcd t.vcd --threads 2", "--vcd (clocked mode) runs on one"},
+           {sweep + "--no-image",
+            "--no-image leaves out the image-level error of --scene: it "
+            "needs --scene"},
+           {"size " + kPhong + " --budget 'max_lsb<=1' --grid pow --no-image", "it needs --scene"},
+           {"rtl pow --scene " + scene + " -o out --no-sweep",
+            "--no-sweep leaves only the rows of --vectors in the testbench: it needs --vectors"},
+       })
+    expect_refused(c.args, c.names);
+  for (const std::string& args :
+       {sim + "--seed 5 --sink-ready 0.5", sim + "--mode fast --batch 64 --threads 2",
+        sweep + "--seed 5 --sink-ready 0.5 -o out.csv"}) {
+    const CliRun r = glint(args);
+    EXPECT_EQ(r.status, 0) << args << ": " << r.err;
+  }
+}
+
 // A stream beyond a run's resource limits (eval/evaluate.h) is refused against its file, naming the
 // limit, before any unit is built, by every subcommand that reads a stream's slots: here 32769
 // materials under two lights of different colours need 65538 slots (the limit is 65536), and 4097

@@ -83,6 +83,8 @@ TEST(Golden, WrongTypesAndValuesAreNamed) {
       {[](json& h) { h["seed"] = "7"; }, "seed"},
       {[](json& h) { h["seed"] = -7; }, "seed"},
       {[](json& h) { h["seed"] = 7.5; }, "seed"},
+      // An always-ready sink has no pattern: sim refuses --seed, so only the default is a setting.
+      {[](json& h) { h["seed"] = h["report"]["seed"] = 7; }, "seed"},
       {[](json& h) { h["sink_ready"] = "1"; }, "sink_ready"},
       {[](json& h) { h["sink_ready"] = 0.001; }, "sink_ready"},
       {[](json& h) { h["sink_ready"] = 2; }, "sink_ready"},

@@ -50,6 +50,12 @@ void add_display_bits_option(CLI::App* sub, int& bits);
 // --threads N: 1..256 threads (0, absent: every core); results do not depend on it.
 void add_threads_option(CLI::App* sub, int& threads);
 
+// --seed S: the sink's backpressure pattern (0..2^64-1; default 1), `given` set when it is on the
+// command line. require_backpressure_for_seed refuses a seed given while the sink is always ready
+// (--sink-ready 1): the pattern would be ignored in silence.
+void add_seed_option(CLI::App* sub, std::uint64_t& seed, bool& given);
+void require_backpressure_for_seed(bool seed_given, double sink_ready);
+
 // --slots N: a chip of fixed capacity N (1..kMaxSlotCapacity); 0 (absent): sized to the stream.
 void add_slots_option(CLI::App* sub, std::size_t& slots);
 // make_slots' refusal of a stream that needs more slots than --slots N, rethrown naming the option.

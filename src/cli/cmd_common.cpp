@@ -47,6 +47,29 @@ void add_threads_option(CLI::App* sub, int& threads) {
       ->check(CLI::Range(1, 256));
 }
 
+void add_seed_option(CLI::App* sub, std::uint64_t& seed, bool& given) {
+  sub->add_option_function<std::string>(
+      "--seed",
+      [&seed, &given](const std::string& text) {
+        // Digits only: std::stoull would wrap "-1" to 2^64 - 1.
+        std::uint64_t v = 0;
+        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+        if (text.empty() || text[0] < '0' || text[0] > '9' || ec != std::errc() ||
+            end != text.data() + text.size())
+          throw CLI::ValidationError("--seed", "'" + text + "' is not an integer in 0..2^64-1");
+        seed = v;
+        given = true;
+      },
+      "Seed of the sink backpressure pattern (0..2^64-1, default 1; needs --sink-ready below 1)");
+}
+
+void require_backpressure_for_seed(bool seed_given, double sink_ready) {
+  if (seed_given && sink_ready >= 1)
+    throw std::invalid_argument(
+        "--seed sets the pattern of a sink that is not always ready: it needs --sink-ready below "
+        "1");
+}
+
 void add_slots_option(CLI::App* sub, std::size_t& slots) {
   sub->add_option_function<std::string>(
          "--slots",

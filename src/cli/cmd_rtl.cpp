@@ -28,6 +28,7 @@ struct RtlOptions {
   std::string out_dir;
   double sink_ready = 1.0;
   std::uint64_t seed = 1;
+  bool seed_given = false;
   bool no_sweep = false;
   bool json = false;
 };
@@ -73,6 +74,12 @@ int run_rtl(const RtlOptions& o) {
   check_rtl_input(o.input);
   if (!(o.sink_ready >= kMinSinkReady && o.sink_ready <= 1))
     throw std::invalid_argument(fmt::format("--sink-ready must be in [{}, 1]", kMinSinkReady));
+  require_backpressure_for_seed(o.seed_given, o.sink_ready);
+  // Without the sweep the testbench holds only the rows of --vectors (a scene or --material gives
+  // slots, not rows).
+  if (o.no_sweep && o.input.vectors.empty())
+    throw std::invalid_argument(
+        "--no-sweep leaves only the rows of --vectors in the testbench: it needs --vectors");
   if (o.out_dir.empty()) throw std::invalid_argument("-o DIR: the folder to write into");
   if (options_only()) return kExitOk;
   OutputSet out;
@@ -146,7 +153,7 @@ void add_rtl_command(CLI::App& app, int& status) {
   sub->add_option("-o,--out", o->out_dir, "Folder to write into (made if missing)")->required();
   sub->add_option("--sink-ready", o->sink_ready,
                   "The testbench's sink is ready in a cycle with this probability (backpressure)");
-  sub->add_option("--seed", o->seed, "Seed of the sink's ready pattern");
+  add_seed_option(sub, o->seed, o->seed_given);
   sub->add_flag("--no-sweep", o->no_sweep,
                 "Leave out the sweep of every input code of every slot (test only the rows)");
   sub->add_flag("--json", o->json, "Print one JSON document on stdout");

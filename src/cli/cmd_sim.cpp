@@ -34,7 +34,9 @@ struct SimOptions {
   std::string report, dump, vcd, vcd_window, mode = "auto";
   double sink_ready = 1.0;
   std::uint64_t seed = 1;
+  bool seed_given = false;
   std::size_t batch = 4096;
+  bool batch_given = false;
   int threads = 0;  // --threads N; 0: every core
   int display_bits = 8;
   std::size_t slots = 0;  // --slots N; 0: sized to the stream
@@ -93,6 +95,15 @@ void check_sim_options(const SimOptions& o, SimPlan& plan) {
   plan.clocked = o.mode == "clocked" || (o.mode == "auto" && !o.vcd.empty());
   if (!plan.clocked && !o.vcd.empty())
     throw std::invalid_argument("--vcd needs the clocked mode (--mode clocked or auto)");
+  require_backpressure_for_seed(o.seed_given, o.sink_ready);
+  // The clocked model takes one request a cycle on one thread: these would be ignored in silence.
+  const char* clocked_by = o.mode == "clocked" ? "--mode clocked" : "--vcd (clocked mode)";
+  if (plan.clocked && o.batch_given)
+    throw std::invalid_argument(
+        fmt::format("--batch sets fast mode's requests per time quantum: {} has none", clocked_by));
+  if (plan.clocked && o.threads > 0)
+    throw std::invalid_argument(
+        fmt::format("--threads sets fast mode's threads: {} runs on one", clocked_by));
   if (!o.vcd_window.empty()) {
     parse_vcd_window(o.vcd_window, plan.clocked_options);
     // The window selects what the trace holds: without a trace it would be ignored in silence.
@@ -327,15 +338,7 @@ void add_sim_command(CLI::App& app, int& status) {
                   "Probability the sink is ready in a cycle, in [0.01, 1] (a run takes ~vectors / "
                   "P cycles)")
       ->capture_default_str();
-  sub->add_option_function<std::string>(
-      "--seed",
-      [o](const std::string& text) {
-        const auto v = parse_u64(text);
-        if (!v)
-          throw CLI::ValidationError("--seed", "'" + text + "' is not an integer in 0..2^64-1");
-        o->seed = *v;
-      },
-      "Seed of the sink backpressure pattern (0..2^64-1, default 1)");
+  add_seed_option(sub, o->seed, o->seed_given);
   sub->add_option("--batch", o->batch,
                   "Fast mode: requests per time quantum (1..16777216; with --dump, else at least "
                   "262144)")
@@ -345,7 +348,10 @@ void add_sim_command(CLI::App& app, int& status) {
   add_display_bits_option(sub, o->display_bits);
   add_slots_option(sub, o->slots);
   sub->add_flag("--json", o->json, "Print the report as one JSON document on stdout");
-  sub->callback([o, &status] { status = guarded([&] { return run_sim(*o); }); });
+  sub->callback([sub, o, &status] {
+    o->batch_given = sub->count("--batch") > 0;
+    status = guarded([&] { return run_sim(*o); });
+  });
 }
 
 }  // namespace glint::cli

@@ -32,6 +32,9 @@ int run_size_command(const SizeOptions& o) {
   for (const std::string& v : o.vectors) inputs.push_back({v, false});
   for (const std::string& s : o.scenes) inputs.push_back({s, true});
   if (inputs.empty()) throw std::invalid_argument("size: give VECTORS files or --scene SCENE");
+  if (o.no_image && o.scenes.empty())
+    throw std::invalid_argument(
+        "--no-image leaves out the image-level error of --scene: it needs --scene");
   const SizeObjective objective = parse_size_objective(o.objective);
   // Image-level measures only when every input is a scene rendered with them.
   const bool image = !o.no_image && o.vectors.empty();

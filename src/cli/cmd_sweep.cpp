@@ -27,6 +27,7 @@ struct SweepCommandOptions {
   bool no_image = false;
   double sink_ready = 1.0;
   std::uint64_t seed = 1;
+  bool seed_given = false;
   bool json = false;
 };
 
@@ -38,6 +39,10 @@ int run_sweep_command(const SweepCommandOptions& o) {
   if (!(o.sink_ready >= kMinSinkReady && o.sink_ready <= 1))
     throw std::invalid_argument(fmt::format(
         "--sink-ready must be in [{}, 1] (a run takes ~rows / p cycles)", kMinSinkReady));
+  require_backpressure_for_seed(o.seed_given, o.sink_ready);
+  if (o.no_image && o.scene.empty())
+    throw std::invalid_argument(
+        "--no-image leaves out the image-level error of --scene: it needs --scene");
   SweepJob job;
   job.input = {o.vectors.empty() ? o.scene : o.vectors, !o.scene.empty()};
   for (const std::string& g : o.grids) job.grids.push_back(parse_grid(g));
@@ -118,17 +123,7 @@ void add_sweep_command(CLI::App& app, int& status) {
   sub->add_option("--sink-ready", o->sink_ready,
                   "Probability the sink is ready in a cycle (0.01..1), as in glint sim")
       ->capture_default_str();
-  sub->add_option_function<std::string>(
-      "--seed",
-      [o](const std::string& text) {
-        std::uint64_t v = 0;
-        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-        if (text.empty() || text[0] < '0' || text[0] > '9' || ec != std::errc() ||
-            end != text.data() + text.size())
-          throw CLI::ValidationError("--seed", "'" + text + "' is not an integer in 0..2^64-1");
-        o->seed = v;
-      },
-      "Seed of the sink backpressure pattern (0..2^64-1, default 1)");
+  add_seed_option(sub, o->seed, o->seed_given);
   sub->add_flag("--json", o->json, "Print the report as one JSON document on stdout");
   sub->callback([o, &status] { status = guarded([&] { return run_sweep_command(*o); }); });
 }

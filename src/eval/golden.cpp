@@ -268,6 +268,11 @@ Golden parse_golden(const std::string& text, const std::string& file, GoldenUse 
   if (!(g.sink_ready >= kMinSinkReady && g.sink_ready <= 1))
     c.fail("sink_ready", fmt::format("must be in [{}, 1] (as sim's --sink-ready)", kMinSinkReady));
   g.seed = doc.at("seed").get<std::uint64_t>();
+  // sim refuses --seed with an always-ready sink, so such a run reports sim's default seed.
+  if (g.sink_ready >= 1 && g.seed != 1)
+    c.fail("seed",
+           "must be 1 (sim's default) when sink_ready is 1: an always-ready sink has no "
+           "pattern to seed");
   if (use == GoldenUse::kCompare) {
     check_report(c, g, doc.at("report"));
     g.report = doc.at("report");

@@ -41,8 +41,10 @@ while [ "$done_count" -lt "$count" ]; do
     continue  # not an accepted spec
   fi
   echo "== $s on $t, sink ready $p"
+  seed=()
+  [ "$p" = 1 ] || seed=(--seed "$RANDOM")  # an always-ready sink has no pattern to seed
   bash "$here/cosim.sh" "$glint" "$work/case" "$s" --vectors "$t" --sink-ready "$p" \
-    --seed "$RANDOM" | grep -E '^(PASS|FAIL)'
+    "${seed[@]}" | grep -E '^(PASS|FAIL)'
   done_count=$((done_count + 1))
 done
 echo "PASS: $count random specs"
