@@ -78,6 +78,27 @@ expect 2 "^glint: --dump - (standard output): write failed: No space left on dev
 expect 2 '^glint: standard output: write failed: Bad file descriptor$' closed units --json
 expect 2 '^glint: standard output: write failed: Bad file descriptor$' closed eval "$vec" --unit lut
 
+# A pipe whose reader has left (its end closed before glint starts): SIGPIPE ends the run, as it
+# does one writing --report -; with SIGPIPE ignored the write fails with EPIPE, reported.
+piped() {
+  rm -f left
+  ( set +e
+    while [ ! -e left ]; do sleep 0.05; done
+    "$@" 2>err.txt
+    echo $? >status.txt ) | (exec <&-; touch left)
+  cat status.txt
+}
+status=$(piped "$glint" units --json)
+[ "$status" = 141 ] || { echo "FAIL: units: exit $status, not SIGPIPE"; fails=$((fails + 1)); }
+status=$(piped "$glint" sim "$vec" --unit lut --report -)
+[ "$status" = 141 ] || { echo "FAIL: --report -: exit $status, not SIGPIPE"; fails=$((fails + 1)); }
+status=$(trap '' PIPE; piped "$glint" units --json)
+if [ "$status" != 2 ] || ! grep -q '^glint: standard output: write failed: Broken pipe$' err.txt
+then
+  echo "FAIL: units, SIGPIPE ignored: exit $status: $(cat err.txt)"
+  fails=$((fails + 1))
+fi
+
 # A run whose --report - fails mid-way leaves its file outputs as they were.
 echo old > dump.csv
 expect 2 "(standard output): write failed" /dev/full sim "$vec" --unit lut --report - --dump dump.csv
