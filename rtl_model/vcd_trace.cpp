@@ -21,6 +21,7 @@
 #include "io/output_set.h"
 #include "io/signal_cleanup.h"
 #include "rtl_model/clocked_sim.h"
+#include "rtl_model/fst_read_back.h"
 #include "rtl_model/rtl_common.h"
 
 extern char** environ;
@@ -40,7 +41,8 @@ std::uint64_t now_ns() {
 
 }  // namespace
 
-// vcd2fst reading the VCD from a pipe ("-v -": stdin) and writing <folder>/trace.fst, where
+// vcd2fst reading the VCD from a pipe ("-v -": stdin) and writing <folder>/trace.fst, then fst2vcd
+// reading that back for the check (fst_read_back.h), where
 // <folder> is the output's private temporary folder (OutputSet::add_produced): vcd2fst's FST
 // writer keeps a side file (<fst>.hier) next to its output while it runs, and the folder keeps all
 // of it out of the user's. The process and every file it makes there are registered with
@@ -50,7 +52,8 @@ class TraceControl::Vcd2Fst {
   Vcd2Fst(const std::string& target, const std::string& folder) : target_(target) {
     fst_ = (fs::path(folder) / "trace.fst").string();
     log_ = (fs::path(folder) / "vcd2fst.log").string();
-    for (const std::string& f : {fst_, fst_ + ".hier", log_})
+    check_log_ = (fs::path(folder) / "fst2vcd.log").string();
+    for (const std::string& f : {fst_, fst_ + ".hier", log_, check_log_})
       handles_.push_back(register_cleanup(CleanupKind::kFile, f));
     try {
       start();
@@ -85,9 +88,10 @@ class TraceControl::Vcd2Fst {
     wait();
   }
 
-  // After the VCD's pipe was closed (`vcd_ok`: every write succeeded): waits for vcd2fst and
-  // returns the FST it wrote. Throws OutputError with vcd2fst's messages otherwise.
-  std::string finish(bool vcd_ok) {
+  // After the VCD's pipe was closed (`vcd_ok`: every write succeeded; `written`: what it held):
+  // waits for vcd2fst, reads its FST back (fst_read_back.h) and returns it. Throws OutputError
+  // naming vcd2fst and the output otherwise.
+  std::string finish(bool vcd_ok, const VcdCounts& written) {
     if (pid_ <= 0) fail("vcd2fst is not running");
     const int status = wait();
     const bool exited_ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
@@ -98,6 +102,8 @@ class TraceControl::Vcd2Fst {
                                               : "status " + std::to_string(status);
       fail("vcd2fst failed (" + why + ")" + messages());
     }
+    const std::string incomplete = check_fst(fst_, check_log_, target_, written);
+    if (!incomplete.empty()) fail(incomplete);
     return fst_;
   }
 
@@ -191,7 +197,7 @@ class TraceControl::Vcd2Fst {
 
   [[noreturn]] void fail(const std::string& why) const { throw OutputError(target_ + ": " + why); }
 
-  std::string target_, fst_, log_;
+  std::string target_, fst_, log_, check_log_;
   pid_t pid_ = -1;
   std::FILE* pipe_ = nullptr;
   std::vector<int> handles_;
@@ -214,6 +220,7 @@ TraceControl::TraceControl(const TraceOutputs& outputs, AddTraces add_traces)
   if (fst_) {
     vcd2fst_ = std::make_unique<Vcd2Fst>(what(), outputs.trace->work_folder());
     writer_.open(vcd2fst_->take_pipe(), /*pipe=*/true);
+    writer_.tally();  // what the FST must hold when read back
     return;
   }
   // The writer buffers on its own: a descriptor of its own on the output's temporary (or on
@@ -292,7 +299,7 @@ void TraceControl::commit() {
   const bool written = writer_.close(writer_.last_time());
   if (fst_) {
     // Waits for vcd2fst; throws with its messages.
-    outputs_.trace->set_produced(vcd2fst_->finish(written));
+    outputs_.trace->set_produced(vcd2fst_->finish(written, writer_.counts()));
   } else if (!written) {
     const int err = writer_.error();
     throw OutputError(what() + ": write failed: " + (err != 0 ? std::strerror(err) : "I/O error"));

@@ -20,8 +20,10 @@
 //
 // FST: the same VCD text is streamed through a pipe into Debian's vcd2fst (package gtkwave), which
 // runs beside the simulation (on another core) and writes the FST into the output's private
-// temporary folder beside the target (0700, a fresh name); commit() waits for it and hands the FST
-// to the OutputSet, which renames it into place. A failed run kills vcd2fst and the OutputSet
+// temporary folder beside the target (0700, a fresh name); commit() waits for it, reads the FST
+// back with fst2vcd and compares what it holds with what was written (fst_read_back.h: vcd2fst
+// exits 0 on a full disk with the FST cut short), and only then hands the FST to the OutputSet,
+// which renames it into place. A failed run kills vcd2fst and the OutputSet
 // removes the folder; vcd2fst and its files are registered with signal_cleanup.h, so SIGINT or
 // SIGTERM stop it and remove them too: no file, partial or otherwise, is left behind.
 #pragma once

@@ -4,6 +4,8 @@
 #include <string>
 
 #include "cli/cli.h"
+#include "io/output_set.h"
+#include "io/standard_output.h"
 
 #ifndef GLINT_VERSION
 #error "GLINT_VERSION must be defined by the build (CMakeLists.txt: the project version)"
@@ -41,7 +43,9 @@ bool options_only() {
   return g_options_only;
 }
 
-int run(int argc, char** argv) {
+namespace {
+
+int run_command(int argc, char** argv) {
   CLI::App app{"glint: simulator of fixed-point specular shading units (max(0,t)^n)"};
   app.set_version_flag("--version", std::string("glint ") + GLINT_VERSION);
   app.require_subcommand(1);
@@ -65,6 +69,21 @@ int run(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? 0 : kExitBadInput;
+  }
+  return status;
+}
+
+}  // namespace
+
+int run(int argc, char** argv) {
+  const int status = run_command(argc, argv);
+  // Every command's standard output (text, --json, help) is whole or the run fails: a write
+  // error there is a failed output, as for a file (exit 2; an internal error keeps its 3).
+  try {
+    finish_standard_output();
+  } catch (const OutputError& e) {
+    std::fprintf(stderr, "glint: %s\n", e.what());
+    return status > kExitBadInput ? status : kExitBadInput;
   }
   return status;
 }

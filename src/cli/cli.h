@@ -21,7 +21,8 @@ inline constexpr int kExitOk = 0;
 inline constexpr int kExitBadInput = 2;
 
 // The whole command line: parses argv (argv[0] is the program) and runs the subcommand it names;
-// returns the exit status. Messages go to stderr, results to stdout.
+// returns the exit status. Messages go to stderr, results to stdout, which is flushed and checked
+// at the end: a failed write there is reported and makes the status 2 (io/standard_output.h).
 int run(int argc, char** argv);
 
 // Options only (the options fuzzer, tests/fuzz/fuzz_options.cpp): every subcommand checks its

@@ -70,10 +70,19 @@ nlohmann::json run_child(const std::string& trace, const Golden& setup) {
   std::string out;
   char buf[65536];
   for (std::size_t n; (n = fread(buf, 1, sizeof buf, p)) > 0;) out.append(buf, n);
+  const bool read_error = std::ferror(p) != 0;
   const int st = pclose(p);
   if (st != 0)
     throw std::invalid_argument(fmt::format("{}: `glint sim` failed (status {})", trace, st));
-  return nlohmann::json::parse(out);
+  // The child checks its standard output (exit 2 on a failed write), so a report that does not
+  // parse here is lost on the way: glint's own failure.
+  try {
+    if (read_error) throw std::runtime_error("read error on its pipe");
+    return nlohmann::json::parse(out);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(
+        fmt::format("{}: the report of `glint sim --json` is incomplete: {}", trace, e.what()));
+  }
 }
 
 int run_regress(const RegressOptions& o) {

@@ -6,12 +6,15 @@
 #include <fcntl.h>
 #include <fmt/format.h>
 #include <spawn.h>
+#include <sys/statvfs.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -42,7 +45,8 @@ struct SynthOptions {
 };
 
 // A private work folder (mkdtemp) and the files in it, removed at the end and by a termination
-// signal's handler (signal_cleanup.h).
+// signal's handler (signal_cleanup.h). Yosys's own temporaries (ABC's folders) go in it too
+// (run_yosys), so the end removes them even where Yosys left them.
 class WorkFolder {
  public:
   WorkFolder() {
@@ -54,10 +58,11 @@ class WorkFolder {
     handles_.push_back(register_cleanup(CleanupKind::kFolder, dir_));
   }
   ~WorkFolder() {
-    for (const std::string& f : files_) ::unlink(f.c_str());
-    ::rmdir(dir_.c_str());
+    std::error_code ec;
+    std::filesystem::remove_all(dir_, ec);  // ours, 0700: no one else put links in it
     for (int h : handles_) release_cleanup(h);
   }
+  const std::string& path() const { return dir_; }
   WorkFolder(const WorkFolder&) = delete;
   WorkFolder& operator=(const WorkFolder&) = delete;
   // A file in the folder, registered before it exists.
@@ -76,7 +81,8 @@ class WorkFolder {
 void write_text(const std::string& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary);
   out << text;
-  if (!out.flush()) throw OutputError("synth: cannot write " + path);
+  out.close();
+  if (!out) throw OutputError("synth: cannot write " + path + ": " + std::strerror(errno));
 }
 
 std::string read_text(const std::string& path) {
@@ -86,23 +92,54 @@ std::string read_text(const std::string& path) {
   return s.str();
 }
 
-// Runs `yosys -q -l LOG -s SCRIPT`; throws with the log's last lines when it fails, and a clear
-// message when yosys is not installed.
-void run_yosys(const std::string& script, const std::string& log, bool user_library) {
+// The environment for Yosys: this one with TMPDIR set to `tmp` (where ABC makes its folders).
+std::vector<std::string> yosys_environment(const std::string& tmp) {
+  std::vector<std::string> env;
+  for (char** e = environ; *e != nullptr; ++e)
+    if (std::strncmp(*e, "TMPDIR=", 7) != 0) env.emplace_back(*e);
+  env.push_back("TMPDIR=" + tmp);
+  return env;
+}
+
+// Bytes free to an unprivileged writer on the file system of `dir` (the maximum when unknown).
+unsigned long long free_bytes(const std::string& dir) {
+  struct statvfs st {};
+  if (::statvfs(dir.c_str(), &st) != 0) return ~0ULL;
+  return static_cast<unsigned long long>(st.f_bavail) * st.f_frsize;
+}
+
+// Below this, a Yosys that failed in a work folder is taken to have run out of space: its error
+// (often a syntax error in a file it wrote itself, cut short) does not say so.
+constexpr unsigned long long kFullDiskBytes = 1 << 20;
+
+// Runs `yosys -q -l LOG -s SCRIPT` with its temporaries in `work`; throws with the log's last
+// lines when it fails, and a clear message when yosys is not installed or its folder is full.
+void run_yosys(const std::string& script, const std::string& log, const std::string& work,
+               bool user_library) {
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
   posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
   std::string a0 = "yosys", a1 = "-q", a2 = "-l", a3 = log, a4 = "-s", a5 = script;
   char* argv[] = {a0.data(), a1.data(), a2.data(), a3.data(), a4.data(), a5.data(), nullptr};
+  std::vector<std::string> env = yosys_environment(work);
+  std::vector<char*> envp;
+  for (std::string& e : env) envp.push_back(e.data());
+  envp.push_back(nullptr);
   pid_t pid = -1;
-  const int err = ::posix_spawnp(&pid, "yosys", &actions, nullptr, argv, environ);
+  int err = 0;
+  int handle = -1;
+  {
+    // Signals held from the start to the registration: the process is never unregistered.
+    SignalShield shield;
+    err = ::posix_spawnp(&pid, "yosys", &actions, nullptr, argv, envp.data());
+    if (err == 0) handle = register_cleanup_process(pid);
+  }
   posix_spawn_file_actions_destroy(&actions);
   if (err != 0)
     throw std::invalid_argument(
         "synth needs Yosys: `yosys` is not on PATH (Debian package yosys; .ci/bootstrap installs "
         "it)");
-  const int handle = register_cleanup_process(pid);
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
@@ -110,12 +147,28 @@ void run_yosys(const std::string& script, const std::string& log, bool user_libr
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
     std::string text = read_text(log);
     if (text.size() > 2000) text = "..." + text.substr(text.size() - 2000);
+    // Measured before the work folder goes: what Yosys wrote there still takes its room.
+    const unsigned long long left = free_bytes(work);
+    if (left < kFullDiskBytes)
+      throw OutputError(fmt::format(
+          "synth: yosys failed with {} KiB left on the file system of its work folder {} (a full "
+          "disk: set TMPDIR to a folder with room); the end of its log:\n{}",
+          left / 1024, work, text));
     // With --liberty the library is the likely cause (no buffer, no flip-flop ABC can use): bad
     // input. On the generic flow a failure is glint's own: an internal error.
     if (user_library)
       throw std::invalid_argument("--liberty: yosys could not map onto this library:\n" + text);
     throw std::runtime_error("synth: yosys failed:\n" + text);
   }
+}
+
+// A file Yosys wrote (exit status 0) that is missing or cut short: the disk of its work folder was
+// full, since Yosys does not always report a failed write.
+[[noreturn]] void incomplete(const std::string& file, const std::string& why) {
+  throw OutputError(fmt::format(
+      "synth: yosys exited 0 but its output {} is incomplete ({}); is the file system of $TMPDIR "
+      "full?",
+      file, why));
 }
 
 // The generic flow: Yosys' own `synth` (coarse and fine optimisation, techmap to its internal gate
@@ -343,15 +396,32 @@ int run_synth(const SynthOptions& o) {
     std::fprintf(stderr, "synth: yosys on %s (%s)...\n", d.unit->canonical_spec().c_str(),
                  liberty.empty() ? "generic gates" : liberty.c_str());
   const auto t0 = std::chrono::steady_clock::now();
-  run_yosys(script, log, !liberty.empty());
+  run_yosys(script, log, work.path(), !liberty.empty());
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (progress) std::fprintf(stderr, "synth: done in %.1f s; reading the netlist\n", seconds);
 
+  // Yosys's exit status does not prove its files whole: the netlist must parse and hold the top
+  // module, and the statistics must count the cells the netlist holds.
   const std::string stat_text = read_text(stat);
+  nlohmann::json parsed;
+  try {
+    parsed = nlohmann::json::parse(read_text(netlist));
+  } catch (const nlohmann::json::parse_error& e) {
+    incomplete(netlist, e.what());
+  }
+  if (!parsed.contains("modules") || !parsed["modules"].contains(top))
+    incomplete(netlist, "no module " + top);
   const DepthReport dr = analyse_netlist(
-      nlohmann::json::parse(read_text(netlist)), top, d.unit->stages(),
+      parsed, top, d.unit->stages(),
       liberty.empty() ? std::set<std::string>{} : liberty_registers(read_text(liberty)));
+  {
+    static const std::regex cells(R"(Number of cells:\s+([0-9]+))");
+    std::smatch m;
+    if (!std::regex_search(stat_text, m, cells)) incomplete(stat, "no cell count");
+    if (std::stol(m[1]) != dr.cells)
+      incomplete(stat, fmt::format("{} cells, the netlist has {}", m[1].str(), dr.cells));
+  }
   nlohmann::json j{{"glint_synth_report", 1},
                    {"unit", d.unit->name()},
                    {"spec", d.unit->canonical_spec()},
@@ -366,7 +436,7 @@ int run_synth(const SynthOptions& o) {
   if (liberty.empty()) {
     static const std::regex transistors(R"(Estimated number of transistors:\s+([0-9]+))");
     if (!std::regex_search(stat_text, match, transistors))
-      throw std::runtime_error("synth: no transistor estimate in Yosys' stat -tech cmos output");
+      incomplete(stat, "no transistor estimate");
     const double t = std::stod(match[1]);
     double added = 0;
     for (const auto& [type, n] : dr.cell_types)

@@ -236,6 +236,15 @@ void OutputFile::finish(bool durable) {
       }
       ::chmod(produced_.c_str(), target.st_mode & 0777);
     }
+    // The other program may not have synced (vcd2fst does not): a write-back error, e.g. a full
+    // disk found only when delayed blocks are allocated, shows here, before anything is replaced.
+    if (durable) {
+      const int fd = ::open(produced_.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
+      const int err = fd < 0 || ::fsync(fd) != 0 ? errno : 0;
+      if (fd >= 0) ::close(fd);
+      if (err != 0)
+        throw OutputError(describe() + ": fsync of '" + produced_ + "' failed: " + errno_text(err));
+    }
     return;
   }
   if (stream_) stream_->flush();

@@ -26,6 +26,7 @@
 //
 // "-" names standard output (for streams: add(..., allow_stdout)): written directly as the run
 // goes, never renamed, so a failed run may have written part of it (its exit status says so).
+// What commands print there otherwise (std::cout) is checked by io/standard_output.h.
 // Two writers of standard output (two "-", or "-" and an option that prints there, claim_stdout)
 // are refused.
 #pragma once
@@ -77,7 +78,9 @@ class OutputFile {
   const std::string& temp_path() const { return temp_path_; }
 
   // Produced outputs (OutputSet::add_produced): the private folder (0700) the other program writes
-  // into, and the file in it that commit() renames onto path(); set it once the file is complete.
+  // into, and the file in it that commit() fsyncs and renames onto path(); set it once the file
+  // is complete: checked by whoever ran the program, since an exit status 0 does not prove it
+  // (vcd2fst exits 0 with its FST cut short on a full disk; rtl_model/fst_read_back.h).
   const std::string& work_folder() const { return work_folder_; }
   void set_produced(const std::string& file) { produced_ = file; }
 

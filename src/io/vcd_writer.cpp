@@ -214,10 +214,12 @@ void VcdWriter::open(std::FILE* file, bool pipe) {
   flushed_ = 0;
   wrote_time_ = false;
   last_time_ = 0;
+  tally_.reset();
 }
 
 void VcdWriter::flush() {
   if (pos_ == 0) return;
+  if (tally_) tally_->feed(buffer_.get(), pos_);
   if (file_) {
     SigpipeGuard guard(pipe_);
     if (std::fwrite(buffer_.get(), 1, pos_, file_) != pos_) fail(errno);

@@ -20,6 +20,8 @@
 #include <string>
 #include <vector>
 
+#include "io/vcd_tally.h"
+
 namespace glint::rtl {
 
 // One traced signal as the GTKWave save file lists it.
@@ -59,6 +61,11 @@ class VcdWriter {
   // blocked, so a reader that died makes the writes fail (close() returns false) instead of
   // killing this process.
   void open(std::FILE* file, bool pipe = false);
+  // Counts what is written from now on (VcdTally): what a converted copy must hold. Off by
+  // default (it reads every byte once more); call after open().
+  void tally() { tally_ = std::make_unique<VcdTally>(); }
+  // The counts of what was written (before close(): of what was flushed); zero without tally().
+  VcdCounts counts() const { return tally_ ? tally_->counts() : VcdCounts{}; }
   bool is_open() const { return file_ != nullptr; }
   // $date, $version, $timescale (1 `timescale_unit`, e.g. "ns"), the scopes and variables.
   void header(const std::string& timescale_unit, const std::string& version);
@@ -135,6 +142,7 @@ class VcdWriter {
   std::uint64_t flushed_ = 0;
   std::uint64_t last_time_ = 0;
   bool wrote_time_ = false;
+  std::unique_ptr<VcdTally> tally_;
 };
 
 }  // namespace glint::rtl
