@@ -7,6 +7,7 @@
 #include "io/input_error.h"
 #include "io/line_reader.h"
 #include "io/vector_syntax.h"
+#include "scene/scene.h"
 
 namespace glint {
 
@@ -63,7 +64,8 @@ void scan_obj(std::istream& in, const std::string& path, std::size_t max_triangl
       if (n >= 3) triangles += n - 2;
       if (triangles > max_triangles) {
         lines.fail("f", "more than " + std::to_string(max_triangles) +
-                            " triangles (the scene's limit of triangles left for this mesh)");
+                            " triangles (what is left of the scene's limit of " +
+                            std::to_string(kSceneMaxTriangles) + ")");
       }
       continue;
     }
