@@ -16,9 +16,10 @@ inline constexpr std::uint64_t kSceneMaxObjBytes = std::uint64_t{4} << 30;
 // Each of v, vn and vt at most 3 per triangle of the scene's limit: a mesh whose triangles share
 // no vertex (60 000 000).
 inline constexpr std::uint64_t kSceneMaxObjVertices = 60'000'000;
-// A patch file at the 65 536-patch limit, each of its 17 lines at 4096 bytes, is 4.6 GB; a real
-// one at that count is about 35 MB. 64 MiB, as a scene file.
-inline constexpr std::uint64_t kSceneMaxPatchFileBytes = std::uint64_t{64} << 20;
+// A patch file at the 65 536-patch limit with 17-digit coordinates is about 61 MB (930 bytes a
+// patch); twice that leaves room for comments. Reading takes constant memory (LineReader) and the
+// patches 400 bytes each, so the cap bounds the time a file of comments can take.
+inline constexpr std::uint64_t kSceneMaxPatchFileBytes = std::uint64_t{128} << 20;
 
 // The limits an OBJ file is read under. Tests lower them to reach them with small files.
 struct ObjLimits {
