@@ -12,6 +12,8 @@
 #include <optional>
 #include <string>
 
+#include "eval/evaluate.h"
+#include "fixed/fixed_point.h"
 #include "io/input_error.h"
 #include "render/render.h"
 #include "scene/bezier.h"
@@ -178,6 +180,7 @@ TEST_F(Bounds, SweepMemoryIsBoundedBeforeWork) {
   // The rule: 15 KB per slot plus 40 bytes per input code of the memo, 2^F + 1 codes.
   const UnitSpec hast{"hast", {}};
   EXPECT_EQ(sweep_config_bytes(hast, 7), 7 * (kSweepBytesPerSlot + 40 * ((1u << 15) + 1)));
+  EXPECT_EQ(sweep_config_bytes(hast, 100), 100 * kSweepBytesPerSlot);  // not memoised
   const UnitSpec narrow{"hast", {{"in", "uq1.11"}}};
   EXPECT_EQ(sweep_config_bytes(narrow, 1), kSweepBytesPerSlot + 40 * ((1u << 11) + 1));
   // The case: 100 000 configurations on the smallest trace, refused up front.
@@ -205,6 +208,41 @@ TEST_F(Bounds, SweepMemoryIsBoundedBeforeWork) {
               std::string::npos)
         << e.what();
   }
+}
+
+TEST_F(Bounds, EvalMemosAreBoundedBeforeWork) {
+  // The memo's rule: 40 bytes per code, 2^F + 1 codes per slot, none beyond 16 bits or 2^22
+  // codes per lane.
+  EXPECT_EQ(memo_bytes(parse_q_format("uq1.15"), 64), 40ull * 32769 * 64);
+  EXPECT_EQ(memo_bytes(parse_q_format("uq1.11"), 1), 40ull * 2049);
+  EXPECT_EQ(memo_bytes(parse_q_format("uq1.15"), 65), 0u);  // 65 << 16 codes: not memoised
+  EXPECT_EQ(memo_bytes(parse_q_format("uq1.20"), 1), 0u);   // wider than 16 bits
+  // 64 materials of shininess near 1 (every code above the threshold): 64 units would take
+  // 5 GiB by the rule, refused before a row is read; eval and sim alike.
+  std::string vec = "glint-vectors 1\neps 1e-3\nlights 1\n";
+  for (int m = 0; m < 64; ++m)
+    vec += "material m" + std::to_string(m) + " specular=1,1,1 shininess=1." +
+           std::to_string(m + 10) + " lobe=phong\n";
+  vec += "columns t material\ndata\n";
+  for (int m = 0; m < 64; ++m) vec += "0.5 m" + std::to_string(m) + "\n";
+  write("m.vec", vec);
+  std::string units;
+  for (int u = 0; u < 64; ++u) units += " --unit pow:buffer=" + std::to_string(u + 4);
+  for (const char* command : {"eval", "sim"}) {
+    SCOPED_TRACE(command);
+    const auto run = glint(std::string(command) + " m.vec" + units + " --dump d.csv");
+    EXPECT_EQ(run.status, 2) << run.err;
+    EXPECT_NE(run.err.find("m.vec: field 'slots': the memos of input codes of this run's 64 units "
+                           "may take 5120 MiB, more than the limit of 4096 MiB per run"),
+              std::string::npos)
+        << run.err;
+    EXPECT_FALSE(fs::exists(dir_.path() / "d.csv"));
+  }
+  // Eight units are 640 MiB by the rule: they run.
+  std::string eight;
+  for (int u = 0; u < 8; ++u) eight += " --unit pow:buffer=" + std::to_string(u + 4);
+  const auto run = glint("eval m.vec" + eight);
+  EXPECT_EQ(run.status, 0) << run.err;
 }
 
 TEST_F(Bounds, RenderMemoryIsBoundedBeforeWork) {

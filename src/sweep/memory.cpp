@@ -6,17 +6,13 @@
 #include <stdexcept>
 #include <string>
 
+#include "eval/evaluate.h"
 #include "fixed/fixed_point.h"
 #include "units/catalogue.h"
 
 namespace glint {
 
 namespace {
-
-// LaneAccumulator memoises inputs of at most this width, and at most this many codes per lane
-// (eval/lane.cpp, kMemoCodes).
-constexpr int kMemoMaxWidth = 16;
-constexpr std::uint64_t kMemoMaxCodes = std::uint64_t{1} << 22;
 
 // The input format of a spec: its "in", else the unit's default.
 QFormat input_format(const UnitSpec& spec) {
@@ -34,11 +30,7 @@ std::string mib(std::uint64_t bytes) {
 }  // namespace
 
 std::uint64_t sweep_config_bytes(const UnitSpec& spec, std::size_t slots) {
-  const QFormat in = input_format(spec);
-  std::uint64_t per_slot = kSweepBytesPerSlot;
-  if (in.width() <= kMemoMaxWidth && (std::uint64_t{slots} << in.width()) <= kMemoMaxCodes)
-    per_slot += kSweepBytesPerMemoCode * (static_cast<std::uint64_t>(in.raw_one()) + 1);
-  return per_slot * slots;
+  return kSweepBytesPerSlot * slots + memo_bytes(input_format(spec), slots);
 }
 
 void check_sweep_memory(const std::vector<SweepConfig>& configs, std::size_t slots) {
