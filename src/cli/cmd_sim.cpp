@@ -145,6 +145,7 @@ void make_lanes(const VectorHeader& header, const std::vector<UnitSpec>& specs, 
     lanes.units.push_back(lanes.owned.back().get());
   }
   check_contract_codes(lanes.units, lanes.slots);
+  check_memo_bytes(lanes.units);
   lanes.acc.reserve(lanes.units.size());
   for (const auto* u : lanes.units) lanes.acc.emplace_back(*u, lanes.slots, display_bits);
   std::vector<std::string> names;

@@ -363,6 +363,26 @@ void check_contract_codes(const std::vector<const SpecularUnit*>& units, const S
         total, slots.params.size(), shares, kMaxContractCodes));
 }
 
+std::uint64_t memo_bytes(const QFormat& in, std::size_t slots) {
+  // LaneAccumulator's condition for a memo.
+  const int width = in.width();
+  if (width > kMemoMaxWidth || (slots << width) > kMemoMaxCodes) return 0;
+  // A slot's table holds the codes from above its threshold (at least 0) up to 1.0's.
+  return kMemoBytesPerCode * (static_cast<std::uint64_t>(in.raw_one()) + 1) * slots;
+}
+
+void check_memo_bytes(const std::vector<const SpecularUnit*>& units) {
+  std::uint64_t total = 0;
+  for (const SpecularUnit* u : units) total += memo_bytes(u->in_format(), u->slots());
+  if (total > kMaxMemoBytes)
+    throw ResourceLimitError(fmt::format(
+        "the memos of input codes of this run's {} units may take {} MiB, more than the limit of "
+        "{} MiB per run ({} bytes per code above each slot's threshold, up to 2^F + 1 codes per "
+        "slot for F fraction bits: about 1.3 MB per slot at in=uq1.15): run fewer units at a "
+        "time (--unit) or narrower inputs (in=)",
+        units.size(), total >> 20, kMaxMemoBytes >> 20, kMemoBytesPerCode));
+}
+
 Evaluator::Evaluator(const VectorHeader& header, const std::vector<UnitSpec>& specs,
                      int display_bits, std::size_t slot_capacity)
     : slots_(make_slots(header, slot_capacity)), display_bits_(display_bits) {
@@ -371,6 +391,7 @@ Evaluator::Evaluator(const VectorHeader& header, const std::vector<UnitSpec>& sp
   std::vector<const SpecularUnit*> built;
   for (const auto& u : units_) built.push_back(u.get());
   check_contract_codes(built, slots_);
+  check_memo_bytes(built);
   std::vector<std::string> names;
   for (const auto& u : units_) names.push_back(u->name());
   const auto labels = unit_labels(names);

@@ -83,6 +83,17 @@ inline constexpr std::size_t kMaxLaneSlots = 5 * kMaxStreamSlots;
 // slot's comparator keeps, at most 2^20 + 1 per slot; slots with the same datapath, threshold and
 // lobe share one sweep): 50-160 ns per code by unit, so about 1-3 min at the limit.
 inline constexpr std::uint64_t kMaxContractCodes = std::uint64_t{1} << 30;
+// Each lane memoises the facts of the input codes above each slot's threshold that it meets
+// (LaneAccumulator, lane.cpp), for inputs of at most kMemoMaxWidth bits and at most
+// kMemoMaxCodes codes over the unit's slots (beyond, every request computes its own): up to
+// kMemoBytesPerCode bytes per code and 2^F + 1 codes per slot for F fraction bits, about 1.3 MB
+// per slot at in=uq1.15 and 168 MB per lane at most. A run's lanes may take at most
+// kMaxMemoBytes by that bound (measured: 8 pow lanes over 64 slots of shininess near 1, 674 MB
+// against 671 MB by the bound; 64 lanes would be 5.4 GB).
+inline constexpr int kMemoMaxWidth = 16;
+inline constexpr std::size_t kMemoMaxCodes = std::size_t{1} << 22;
+inline constexpr std::uint64_t kMemoBytesPerCode = 40;
+inline constexpr std::uint64_t kMaxMemoBytes = std::uint64_t{4} << 30;
 
 class ResourceLimitError : public std::invalid_argument {
  public:
@@ -97,6 +108,12 @@ void check_lane_slots(std::size_t units, const SlotMap& slots);
 // kMaxContractCodes, naming each unit's share. Checked before any row is read.
 std::uint64_t contract_codes(const SpecularUnit& unit, const SlotMap& slots);
 void check_contract_codes(const std::vector<const SpecularUnit*>& units, const SlotMap& slots);
+
+// The most a lane's memo takes for inputs of format `in` over `slots` slots (0: not memoised),
+// and the refusal (ResourceLimitError) of units whose sum exceeds kMaxMemoBytes. Checked before
+// any row is read.
+std::uint64_t memo_bytes(const QFormat& in, std::size_t slots);
+void check_memo_bytes(const std::vector<const SpecularUnit*>& units);
 
 // The slots of a stream (above); eps is divided by the light count (Källberg §2, eps_n = eps/n).
 // capacity > 0: a chip of that many slots (--slots), which must hold the stream's slots and

@@ -11,10 +11,10 @@
 namespace glint {
 namespace {
 
-// The memo holds the facts of every (slot, code) a slot's comparator keeps for inputs up to 16
-// bits, up to this many codes over all slots: beyond it every request computes its own (a file
-// with thousands of materials must not allocate per slot what a short stream never revisits).
-constexpr std::size_t kMemoCodes = std::size_t{1} << 22;
+// The memo holds the facts of every (slot, code) a slot's comparator keeps for inputs up to
+// kMemoMaxWidth bits, up to kMemoMaxCodes codes over all slots (evaluate.h): beyond it every
+// request computes its own (a file with thousands of materials must not allocate per slot what a
+// short stream never revisits).
 constexpr std::int64_t kUnset = std::numeric_limits<std::int64_t>::min();
 
 // round(clamp(v, 0, 1) * scale) as std::lround rounds (half away from zero), inline: lround is
@@ -207,7 +207,7 @@ LaneAccumulator::LaneAccumulator(const SpecularUnit& unit, const SlotMap& slots,
   for (const double w : slots.c_y) max_c_y_ = std::max(max_c_y_, w);
   set_drop_t(kDeferredExponent);
   const int width = unit.in_format().width();
-  if (width <= 16 && unit.slots() << width <= kMemoCodes) {
+  if (width <= kMemoMaxWidth && unit.slots() << width <= kMemoMaxCodes) {
     memo_ = std::make_unique<Memo>();
     memo_->tables.resize(unit.slots());
   }

@@ -123,6 +123,24 @@ std::string read_text_file(const std::string& path, std::size_t max_bytes,
   return text;
 }
 
+// The line of the first number literal in `text` that `message` quotes ('...'), 0 if none.
+static std::uint64_t literal_line(const std::string& text, const std::string& message) {
+  const auto open = message.find('\'');
+  const auto close = open == std::string::npos ? open : message.find('\'', open + 1);
+  if (close == std::string::npos || close == open + 1) return 0;
+  const std::string literal = message.substr(open + 1, close - open - 1);
+  const auto part_of_number = [](char c) {
+    return (c >= '0' && c <= '9') || c == '.' || c == 'e' || c == 'E' || c == '+' || c == '-';
+  };
+  for (auto at = text.find(literal); at != std::string::npos; at = text.find(literal, at + 1)) {
+    const std::size_t end = at + literal.size();
+    if ((at == 0 || !part_of_number(text[at - 1])) &&
+        (end == text.size() || !part_of_number(text[end])))
+      return line_at(text, at);
+  }
+  return 0;
+}
+
 nlohmann::json parse_json_text(const std::string& text, const std::string& file, int max_depth) {
   check_depth(text, file, max_depth);
   PathTracker tracker;
@@ -144,11 +162,12 @@ nlohmann::json parse_json_text(const std::string& text, const std::string& file,
     throw InputError(file, line_at(text, e.byte == 0 ? 0 : e.byte - 1), "json",
                      "not valid JSON: " + message);
   } catch (const nlohmann::json::exception& e) {
-    // out_of_range.406: a number literal beyond a double ("1e999"); no position is given.
+    // out_of_range.406: a number literal beyond a double ("1e999"); no position is given, but
+    // the message quotes the literal: its first occurrence as a whole token gives the line.
     std::string message = e.what();
     const auto id_end = message.find("] ");
     if (id_end != std::string::npos) message = message.substr(id_end + 2);
-    throw InputError(file, 0, "json", "not usable JSON: " + message);
+    throw InputError(file, literal_line(text, message), "json", "not usable JSON: " + message);
   }
   if (!duplicate.empty()) throw InputError(file, 0, duplicate, "duplicate key");
   return doc;

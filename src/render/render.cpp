@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "eval/parallel.h"
+#include "io/input_error.h"
 #include "render/image_error.h"
 #include "scene/tracer.h"
 #include "units/catalogue.h"
@@ -367,8 +368,25 @@ VectorHeader scene_request_header(const Scene& scene, std::vector<std::int32_t>*
   return h;
 }
 
+std::uint64_t render_bytes(std::uint64_t pixels, std::size_t units) {
+  return pixels * (kRenderBytesPerPixel + kRenderBytesPerPixelUnit * units);
+}
+
 RenderResult render_scene(const Scene& scene, const RenderOptions& options) {
   if (options.tile_rows < 1) throw std::invalid_argument("render: tile_rows must be >= 1");
+  const std::uint64_t pixels = static_cast<std::uint64_t>(scene.camera.width) *
+                               static_cast<std::uint64_t>(scene.camera.height);
+  const std::size_t units = options.units.empty() ? unit_names().size() : options.units.size();
+  if (render_bytes(pixels, units) > kMaxRenderBytes) {
+    throw InputError(
+        scene.file, 0, "camera.resolution",
+        fmt::format("{} x {} pixels through {} unit{} need about {} MiB, more than the limit of {} "
+                    "MiB per render (about {} + {} x units bytes per pixel): lower the resolution "
+                    "or render fewer units at a time",
+                    scene.camera.width, scene.camera.height, units, units == 1 ? "" : "s",
+                    render_bytes(pixels, units) >> 20, kMaxRenderBytes >> 20, kRenderBytesPerPixel,
+                    kRenderBytesPerPixelUnit));
+  }
   RenderResult out;
   out.scene_name = scene.name;
   out.width = scene.camera.width;

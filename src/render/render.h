@@ -106,6 +106,16 @@ struct RenderResult {
   nlohmann::json to_json() const;             // the render report (report.json)
 };
 
+// A render keeps every unit's images and per-pixel results whole until it writes them: about
+// kRenderBytesPerPixel + kRenderBytesPerPixelUnit x units bytes per pixel (measured: 33 bytes per
+// pixel for one unit, 17 more per further unit). Beyond kMaxRenderBytes by that rule,
+// render_scene refuses the scene before any work (InputError at "camera.resolution").
+inline constexpr std::uint64_t kRenderBytesPerPixel = 16;
+inline constexpr std::uint64_t kRenderBytesPerPixelUnit = 17;
+inline constexpr std::uint64_t kMaxRenderBytes = std::uint64_t{4} << 30;
+// The bytes a render of `pixels` pixels through `units` units takes by the rule above.
+std::uint64_t render_bytes(std::uint64_t pixels, std::size_t units);
+
 RenderResult render_scene(const Scene& scene, const RenderOptions& options);
 
 // The file names write_render uses, in contact-sheet order.

@@ -7,33 +7,36 @@
 #include <string_view>
 
 #include "io/input_error.h"
+#include "io/line_reader.h"
 #include "io/vector_syntax.h"
+#include "scene/mesh_file.h"
 
 namespace glint {
 
 namespace {
 
-// Reads the file's significant lines as tokens, keeping line numbers for errors.
+// Reads the file's significant lines as tokens, keeping line numbers for errors. LineReader
+// refuses a long line before reading it all, where std::getline would hold any length.
 class TokenLines {
  public:
-  explicit TokenLines(const std::string& path) : path_(path), in_(path, std::ios::binary) {
+  TokenLines(const std::string& path, std::uint64_t max_bytes)
+      : in_(path, std::ios::binary), lines_(in_, path) {
     if (!in_) throw InputError(path, 0, "file", "cannot open the patch file");
+    check_file_bytes(path, max_bytes, "patch file");
   }
 
   // The next non-blank line's tokens; false at the end of the file.
   bool next(std::vector<std::string_view>& tokens) {
-    while (std::getline(in_, text_)) {
-      ++line_;
-      if (text_.size() > 4096) fail("line", "longer than 4096 bytes");
-      if (!text_.empty() && text_.back() == '\r') text_.pop_back();
-      split_header_tokens(text_, tokens);
+    std::string_view text;
+    while (lines_.next(text)) {
+      split_header_tokens(text, tokens);
       if (!tokens.empty()) return true;
     }
     return false;
   }
 
   [[noreturn]] void fail(const std::string& field, const std::string& message) const {
-    throw InputError(path_, line_, field, message);
+    lines_.fail(field.c_str(), message);
   }
 
   template <class T>
@@ -47,10 +50,8 @@ class TokenLines {
   }
 
  private:
-  std::string path_;
   std::ifstream in_;
-  std::string text_;
-  std::uint64_t line_ = 0;
+  LineReader lines_;
 };
 
 // Bernstein basis of degree 3 and its derivative.
@@ -85,8 +86,8 @@ bool patch_normal(const BezierPatch& patch, double u, double v, Vec3& n) {
 
 }  // namespace
 
-std::vector<BezierPatch> read_bezier_patches(const std::string& path) {
-  TokenLines lines(path);
+std::vector<BezierPatch> read_bezier_patches(const std::string& path, std::uint64_t max_bytes) {
+  TokenLines lines(path, max_bytes);
   std::vector<std::string_view> tokens;
   if (!lines.next(tokens)) lines.fail("patches", "empty file: no patch count");
   if (tokens.size() != 1) lines.fail("patches", "the first line must be the number of patches");

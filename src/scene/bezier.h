@@ -7,9 +7,11 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
+#include "scene/mesh_file.h"
 #include "scene/scene.h"
 #include "scene/vec3.h"
 
@@ -20,8 +22,10 @@ inline constexpr int kSceneMaxBezierSubdivisions = 256;
 
 using BezierPatch = std::array<Vec3, 16>;  // control point (i, j) at [4 * i + j], i along u
 
-// Throws InputError naming `path` and the 1-based line.
-std::vector<BezierPatch> read_bezier_patches(const std::string& path);
+// Throws InputError naming `path` and the 1-based line, or with field "file" and no line when the
+// file is larger than `max_bytes` (checked before it is read).
+std::vector<BezierPatch> read_bezier_patches(const std::string& path,
+                                             std::uint64_t max_bytes = kSceneMaxPatchFileBytes);
 
 // Each patch as subdivisions x subdivisions quads, two triangles each (a quad collapsed at a pole
 // keeps its zero-area triangle: the count is always patches * subdivisions^2 * 2). Normals are

@@ -7,6 +7,7 @@
 #include <unordered_map>
 
 #include "io/input_error.h"
+#include "scene/mesh_file.h"
 
 namespace glint {
 
@@ -36,9 +37,16 @@ bool finite(Vec3 v) {
 
 }  // namespace
 
-Mesh load_obj_mesh(const std::string& path, std::size_t max_triangles) {
+Mesh load_obj_mesh(const std::string& path, std::size_t max_triangles, const ObjLimits& limits) {
+  check_file_bytes(path, limits.max_bytes, "OBJ file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, 0, "file", "cannot open the OBJ file");
+  // A first pass holds every limit and every number to glint's rules, with the line; then
+  // tinyobjloader reads the same open file again (it has neither limits nor line numbers).
+  scan_obj(in, path, max_triangles, limits);
+  in.clear();
+  if (!in.seekg(0))
+    throw InputError(path, 0, "file", "cannot read the OBJ file again (not seekable)");
   tinyobj::attrib_t attrib;
   std::vector<tinyobj::shape_t> shapes;
   std::vector<tinyobj::material_t> materials;

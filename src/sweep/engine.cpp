@@ -8,6 +8,7 @@
 
 #include "eval/parallel.h"
 #include "sweep/measures.h"
+#include "sweep/memory.h"
 #include "units/catalogue.h"
 #include "units/lane_cost.h"
 
@@ -29,6 +30,8 @@ SweepEngine::SweepEngine(const VectorHeader& header, std::vector<SweepConfig> co
       slots_(make_slots(header, settings.slot_capacity)),
       colour_(stream_is_coloured(header)),
       refused_(configs_.size()) {
+  check_sweep_memory(configs_,
+                     settings_.slot_capacity > 0 ? settings_.slot_capacity : slots_.params.size());
   settings_.block = std::max<std::size_t>(1, settings_.block);
   settings_.chunk_rows = std::max<std::size_t>(1, settings_.chunk_rows);
   const std::size_t n_blocks = (configs_.size() + settings_.block - 1) / settings_.block;
