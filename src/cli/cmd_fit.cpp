@@ -14,12 +14,14 @@ namespace {
 struct FitCliOptions {
   double shininess = 0;
   int degree = 4;
+  int samples = FitOptions{}.samples;
   std::string method = "ls";
   std::string domain = "full";
   double eps = 1e-3;
   std::string color = "1,1,1";
   bool constrain = false;
   bool json = false;
+  bool samples_given = false;
 };
 
 int run_fit(const FitCliOptions& o) {
@@ -30,6 +32,15 @@ int run_fit(const FitCliOptions& o) {
   f.degree = o.degree;
   f.method = parse_fit_method(o.method);
   f.domain = parse_fit_domain(o.domain);
+  // Only the sampled methods read --samples; minimax fits t^n itself on a dense grid.
+  if (o.samples_given && f.method == FitMethod::kMinimax)
+    throw std::invalid_argument(fmt::format(
+        "--samples {}: method minimax fits t^n itself, not samples (use ls or robust)", o.samples));
+  if (f.method != FitMethod::kMinimax && o.samples < o.degree + 1)
+    throw std::invalid_argument(
+        fmt::format("--samples {}: a degree-{} fit needs at least {} samples", o.samples, o.degree,
+                    o.degree + 1));
+  f.samples = o.samples;
   const auto m = parse_rgb(o.color, "--color");
   if (!std::isfinite(c_y(Rgb{m[0], m[1], m[2]})))
     throw std::invalid_argument(
@@ -88,6 +99,13 @@ void add_fit_command(CLI::App& app, int& status) {
   sub->add_option("--degree", o->degree, "Polynomial degree p, 1..10")
       ->check(CLI::Range(1, 10))
       ->capture_default_str();
+  CLI::Option* samples =
+      sub->add_option("--samples", o->samples,
+                      "Uniform samples of ls and robust, 2..1000000 (domain full: x = i/N, i = "
+                      "1..N, as Öztürk et al. sample 0 < x < 1; tau: u = i/(N-1), i = 0..N-1); "
+                      "at least degree + 1, not with minimax")
+          ->check(CLI::Range(2, 1000000))
+          ->capture_default_str();
   sub->add_option("--method", o->method, "ls | robust | minimax")
       ->check(CLI::IsMember({"ls", "robust", "minimax"}))
       ->capture_default_str();
@@ -99,7 +117,10 @@ void add_fit_command(CLI::App& app, int& status) {
       ->capture_default_str();
   sub->add_flag("--constrain", o->constrain, "Force f(1) = 1 (and f(tau) = 0 on domain tau)");
   sub->add_flag("--json", o->json, "Print one JSON document on stdout");
-  sub->callback([o, &status] { status = guarded([&] { return run_fit(*o); }); });
+  sub->callback([o, samples, &status] {
+    o->samples_given = samples->count() > 0;
+    status = guarded([&] { return run_fit(*o); });
+  });
 }
 
 }  // namespace glint::cli
