@@ -50,6 +50,7 @@ struct HornerConfig {
   QFormat out = kDefaultOut;
   int guard = -1;  // fh - fo; -1: horner_required_guard over every slot
   bool skip = true;
+  bool guard_auto = false;  // guard resolved from key guard=auto (refusals say so)
 };
 
 int horner_required_guard(const HornerCoefficients& coeffs);   // faithful minimum

@@ -12,6 +12,7 @@
 #include <tuple>
 #include <utility>
 
+#include "units/keys.h"
 #include "units/unit_set.h"
 
 namespace glint {
@@ -131,6 +132,7 @@ std::vector<HornerUnit> build_horner_slots(const HornerFitSpec& spec, HornerConf
   int extra = 0;  // guard bits added because a slot's output could not be made monotone
   for (int attempt = 0;; ++attempt) {
     HornerConfig c = cfg;
+    c.guard_auto = auto_guard;
     int max_guard = 64;
     if (auto_guard) {
       // The datapath width is shared: the guard is the largest any slot needs.
@@ -171,10 +173,14 @@ std::vector<HornerUnit> build_horner_slots(const HornerFitSpec& spec, HornerConf
           widen = true;
           return;
         }
+        // refusal: horner.monotone
         throw std::invalid_argument(fmt::format(
-            "horner: key 'guard' = {}: no monotone degree-{} output at {} guard bits with input "
-            "{} (a slope margin of {:.3g} would be needed)",
-            c.guard, spec.degree, c.guard, c.in.name(), slope));
+            "horner: {}: no monotone degree-{} output at {} guard bits with input {} (a slope "
+            "margin of {:.3g} would be needed; more guard bits or a coarser input)",
+            key_values({{"guard", auto_value(!auto_guard, c.guard)},
+                        {"in", c.in.name()},
+                        {"degree", std::to_string(spec.degree)}}),
+            spec.degree, c.guard, c.in.name(), slope));
       });
     }
     if (widen) {
