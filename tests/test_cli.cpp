@@ -293,6 +293,21 @@ TEST_F(CliTest, FitSamplesReproducesOzturk) {
             glint_json("fit --shininess 20 --degree 4 --json"));
 }
 
+// Robust fits of t^n itself: a warning on stderr where they threw the highlight away, with the
+// figures; none where they did not. The fit is still printed (exit 0).
+TEST_F(CliTest, FitRobustWarnsWhereItRejectsTheHighlight) {
+  const CliRun bad = glint("fit --shininess 20 --degree 4 --samples 1000 --method robust");
+  EXPECT_EQ(bad.status, 0) << bad.err;
+  EXPECT_NE(bad.out.find("max abs error 9.995997e-01"), std::string::npos) << bad.out;
+  EXPECT_EQ(lines_of(bad.err).size(), 1u) << bad.err;
+  for (const char* part : {"glint: warning: fit --method robust", "0.9996", "0.288", "1000"})
+    EXPECT_NE(bad.err.find(part), std::string::npos) << part << " in: " << bad.err;
+  const CliRun fine = glint("fit --shininess 5 --degree 4 --method robust");
+  EXPECT_EQ(fine.status, 0);
+  EXPECT_EQ(fine.err, "");
+  EXPECT_EQ(glint("fit --shininess 20 --degree 4 --samples 1000").err, "");
+}
+
 TEST_F(CliTest, FitMinimaxBeatsLeastSquaresOnTauDomain) {
   const json mm = glint_json(
       "fit --shininess 20 --degree 4 --method minimax --domain tau "

@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstdio>
 #include <iostream>
 
 #include "cli/cli.h"
@@ -54,6 +55,13 @@ int run_fit(const FitCliOptions& o) {
   f.constrain_one = o.constrain;
   f.constrain_zero = o.constrain && f.domain == FitDomain::kTau;
   const FitResult r = fit_power(f);
+  if (robust_rejects_samples(r))
+    std::fprintf(stderr,
+                 "glint: warning: fit --method robust: largest error %.4g on its %d samples "
+                 "against %.4g for ls: on noise-free t^n the bisquare weights reject its "
+                 "steepest part (the highlight, or t near 0 for n < 1) as outliers; use ls or "
+                 "minimax (robust is for noisy, measured data)\n",
+                 r.sample_max_error, f.samples, r.ls_sample_max_error);
   const char* var = r.variable == FitVariable::kU ? "u = (t - tau)/(1 - tau)" : "t";
   if (o.json) {
     print_json({{"shininess", o.shininess},
@@ -106,7 +114,10 @@ void add_fit_command(CLI::App& app, int& status) {
                       "at least degree + 1, not with minimax")
           ->check(CLI::Range(2, 1000000))
           ->capture_default_str();
-  sub->add_option("--method", o->method, "ls | robust | minimax")
+  sub->add_option("--method", o->method,
+                  "ls: least squares on the samples | robust: bisquare weights (Öztürk's, for "
+                  "noisy measured data; on t^n itself they can reject the highlight, and glint "
+                  "warns) | minimax: the smallest largest error")
       ->check(CLI::IsMember({"ls", "robust", "minimax"}))
       ->capture_default_str();
   sub->add_option("--domain", o->domain, "full: x in (0, 1] | tau: [tau, 1] in u")
