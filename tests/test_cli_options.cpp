@@ -95,6 +95,12 @@ TEST_F(CliOptions, Fit) {
            {"fit --shininess 50 --eps nan --domain tau", "--eps"},
            {"fit --shininess 50 --eps 0", "--eps"},
            {"fit --shininess 50 --color 1,1,x", "--color"},
+           {"fit --shininess 50 --samples 1", "--samples"},
+           {"fit --shininess 50 --samples 1000001", "--samples"},
+           {"fit --shininess 50 --samples 1e3", "--samples"},
+           {"fit --shininess 50 --samples nan", "--samples"},
+           {"fit --shininess 50 --degree 6 --samples 6", "--samples"},
+           {"fit --shininess 50 --method minimax --samples 1000", "--samples"},
        })
     expect_refused(c.args, c.names);
 }
@@ -251,7 +257,7 @@ TEST_F(CliOptions, HelpStatesTheLimits) {
   };
   for (const Help& h : std::vector<Help>{
            {"tau", {"finite, > 0", "1..1048576", "(0, 1]", "finite and >= 0"}},
-           {"fit", {"finite, > 0", "1..10"}},
+           {"fit", {"finite, > 0", "1..10", "2..1000000"}},
            {"eval", {"1..16", "1..1048576", "at most 64"}},
            {"sim", {"[0.01, 1]", "0..2^64-1", "1..16777216", "1..16", "1..1048576", "at most 64"}},
            {"regress", {"finite number >= 0"}},

@@ -115,6 +115,59 @@ TEST(Contract, WeakConfigurationsSaySo) {
   EXPECT_EQ(stats[4].contract(), ContractKind::kCorrectlyRounded);
 }
 
+// The label follows the stated error: a faithful datapath keeps its label while the sum of the
+// computed parts stays below kNoContractFraction of the range, and is labelled none from there on,
+// whatever its datapath budget; the reason says which.
+TEST(Contract, NoneFromAQuarterOfTheRange) {
+  ASSERT_EQ(kNoContractFraction, 0.25);
+  for (const double ulps : {0.5, 0.75, 3.0}) {
+    for (const double scale : {1 - 1e-9, 1.0, 1 + 1e-9, 3.88}) {
+      SlotContract c;
+      c.datapath_ulps = ulps;
+      c.bound.input = 0.05;
+      c.bound.parameter = 0.02;
+      c.bound.datapath = 0.01;
+      c.bound.approximation = kNoContractFraction * scale - 0.08;
+      c.bound.skip = 1e-3;
+      classify_contract(c);
+      const std::string what =
+          "ulps " + std::to_string(ulps) + ", sum " + std::to_string(c.bound.computed_sum());
+      if (scale < 1) {
+        EXPECT_EQ(c.kind, ulps <= 0.5  ? ContractKind::kCorrectlyRounded
+                          : ulps < 1.0 ? ContractKind::kFaithful
+                                       : ContractKind::kBound)
+            << what;
+        EXPECT_EQ(c.reason.find("stated error"), std::string::npos) << what << ": " << c.reason;
+      } else {
+        EXPECT_EQ(c.kind, ContractKind::kNone) << what;
+        EXPECT_NE(c.reason.find(scale < 4 ? "1/4 of the output range" : "whole output range"),
+                  std::string::npos)
+            << what << ": " << c.reason;
+      }
+    }
+  }
+}
+
+// On the shipped traces, slots on both sides of the fraction, each labelled by it.
+TEST(Contract, ShippedSlotsLabelledByTheFraction) {
+  int below = 0, above = 0;
+  for (const char* trace : {"contract_cases.vec", "hard_cases.vec"}) {
+    for (const UnitStats& s : evaluate(trace, {"schlick", "hast", "lut:bits=4",
+                                               "horner:degree=6,method=ls,domain=full,"
+                                               "constrain=off"})) {
+      for (const SlotContract& c : s.slots) {
+        if (c.always_skipped) continue;
+        const bool none = c.bound.computed_sum() >= kNoContractFraction;
+        (none ? above : below) += 1;
+        EXPECT_EQ(c.kind == ContractKind::kNone, none)
+            << trace << " " << s.name << " " << c.name << ": " << c.bound.computed_sum();
+      }
+    }
+  }
+  EXPECT_GT(below, 0);
+  EXPECT_GT(above, 0);
+}
+
 TEST(Contract, OffGridInputsWithinTheTotalBound) {
   // Real t between the codes, where only the input part can account for the difference.
   VectorHeader h;

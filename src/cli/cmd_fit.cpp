@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstdio>
 #include <iostream>
 
 #include "cli/cli.h"
@@ -14,12 +15,14 @@ namespace {
 struct FitCliOptions {
   double shininess = 0;
   int degree = 4;
+  int samples = FitOptions{}.samples;
   std::string method = "ls";
   std::string domain = "full";
   double eps = 1e-3;
   std::string color = "1,1,1";
   bool constrain = false;
   bool json = false;
+  bool samples_given = false;
 };
 
 int run_fit(const FitCliOptions& o) {
@@ -30,6 +33,15 @@ int run_fit(const FitCliOptions& o) {
   f.degree = o.degree;
   f.method = parse_fit_method(o.method);
   f.domain = parse_fit_domain(o.domain);
+  // Only the sampled methods read --samples; minimax fits t^n itself on a dense grid.
+  if (o.samples_given && f.method == FitMethod::kMinimax)
+    throw std::invalid_argument(fmt::format(
+        "--samples {}: method minimax fits t^n itself, not samples (use ls or robust)", o.samples));
+  if (f.method != FitMethod::kMinimax && o.samples < o.degree + 1)
+    throw std::invalid_argument(
+        fmt::format("--samples {}: a degree-{} fit needs at least {} samples", o.samples, o.degree,
+                    o.degree + 1));
+  f.samples = o.samples;
   const auto m = parse_rgb(o.color, "--color");
   if (!std::isfinite(c_y(Rgb{m[0], m[1], m[2]})))
     throw std::invalid_argument(
@@ -43,6 +55,13 @@ int run_fit(const FitCliOptions& o) {
   f.constrain_one = o.constrain;
   f.constrain_zero = o.constrain && f.domain == FitDomain::kTau;
   const FitResult r = fit_power(f);
+  if (robust_rejects_samples(r))
+    std::fprintf(stderr,
+                 "glint: warning: fit --method robust: largest error %.4g on its %d samples "
+                 "against %.4g for ls: on noise-free t^n the bisquare weights reject its "
+                 "steepest part (the highlight, or t near 0 for n < 1) as outliers; use ls or "
+                 "minimax (robust is for noisy, measured data)\n",
+                 r.sample_max_error, f.samples, r.ls_sample_max_error);
   const char* var = r.variable == FitVariable::kU ? "u = (t - tau)/(1 - tau)" : "t";
   if (o.json) {
     print_json({{"shininess", o.shininess},
@@ -88,7 +107,17 @@ void add_fit_command(CLI::App& app, int& status) {
   sub->add_option("--degree", o->degree, "Polynomial degree p, 1..10")
       ->check(CLI::Range(1, 10))
       ->capture_default_str();
-  sub->add_option("--method", o->method, "ls | robust | minimax")
+  CLI::Option* samples =
+      sub->add_option("--samples", o->samples,
+                      "Uniform samples of ls and robust, 2..1000000 (domain full: x = i/N, i = "
+                      "1..N, as Öztürk et al. sample 0 < x < 1; tau: u = i/(N-1), i = 0..N-1); "
+                      "at least degree + 1, not with minimax")
+          ->check(CLI::Range(2, 1000000))
+          ->capture_default_str();
+  sub->add_option("--method", o->method,
+                  "ls: least squares on the samples | robust: bisquare weights (Öztürk's, for "
+                  "noisy measured data; on t^n itself they can reject the highlight, and glint "
+                  "warns) | minimax: the smallest largest error")
       ->check(CLI::IsMember({"ls", "robust", "minimax"}))
       ->capture_default_str();
   sub->add_option("--domain", o->domain, "full: x in (0, 1] | tau: [tau, 1] in u")
@@ -99,7 +128,10 @@ void add_fit_command(CLI::App& app, int& status) {
       ->capture_default_str();
   sub->add_flag("--constrain", o->constrain, "Force f(1) = 1 (and f(tau) = 0 on domain tau)");
   sub->add_flag("--json", o->json, "Print one JSON document on stdout");
-  sub->callback([o, &status] { status = guarded([&] { return run_fit(*o); }); });
+  sub->callback([o, samples, &status] {
+    o->samples_given = samples->count() > 0;
+    status = guarded([&] { return run_fit(*o); });
+  });
 }
 
 }  // namespace glint::cli

@@ -65,6 +65,34 @@ nlohmann::json SlotContract::to_json(int display_bits) const {
   return j;
 }
 
+void classify_contract(SlotContract& c) {
+  c.kind = c.datapath_ulps <= 0.5  ? ContractKind::kCorrectlyRounded
+           : c.datapath_ulps < 1.0 ? ContractKind::kFaithful
+                                   : ContractKind::kBound;
+  switch (c.kind) {
+    case ContractKind::kCorrectlyRounded:
+      c.reason = "datapath correctly rounded against the unit's model";
+      break;
+    case ContractKind::kFaithful:
+      c.reason =
+          fmt::format("datapath faithful: within {:.3g} ulp of the unit's model", c.datapath_ulps);
+      break;
+    default:
+      c.reason = fmt::format("datapath error up to {:.3g} ulp of the unit's model (not faithful)",
+                             c.datapath_ulps);
+  }
+  if (!std::isfinite(c.bound.total()) || c.bound.computed_sum() >= kNoContractFraction) {
+    c.kind = ContractKind::kNone;
+    const double sum = c.bound.computed_sum();
+    c.reason = !(sum < 1.0)
+                   ? fmt::format("the stated error ({:.3g}) covers the whole output range", sum)
+                   : fmt::format(
+                         "the stated error ({:.3g}) is 1/4 of the output range or more: "
+                         "a result cannot tell a lobe at 1/4 of its peak from one at 3/4",
+                         sum);
+  }
+}
+
 SlotContract slot_contract(const SpecularUnit& unit, std::size_t slot, const SlotMap& slots) {
   SlotContract c;
   const MaterialParams& m = slots.params[slot];
@@ -116,26 +144,7 @@ SlotContract slot_contract(const SpecularUnit& unit, std::size_t slot, const Slo
   c.datapath_ulps = unit.datapath_bound_ulps(slot);
   c.bound.datapath = c.datapath_ulps * unit.out_format().ulp();
 
-  c.kind = c.datapath_ulps <= 0.5  ? ContractKind::kCorrectlyRounded
-           : c.datapath_ulps < 1.0 ? ContractKind::kFaithful
-                                   : ContractKind::kBound;
-  switch (c.kind) {
-    case ContractKind::kCorrectlyRounded:
-      c.reason = "datapath correctly rounded against the unit's model";
-      break;
-    case ContractKind::kFaithful:
-      c.reason =
-          fmt::format("datapath faithful: within {:.3g} ulp of the unit's model", c.datapath_ulps);
-      break;
-    default:
-      c.reason = fmt::format("datapath error up to {:.3g} ulp of the unit's model (not faithful)",
-                             c.datapath_ulps);
-  }
-  if (!std::isfinite(c.bound.total()) || c.bound.computed_sum() >= 1.0) {
-    c.kind = ContractKind::kNone;
-    c.reason = fmt::format("the stated error ({:.3g}) covers the whole output range",
-                           c.bound.computed_sum());
-  }
+  classify_contract(c);
   return c;
 }
 

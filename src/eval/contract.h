@@ -41,8 +41,14 @@ struct ErrorParts {
 
 // What the datapath promises against its own model: correctly rounded (<= ½ ulp), faithful
 // (< 1 ulp), a stated bound in ulps (a user-forced weak configuration, e.g. guard=0), or none
-// (the stated error covers the whole output range).
+// (the stated error is kNoContractFraction of the output range or more).
 enum class ContractKind : std::uint8_t { kCorrectlyRounded, kFaithful, kBound, kNone };
+
+// A slot whose stated error (the sum of the computed parts) reaches this fraction of the output
+// range promises nothing: results within B of the truth tell a lobe at 1/4 of its peak from one at
+// 3/4 only while B < 1/4, so from there on not even one bit of the output is guaranteed
+// (contract.md, "The datapath contract per unit").
+inline constexpr double kNoContractFraction = 0.25;
 const char* to_string(ContractKind kind);  // "correctly_rounded", "faithful", "bound", "none"
 
 // Inputs with up to this many fraction bits (2^20 + 1 codes in [0, 1]) are measured at every code;
@@ -64,6 +70,10 @@ struct SlotContract {
 
   nlohmann::json to_json(int display_bits) const;
 };
+
+// Sets c.kind and c.reason from c.datapath_ulps and c.bound: the datapath's budget names the kind,
+// unless the stated error reaches kNoContractFraction of the range (or is not finite): kNone.
+void classify_contract(SlotContract& c);
 
 // Measures and bounds every part for one slot (cost: a few evaluations per code above the
 // threshold, ~1-10 ms for a 16-bit input).

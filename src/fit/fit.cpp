@@ -495,6 +495,22 @@ double FitResult::value(double v) const {
   return horner(coeffs, v);
 }
 
+namespace {
+
+// The largest |P(v_i) - t^n| over the samples least squares and robust fit (fit_power's v_i).
+double sample_max_error(const std::vector<double>& coeffs, const FitOptions& o,
+                        const Target& target) {
+  double worst = 0.0;
+  for (int i = 0; i < o.samples; ++i) {
+    const double v = o.domain == FitDomain::kFull ? static_cast<double>(i + 1) / o.samples
+                                                  : static_cast<double>(i) / (o.samples - 1);
+    worst = std::max(worst, std::fabs(horner(coeffs, v) - target.y(v)));
+  }
+  return worst;
+}
+
+}  // namespace
+
 FitResult fit_power(const FitOptions& o) {
   check_options(o);
   Subspace sub;
@@ -546,7 +562,22 @@ FitResult fit_power(const FitOptions& o) {
     r.reference.clear();
   }
   if (o.error_grid > 0) measure(r, target, o.error_grid);
+  if (o.method == FitMethod::kRobust) {
+    FitOptions ls = o;
+    ls.method = FitMethod::kLeastSquares;
+    ls.error_grid = 0;
+    const FitResult reference = fit_power(ls);
+    r.sample_max_error = sample_max_error(r.coeffs, o, target);
+    r.ls_sample_max_error = sample_max_error(reference.coeffs, o, target);
+  }
   return r;
+}
+
+bool robust_rejects_samples(const FitResult& r) {
+  // 1e-12: on data a polynomial fits exactly both errors are rounding noise.
+  const double ls = r.ls_sample_max_error;
+  return r.method == FitMethod::kRobust &&
+         r.sample_max_error - ls > std::min(ls, kRobustLoss) + 1e-12;
 }
 
 SampleFit fit_samples(const std::vector<double>& x, const std::vector<double>& y, int degree,

@@ -97,6 +97,13 @@ struct FitResult {
   bool monotone_fit = false;   // fit_monotone() replaced the method's own fit (see monotone)
   bool monotone_cone = false;  // ... and had to fall back to its Bernstein cone
 
+  // Robust only: the largest |P - t^n| over the fit's own samples, of this fit and of the least-
+  // squares fit with the same options (samples, constraints, monotone). t^n is noise-free, so
+  // bisquare weights can reject the highlight as outliers (see fit_samples below): see
+  // robust_rejects_samples().
+  double sample_max_error = 0.0;
+  double ls_sample_max_error = 0.0;
+
   int iterations = 0;     // Remez exchanges or IRLS passes; 0 for plain least squares
   bool converged = true;  // Remez/IRLS met its tolerance
   // Remez only: the levelled error |E| and the final reference, in the evaluation variable. The
@@ -115,6 +122,16 @@ struct FitResult {
 
 // Fits t^n as configured. Throws std::invalid_argument for bad options.
 FitResult fit_power(const FitOptions& options);
+
+// A robust fit of t^n whose largest error on its samples exceeds the least-squares fit's on the
+// same samples by more than that error itself (twice as large) or by more than kRobustLoss of the
+// lobe's peak: its weights dropped samples the function really passes through (the highlight),
+// which noise-free data never calls for. On t^n the only residual is the polynomial's own bias, so
+// there is no outlier to reject; a robust fit that stays within these margins of least squares
+// (n = 5: 10 to 20 % above it) only redistributes the bias, one beyond them has thrown the
+// highlight away (n = 20, degree 4, full domain: 0.9996 against 0.2899).
+inline constexpr double kRobustLoss = 0.1;
+bool robust_rejects_samples(const FitResult& r);
 
 // Polynomial regression on given samples (Öztürk eq.7/eq.10, §2.1), for measured data or data
 // with outliers. method is kLeastSquares or kRobust (kMinimax throws: it needs the function).

@@ -25,26 +25,31 @@ UnitSpec parse_unit_spec(std::string_view text) {
   UnitSpec spec;
   const auto colon = text.find(':');
   spec.name = std::string(text.substr(0, colon));
+  // refusal: spec.empty
   if (spec.name.empty()) throw std::invalid_argument("empty unit spec");
   if (colon == std::string_view::npos) return spec;
   std::string_view rest = text.substr(colon + 1);
   if (rest.empty())
+    // refusal: spec.no_keys
     throw std::invalid_argument(fmt::format("unit spec '{}': no keys after ':'", text));
   while (!rest.empty()) {
     const auto comma = rest.find(',');
     const std::string_view item = rest.substr(0, comma);
     const auto eq = item.find('=');
     if (eq == std::string_view::npos || eq == 0 || eq + 1 == item.size()) {
+      // refusal: spec.not_key_value
       throw std::invalid_argument(fmt::format("unit spec '{}': '{}' is not key=value", text, item));
     }
     std::string key(item.substr(0, eq));
     for (const auto& kv : spec.keys)
       if (kv.first == key)
+        // refusal: spec.twice
         throw std::invalid_argument(fmt::format("unit spec '{}': key '{}' given twice", text, key));
     spec.keys.emplace_back(std::move(key), std::string(item.substr(eq + 1)));
     if (comma == std::string_view::npos) break;
     rest.remove_prefix(comma + 1);
     if (rest.empty())
+      // refusal: spec.trailing_comma
       throw std::invalid_argument(fmt::format("unit spec '{}': trailing ','", text));
   }
   return spec;
@@ -79,6 +84,7 @@ const UnitDescription& description(std::string_view name) {
   const auto& catalog = unit_catalog();
   for (std::size_t i = 0; i < catalog.size(); ++i)
     if (catalog[i].name == name) return *unit_descriptions()[i];
+  // refusal: spec.unknown_unit
   throw std::invalid_argument(
       fmt::format("unknown unit '{}' (known: {})", name, fmt::join(unit_names(), ", ")));
 }
@@ -119,6 +125,7 @@ std::unique_ptr<SpecularUnit> make_unit(const UnitSpec& spec, const SlotPlan& pl
     // Datapath constructors name themselves ("hast: ..."); key errors do not.
     const std::string what = e.what();
     if (what.rfind(spec.name + ":", 0) == 0) throw;
+    // not from a spec: names the unit of a refusal tagged where it is thrown
     throw std::invalid_argument(fmt::format("unit '{}': {}", spec.name, what));
   }
 }

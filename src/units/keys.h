@@ -33,6 +33,16 @@ class KeyReader {
   const UnitSpec& spec_;
 };
 
+// How a refusal names the keys whose values cause it, as KeyReader::fail does for one key: "key
+// 'out' = 'uq1.40'", or for a width derived from several, "keys 'in' = 'uq1.50', 'out' =
+// 'uq1.30'". The datapaths refuse with the values they were built from, not the spec's text, so a
+// key left at "auto" is stated with what it resolved to: "'guard' = 'auto' (4)".
+struct KeyValue {
+  std::string key, value;
+};
+std::string key_values(const std::vector<KeyValue>& kv);
+std::string auto_value(bool given, long long resolved);
+
 // The keys every unit has, listed first by `glint units`.
 std::vector<UnitKey> common_keys();
 

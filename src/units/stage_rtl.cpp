@@ -27,6 +27,7 @@ std::string rtl_stage_registers(const Stage& s, const std::string& what) {
 const Stage& rtl_stage(const StageLayout& layout, const std::string& name) {
   for (const Stage& s : layout.stages())
     if (s.name == name) return s;
+  // not from a spec: a generator out of step with its unit's layout
   throw std::logic_error("rtl: no stage '" + name + "' in the unit's layout");
 }
 

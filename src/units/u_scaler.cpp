@@ -6,12 +6,16 @@
 
 namespace glint {
 
-UScaler::UScaler(const QFormat& in, std::int64_t root_raw, int fh) {
+UScaler::UScaler(const QFormat& in, std::int64_t root_raw, int fh, const std::string& keys,
+                 const std::string& root) {
   // (t - root) k needs Wi + k_int + fk bits, k_int >= 1: refuse what cannot fit before any shift
   // by those widths (a shift by 63 or more would be undefined, and k's width search endless).
   if (fh < 0 || in.width() + 1 + (fh + 2) > 62) {
+    // refusal: u_scaler.width
     throw std::invalid_argument(fmt::format(
-        "u scaler: input {} with {} fraction bits of u: registers exceed 62 bits", in.name(), fh));
+        "u scaler: {}: (t - root) k would be at least {} bits wide ({}-bit input, k with {} "
+        "fraction bits), more than 62",
+        keys.empty() ? "input " + in.name() : keys, in.width() + 1 + (fh + 2), in.width(), fh + 2));
   }
   fi_ = in.frac_bits;
   fh_ = fh;
@@ -29,8 +33,13 @@ UScaler::UScaler(const QFormat& in, std::int64_t root_raw, int fh) {
   while ((std::int64_t{1} << (k_int_ + fk_)) <= k_raw_) ++k_int_;
   k_shift_ = fi_ + fk_ - fh;
   if (in.width() + k_int_ + fk_ > 62) {
+    // refusal: u_scaler.k
     throw std::invalid_argument(fmt::format(
-        "u scaler: k = 1/(1 - tau) needs {} integer bits; registers exceed 62 bits", k_int_));
+        "u scaler: {}{}: k = 1/(1 - root) for root {:.9g} needs {} integer bits, so (t - root) k "
+        "would be {} bits wide, more than 62 (a narrower input or output, or a lower root)",
+        keys.empty() ? "input " + in.name() : keys, root.empty() ? "" : ", " + root,
+        std::ldexp(static_cast<double>(root_raw_), -in.frac_bits), k_int_,
+        in.width() + k_int_ + fk_));
   }
 }
 

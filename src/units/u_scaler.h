@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <string>
 
 #include "fixed/fixed_point.h"
 
@@ -20,7 +21,10 @@ class UScaler {
  public:
   UScaler() = default;
   // root_raw: tau_q in the input format (<= 0: u = t, k = 1; >= 1.0: u = 0 everywhere).
-  UScaler(const QFormat& in, std::int64_t root_raw, int fh);
+  // A refusal (registers over 62 bits) names `keys`, the spec keys that set the input format and
+  // fh (key_values(), units/keys.h), and `root`, where the root comes from.
+  UScaler(const QFormat& in, std::int64_t root_raw, int fh, const std::string& keys = "",
+          const std::string& root = "");
 
   std::int64_t apply(std::int64_t t_raw) const {
     if (t_raw <= root_raw_) return 0;

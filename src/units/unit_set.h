@@ -67,6 +67,7 @@ struct UnitKindDefaults {
   template <class Config, class Datapath>
   static std::string rtl(const hdl::DatapathPorts&, const Config&, const std::vector<Datapath>&,
                          const StageLayout&) {
+    // not from a spec: every unit in the catalogue has its generator
     throw std::invalid_argument("no Verilog generator for this unit yet");
   }
 };
@@ -263,6 +264,7 @@ decltype(auto) for_slot(const MaterialParams& m, F&& f) {
     return f();
   } catch (const std::invalid_argument& e) {
     if (m.name.empty()) throw;
+    // not from a spec: names the material of a refusal tagged where it is thrown
     throw std::invalid_argument(fmt::format("{}: {}", m.name, e.what()));
   }
 }
@@ -286,7 +288,8 @@ inline constexpr std::size_t kMaxUnitTableBytes = std::size_t{256} << 20;
 // and the build stops (std::invalid_argument naming the limit) as soon as the groups built so far
 // exceed kMaxUnitTableBytes, so no more than the limit and one group's table is ever allocated.
 template <class Datapath, class Config, class Bytes>
-std::vector<Datapath> build_per_group_bounded(const char* unit, const Config& cfg,
+std::vector<Datapath> build_per_group_bounded(const char* unit, const std::string& keys,
+                                              const Config& cfg,
                                               const std::vector<MaterialParams>& groups,
                                               const Bytes& bytes) {
   std::vector<Datapath> units;
@@ -296,12 +299,12 @@ std::vector<Datapath> build_per_group_bounded(const char* unit, const Config& cf
     for_slot(m, [&] { units.emplace_back(cfg, m); });
     total += bytes(units.back());
     if (total > kMaxUnitTableBytes)
+      // refusal: unit_set.tables
       throw std::invalid_argument(fmt::format(
-          "{}: the tables of the first {} of {} datapath groups (one per distinct material) "
-          "already "
-          "take {:.2f} MiB, over the limit of {} MiB of tables per unit: use smaller tables or "
-          "fewer distinct materials",
-          unit, units.size(), groups.size(), static_cast<double>(total) / (1 << 20),
+          "{}: {}: the tables of the first {} of {} datapath groups (one per distinct material) "
+          "already take {:.2f} MiB, over the limit of {} MiB of tables per unit: use smaller "
+          "tables or fewer distinct materials",
+          unit, keys, units.size(), groups.size(), static_cast<double>(total) / (1 << 20),
           kMaxUnitTableBytes >> 20));
   }
   return units;

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "reference/reference.h"
+#include "units/keys.h"
 
 namespace glint {
 
@@ -21,13 +22,23 @@ HastUnit::HastUnit(const HastConfig& cfg, const MaterialParams& m, const HastSlo
     : cfg_(cfg) {
   check_format(cfg.in);
   check_format(cfg.out);
+  // not from a spec: the key reader takes d in 1..16 only
   if (cfg.d < 1 || cfg.d > 16) throw std::invalid_argument("hast: d must be in 1..16");
   if (cfg.in.raw_one() == 0 || cfg.out.raw_one() == 0 || cfg.in.frac_bits < 0)
+    // not from a spec: read_common_keys refuses such formats
     throw std::invalid_argument("hast: input and output formats must represent 1.0");
   const int g = cfg.guard >= 0 ? cfg.guard : hast_default_guard(cfg.d);
   cfg_.guard = g;
   fh_ = cfg.out.frac_bits + g;
-  if (2 * (fh_ + 1) > 62) throw std::invalid_argument("hast: chain register wider than 31 bits");
+  const std::string guard_value = auto_value(cfg.guard >= 0 && !cfg.guard_auto, g);
+  if (2 * (fh_ + 1) > 62)
+    // refusal: hast.chain
+    throw std::invalid_argument(fmt::format(
+        "hast: {}: the chain register (u and its powers: 1 integer bit, the output's {} "
+        "fraction bits and {} guard bits) would be {} bits wide, more than 31",
+        key_values({{"out", cfg.out.name()}, {"guard", guard_value}}), cfg.out.frac_bits, g,
+        fh_ + 1));
+  // not from a spec: the build gives every slot an order in 1..d
   if (slot.d < 1 || slot.d > cfg.d) throw std::invalid_argument("hast: slot order outside 1..d");
   d_ = slot.d;
   n_ = m.shininess;
@@ -39,13 +50,18 @@ HastUnit::HastUnit(const HastConfig& cfg, const MaterialParams& m, const HastSlo
     root_raw = root_threshold_raw(m, cfg.in);
   } else {
     if (!(slot.root >= 0.0 && slot.root < 1.0))
+      // not from a spec: key root is read in [0, 1), match= solves roots in [0, 1)
       throw std::invalid_argument(fmt::format("hast: root {} outside [0, 1)", slot.root));
     // Nearest input code, kept below 1.0: a root at 1.0 would leave no highlight at all.
     tau_ = slot.root;
     root_raw = std::min<std::int64_t>(std::llround(std::ldexp(slot.root, cfg.in.frac_bits)),
                                       cfg.in.raw_one() - 1);
   }
-  scaler_ = UScaler(cfg.in, root_raw, fh_);
+  scaler_ =
+      UScaler(cfg.in, root_raw, fh_,
+              key_values({{"in", cfg.in.name()}, {"out", cfg.out.name()}, {"guard", guard_value}}),
+              slot.from_material ? "the root the material's threshold (match=none)"
+                                 : "the root from " + cfg.root_source);
   first_shift_ = fh_ - cfg.out.frac_bits;
   last_shift_ = 2 * fh_ - cfg.out.frac_bits;
 }

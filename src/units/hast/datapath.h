@@ -24,6 +24,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 
 #include "units/common.h"
 #include "units/stages.h"
@@ -38,6 +39,10 @@ struct HastConfig {
   int guard = -1;  // guard bits of the chain register; -1: derive from d (see budget)
   bool skip = true;
   bool per_slot_d = false;  // d=auto: each slot has its own order <= d (operand muxes)
+  // What refusals name: guard resolved from guard=auto, and the key an explicit or matched root
+  // comes from ("key 'root' = '0.9'"; empty: the material's threshold).
+  bool guard_auto = false;
+  std::string root_source = {};
 };
 
 int hast_default_guard(int d);

@@ -69,6 +69,7 @@ struct Hast : UnitKindDefaults {
         }
         const double n = m.shininess;
         if (!(n > 0) || !std::isfinite(n))
+          // refusal: hast.match_shininess
           keys.fail("match", to_string(match),
                     fmt::format("needs the material's shininess n > 0, got {}", n));
         auto it = solved.find(n);
@@ -103,11 +104,13 @@ struct Hast : UnitKindDefaults {
     double root = -1.0;  // < 0: no explicit root
     if (root_key && *root_key != "none") root = keys.real("root", 0.0, 1.0).value_or(-1.0);
     if (root >= 0 && match != MatchMode::kNone)
+      // refusal: hast.root_match
       keys.fail("root", *keys.find("root"),
                 fmt::format("an explicit root cannot be combined with match={}, which chooses "
                             "the root (drop one of them)",
                             to_string(match)));
     if (auto_d && match != MatchMode::kMinimax)
+      // refusal: hast.d_auto
       keys.fail("d", "auto",
                 fmt::format("d=auto chooses d by minimax: it needs match=minimax (given "
                             "match={}{})",
@@ -121,7 +124,11 @@ struct Hast : UnitKindDefaults {
       c.d = 1;
       for (const HastSlot& s : roots) c.d = std::max(c.d, s.d);
     }
+    c.guard_auto = c.guard < 0;
     if (c.guard < 0) c.guard = hast_default_guard(c.d);
+    const KeyValue root_from =
+        root >= 0 ? KeyValue{"root", *root_key} : KeyValue{"match", std::string(to_string(match))};
+    c.root_source = key_values({root_from});
     nlohmann::json config = common_config(common);
     config["d"] = auto_d ? nlohmann::json("auto") : nlohmann::json(c.d);
     if (auto_d) config["chain"] = c.d;

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "fit/monotone.h"
+#include "units/keys.h"
 
 namespace glint {
 
@@ -66,9 +67,12 @@ HornerUnit::HornerUnit(const HornerConfig& cfg, const MaterialParams& m,
   check_format(cfg.in);
   check_format(cfg.out);
   if (cfg.in.raw_one() == 0 || cfg.out.raw_one() == 0 || cfg.in.frac_bits < 0)
+    // not from a spec: read_common_keys refuses such formats
     throw std::invalid_argument("horner: input and output formats must represent 1.0");
   if (coeffs.c.size() < 2 || coeffs.c.size() > 17)
+    // not from a spec: the key reader takes degree in 1..10 only
     throw std::invalid_argument("horner: degree must be in 1..16");
+  const bool guard_given = cfg_.guard >= 0 && !cfg.guard_auto;
   if (cfg_.guard < 0) cfg_.guard = horner_required_guard(coeffs);
   fh_ = cfg.out.frac_bits + cfg_.guard;
   one_out_ = cfg.out.raw_one();
@@ -76,7 +80,11 @@ HornerUnit::HornerUnit(const HornerConfig& cfg, const MaterialParams& m,
 
   const std::int64_t tau_q = root_threshold_raw(m, cfg.in);
   // Full domain: u = t (root 0, k = 1). The comparator still uses the material's tau.
-  scaler_ = UScaler(cfg.in, coeffs.tau_domain ? tau_q : 0, fh_);
+  scaler_ = UScaler(cfg.in, coeffs.tau_domain ? tau_q : 0, fh_,
+                    key_values({{"in", cfg.in.name()},
+                                {"out", cfg.out.name()},
+                                {"guard", auto_value(guard_given, cfg_.guard)}}),
+                    "the root the material's threshold (domain=tau)");
   // The fit's domain [tau_q, 1] is the u scaler's: float_model's u is the hardware's variable.
   tau_ = coeffs.tau_domain ? input_value(scaler_.root_raw(), cfg.in) : 0.0;
 
@@ -85,14 +93,19 @@ HornerUnit::HornerUnit(const HornerConfig& cfg, const MaterialParams& m,
   c_raw_.resize(p + 1);
   double sum_abs = 0;
   for (std::size_t k = 0; k <= p; ++k) {
+    // not from a spec: the fits of t^n on [0, 1] are finite
     if (!std::isfinite(coeffs.c[k])) throw std::invalid_argument("horner: non-finite coefficient");
     sum_abs += std::fabs(coeffs.c[k]);
   }
   if (signed_int_bits(sum_abs + static_cast<double>(p) + 1) + fh_ > 62)
+    // refusal: horner.accumulator
     throw std::invalid_argument(fmt::format(
-        "horner: key 'guard' = {}: coefficients up to {} at {} fraction bits need an accumulator "
-        "wider than 62 bits (use a smaller guard or degree)",
-        cfg_.guard, sum_abs, fh_));
+        "horner: {}: coefficients up to {:.6g} at {} fraction bits (the output's {} and {} guard "
+        "bits) need an accumulator wider than 62 bits (a smaller guard, output or degree)",
+        key_values({{"out", cfg.out.name()},
+                    {"guard", auto_value(guard_given, cfg_.guard)},
+                    {"degree", std::to_string(p)}}),
+        sum_abs, fh_, cfg.out.frac_bits, cfg_.guard));
   for (std::size_t k = 0; k <= p; ++k) c_raw_[k] = std::llround(std::ldexp(coeffs.c[k], fh_));
   const std::int64_t one_h = std::int64_t{1} << fh_;
   if (coeffs.constrain_zero) c_raw_[0] = 0;

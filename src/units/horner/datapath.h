@@ -43,6 +43,11 @@ struct HornerCoefficients {
   bool tau_domain = true;       // u = (t - tau)/(1 - tau); false: u = t
   bool constrain_one = false;   // fit has P(1) = 1: keep it exact after quantization
   bool constrain_zero = false;  // fit has P(0) = 0 (at u = 0, i.e. t = tau)
+  // method=robust: the fit's largest error on its samples and least squares' on the same ones,
+  // and whether the bisquare weights rejected the highlight (fit.h, robust_rejects_samples).
+  double sample_max_error = 0.0;
+  double ls_sample_max_error = 0.0;
+  bool robust_rejects = false;
 };
 
 struct HornerConfig {
@@ -50,6 +55,7 @@ struct HornerConfig {
   QFormat out = kDefaultOut;
   int guard = -1;  // fh - fo; -1: horner_required_guard over every slot
   bool skip = true;
+  bool guard_auto = false;  // guard resolved from key guard=auto (refusals say so)
 };
 
 int horner_required_guard(const HornerCoefficients& coeffs);   // faithful minimum

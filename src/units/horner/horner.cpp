@@ -37,7 +37,10 @@ struct Horner : UnitKindDefaults {
 
   static std::vector<UnitKey> keys() {
     return {{"degree", "polynomial degree p (1..10)", "4"},
-            {"method", "fit: ls | robust (Öztürk, bisquare) | minimax (Remez); each made monotone",
+            {"method",
+             "fit: ls | robust (Öztürk's bisquare weights, for noisy measured data: on t^n "
+             "itself they can reject the highlight, and the build warns) | minimax (Remez); "
+             "each made monotone",
              "minimax"},
             {"domain",
              "fit domain: tau ([tau_q, 1], u = (t-tau_q)/(1-tau_q), tau_q the root code) | full",

@@ -12,7 +12,9 @@
 #include <tuple>
 #include <utility>
 
+#include "units/keys.h"
 #include "units/unit_set.h"
+#include "units/warning.h"
 
 namespace glint {
 
@@ -89,7 +91,11 @@ HornerCoefficients fit_slot(const HornerFitSpec& spec, double n, double tau, dou
   return memo.get(key, [&] {
     const FitOptions o = horner_fit_options(spec, n, tau, min_slope);
     const FitResult r = fit_power(o);
-    return HornerCoefficients{r.coeffs, spec.tau_domain, o.constrain_one, o.constrain_zero};
+    HornerCoefficients c{r.coeffs, spec.tau_domain, o.constrain_one, o.constrain_zero};
+    c.sample_max_error = r.sample_max_error;
+    c.ls_sample_max_error = r.ls_sample_max_error;
+    c.robust_rejects = robust_rejects_samples(r);
+    return c;
   });
 }
 
@@ -108,6 +114,33 @@ double slope_margin(const HornerUnit& u, int degree) {
   const double e = (p - 1) * 0.5 * lsb;
   const double quant = (p * (p + 1) / 2 + p) * 0.5 * lsb;
   return 1.5 * (2 * e / dmin + quant);
+}
+
+}  // namespace
+
+namespace {
+
+// method=robust fits t^n itself, where there is no noise for bisquare weights to reject: name the
+// slot where they threw the most of the highlight away, once per message.
+void warn_robust(const HornerFitSpec& spec, const std::vector<MaterialParams>& slots,
+                 const std::vector<HornerCoefficients>& fits) {
+  std::size_t worst = fits.size();
+  for (std::size_t i = 0; i < fits.size(); ++i) {
+    const auto loss = [&](std::size_t k) {
+      return fits[k].sample_max_error - fits[k].ls_sample_max_error;
+    };
+    if (fits[i].robust_rejects && (worst == fits.size() || loss(i) > loss(worst))) worst = i;
+  }
+  if (worst == fits.size()) return;
+  const HornerCoefficients& f = fits[worst];
+  warn_once(fmt::format(
+      "unit 'horner': key 'method' = 'robust' (degree {}, domain {}): the fit of t^{:g}{} has a "
+      "largest error of {:.4g} on its samples against {:.4g} for method=ls: on noise-free t^n "
+      "the bisquare weights reject its steepest part (the highlight, or t near 0 for n < 1) as "
+      "outliers; use method=minimax or ls (robust is for noisy, measured data)",
+      spec.degree, spec.tau_domain ? "tau" : "full", slots[worst].shininess,
+      slots[worst].name.empty() ? "" : " (" + slots[worst].name + ")", f.sample_max_error,
+      f.ls_sample_max_error));
 }
 
 }  // namespace
@@ -131,6 +164,7 @@ std::vector<HornerUnit> build_horner_slots(const HornerFitSpec& spec, HornerConf
   int extra = 0;  // guard bits added because a slot's output could not be made monotone
   for (int attempt = 0;; ++attempt) {
     HornerConfig c = cfg;
+    c.guard_auto = auto_guard;
     int max_guard = 64;
     if (auto_guard) {
       // The datapath width is shared: the guard is the largest any slot needs.
@@ -171,10 +205,14 @@ std::vector<HornerUnit> build_horner_slots(const HornerFitSpec& spec, HornerConf
           widen = true;
           return;
         }
+        // refusal: horner.monotone
         throw std::invalid_argument(fmt::format(
-            "horner: key 'guard' = {}: no monotone degree-{} output at {} guard bits with input "
-            "{} (a slope margin of {:.3g} would be needed)",
-            c.guard, spec.degree, c.guard, c.in.name(), slope));
+            "horner: {}: no monotone degree-{} output at {} guard bits with input {} (a slope "
+            "margin of {:.3g} would be needed; more guard bits or a coarser input)",
+            key_values({{"guard", auto_value(!auto_guard, c.guard)},
+                        {"in", c.in.name()},
+                        {"degree", std::to_string(spec.degree)}}),
+            spec.degree, c.guard, c.in.name(), slope));
       });
     }
     if (widen) {
@@ -183,6 +221,7 @@ std::vector<HornerUnit> build_horner_slots(const HornerFitSpec& spec, HornerConf
     }
     if (!regrow || attempt >= 3) {
       cfg = c;
+      warn_robust(spec, slots, fits);
       return units;
     }
   }

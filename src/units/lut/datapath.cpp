@@ -6,6 +6,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "units/keys.h"
+
 namespace glint {
 namespace {
 
@@ -54,11 +56,19 @@ LutUnit::LutUnit(const LutConfig& cfg, const MaterialParams& m) : cfg_(cfg) {
   check_format(cfg.in);
   check_format(cfg.out);
   if (cfg.in.raw_one() == 0 || cfg.out.raw_one() == 0 || cfg.in.frac_bits < 1)
+    // not from a spec: read_common_keys refuses such formats
     throw std::invalid_argument("lut: input and output formats must represent 1.0");
+  // not from a spec: the key reader takes bits in 1..16 only
   if (cfg.bits < 1 || cfg.bits > 16) throw std::invalid_argument("lut: bits must be in 1..16");
+  const bool table_frac_given = cfg_.table_frac >= 0 && !cfg.table_frac_auto;
   if (cfg_.table_frac < 0) cfg_.table_frac = cfg.out.frac_bits + 2;
+  const std::string table_frac = auto_value(table_frac_given, cfg_.table_frac);
   if (cfg_.table_frac < cfg.out.frac_bits || cfg_.table_frac > 40)
-    throw std::invalid_argument("lut: table_frac must be in out.frac_bits..40");
+    // refusal: lut.table_frac
+    throw std::invalid_argument(fmt::format(
+        "lut: {}: table_frac must be in {}..40 (at least the output's fraction bits)",
+        key_values({{"table_frac", table_frac}, {"out", cfg.out.name()}}), cfg.out.frac_bits));
+  // not from a spec: every material's shininess (or a Gaussian lobe's equivalent n) is > 0
   if (!(m.shininess > 0)) throw std::invalid_argument("lut: shininess must be > 0");
   n_ = m.shininess;
   const int fi = cfg.in.frac_bits;
@@ -79,10 +89,15 @@ LutUnit::LutUnit(const LutConfig& cfg, const MaterialParams& m) : cfg_(cfg) {
   r_mask_ = (std::int64_t{1} << r_bits_) - 1;
   out_shift_ = r_bits_ + cfg_.table_frac - cfg.out.frac_bits;
   if (2 * (cfg_.table_frac + 1) + r_bits_ > 62)
+    // refusal: lut.interpolation
     throw std::invalid_argument(fmt::format(
-        "lut: table_frac {} with {} input bits below the {}-bit table index: the interpolation "
-        "product exceeds 62 bits (lower table_frac or raise bits)",
-        cfg_.table_frac, r_bits_, cfg.bits));
+        "lut: {}: {} input bits below the {}-bit table index interpolate entries of {} fraction "
+        "bits: the product would be {} bits wide, more than 62 (lower table_frac, raise bits or "
+        "narrow the input)",
+        key_values({{"table_frac", table_frac},
+                    {"bits", std::to_string(cfg.bits)},
+                    {"in", cfg.in.name()}}),
+        r_bits_, cfg.bits, cfg_.table_frac, 2 * (cfg_.table_frac + 1) + r_bits_));
 
   // Keep entries 0, 2^pad, ..., 2^bits (all of them when pad = 0), then the padding entry that
   // lets the interpolation read k + 1 at the last node (with a zero remainder).

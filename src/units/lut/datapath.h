@@ -35,6 +35,7 @@ struct LutConfig {
   int bits = 6;         // table address bits: 2^bits + 1 entries
   int table_frac = -1;  // entry fraction bits; -1: out.frac_bits + 2
   bool skip = true;
+  bool table_frac_auto = false;  // resolved from table_frac=auto (refusals say so)
 };
 
 class LutUnit {

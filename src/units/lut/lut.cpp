@@ -35,6 +35,7 @@ struct Lut : UnitKindDefaults {
                                              const SlotPlan& plan) {
     LutConfig c{common.in, common.out, keys.integer("bits", 6, 1, 16),
                 keys.integer("table_frac", -1, 0, 40, true), common.skip};
+    c.table_frac_auto = c.table_frac < 0;
     if (c.table_frac < 0) c.table_frac = common.out.frac_bits + 2;
     nlohmann::json config = common_config(common);
     config["bits"] = c.bits;
@@ -43,8 +44,9 @@ struct Lut : UnitKindDefaults {
     const UnitTiming timing{2, 1, 0};
     // One table per datapath group, spanning from the group's smallest tau (its slots' comparators
     // let nothing lower through).
-    auto units = build_per_group_bounded<LutUnit>("lut", c, plan.groups,
-                                                  [](const LutUnit& u) { return u.table_bytes(); });
+    auto units = build_per_group_bounded<LutUnit>(
+        "lut", key_values({{"bits", std::to_string(c.bits)}}), c, plan.groups,
+        [](const LutUnit& u) { return u.table_bytes(); });
     return make_unit_set<Lut>(common, std::move(config), c, std::move(units), plan, timing);
   }
 

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "units/keys.h"
 #include "units/unit_set.h"
 
 namespace glint {
@@ -69,22 +70,31 @@ PowUnit::PowUnit(const PowConfig& cfg, const MaterialParams& m,
   check_format(cfg.out);
   check_format(cfg.n_format);
   if (cfg.in.raw_one() == 0 || cfg.out.raw_one() == 0 || cfg.in.frac_bits < 1)
+    // not from a spec: read_common_keys refuses such formats
     throw std::invalid_argument("pow: input and output formats must represent 1.0");
   if (cfg.log_bits < 1 || cfg.log_bits > 16)
+    // not from a spec: the key reader takes log_bits in 1..16 only
     throw std::invalid_argument(fmt::format("pow: log_bits {}: must be in 1..16", cfg.log_bits));
   if (cfg.exp_bits < 1 || cfg.exp_bits > 16)
+    // not from a spec: the key reader takes exp_bits in 1..16 only
     throw std::invalid_argument(fmt::format("pow: exp_bits {}: must be in 1..16", cfg.exp_bits));
   if (cfg.log_frac < 4 || cfg.log_frac > 30)
+    // not from a spec: the key reader takes log_frac in 4..30 only
     throw std::invalid_argument(fmt::format("pow: log_frac {}: must be in 4..30", cfg.log_frac));
   if (cfg.y_frac < 4 || cfg.y_frac > 30)
+    // not from a spec: the key reader takes y_frac in 4..30 only
     throw std::invalid_argument(fmt::format("pow: y_frac {}: must be in 4..30", cfg.y_frac));
   if (cfg.exp_frac < cfg.out.frac_bits || cfg.exp_frac > 30)
-    throw std::invalid_argument(
-        fmt::format("pow: exp_frac {}: must be in {}..30 (at least the output's {} fraction bits)",
-                    cfg.exp_frac, cfg.out.frac_bits, cfg.out.frac_bits));
+    // refusal: pow.exp_frac
+    throw std::invalid_argument(fmt::format(
+        "pow: {}: exp_frac must be in {}..30 (at least the output's fraction bits)",
+        key_values({{"exp_frac", std::to_string(cfg.exp_frac)}, {"out", cfg.out.name()}}),
+        cfg.out.frac_bits));
   if (!(m.shininess > 0) || m.shininess > cfg.n_format.max_value())
-    throw std::invalid_argument(fmt::format("pow: shininess {} outside the n register {}",
-                                            m.shininess, cfg.n_format.name()));
+    // refusal: pow.n
+    throw std::invalid_argument(fmt::format(
+        "pow: {}: shininess {} outside the n register (at most {:.6g})",
+        key_values({{"n", cfg.n_format.name()}}), m.shininess, cfg.n_format.max_value()));
   n_ = m.shininess;
   n_raw_ = Fixed::from_double(n_, cfg.n_format, Quant::kRndConv, Overflow::kSat).raw();
   if (n_raw_ == 0) n_raw_ = 1;
@@ -102,29 +112,47 @@ PowUnit::PowUnit(const PowConfig& cfg, const MaterialParams& m,
   exp_r_mask_ = (std::int64_t{1} << exp_r_bits_) - 1;
   y_shift_ = cfg.n_format.frac_bits + cfg.log_frac - cfg.y_frac;
   out_shift_ = cfg.exp_frac - cfg.out.frac_bits;
-  if (y_shift_ < 0) throw std::invalid_argument("pow: y_frac exceeds the product's fraction bits");
+  if (y_shift_ < 0)
+    // refusal: pow.y_frac
+    throw std::invalid_argument(fmt::format(
+        "pow: {}: y_frac exceeds the {} fraction bits of the product n log2 t (n's and log_frac's)",
+        key_values({{"y_frac", std::to_string(cfg.y_frac)},
+                    {"n", cfg.n_format.name()},
+                    {"log_frac", std::to_string(cfg.log_frac)}}),
+        cfg.n_format.frac_bits + cfg.log_frac));
   // The interpolations multiply a node difference (entry bits + sign) by the remainder bits:
   // wide inputs leave many remainder bits below the table address (in.frac_bits - log_bits).
   if (cfg.log_frac + 2 + log_r_bits_ > 62)
-    throw std::invalid_argument(
-        fmt::format("pow: log2 interpolation of {} remainder bits (in {} - log_bits {}) by "
-                    "log_frac {} overflows "
-                    "62-bit products",
-                    log_r_bits_, cfg.in.name(), cfg.log_bits, cfg.log_frac));
-  if (cfg.exp_frac + 3 + exp_r_bits_ > 62)
+    // refusal: pow.log_interpolation
     throw std::invalid_argument(fmt::format(
-        "pow: exp2 interpolation of {} remainder bits (y_frac {} - exp_bits {}) by exp_frac {} "
-        "overflows 62-bit products",
-        exp_r_bits_, cfg.y_frac, cfg.exp_bits, cfg.exp_frac));
+        "pow: log2 interpolation: {}: {} remainder bits (the input's fraction bits below the "
+        "log_bits table index) by entries of log_frac fraction bits would be {} bits wide, more "
+        "than 62",
+        key_values({{"in", cfg.in.name()},
+                    {"log_bits", std::to_string(cfg.log_bits)},
+                    {"log_frac", std::to_string(cfg.log_frac)}}),
+        log_r_bits_, cfg.log_frac + 2 + log_r_bits_));
+  if (cfg.exp_frac + 3 + exp_r_bits_ > 62)
+    // not from a spec: exp_frac + 3 + y_frac - exp_bits <= 30 + 3 + 29 under the keys' ranges
+    throw std::invalid_argument(fmt::format(
+        "pow: {}: the exp2 interpolation of {} remainder bits (y_frac below the exp_bits table "
+        "index) by entries of exp_frac fraction bits would be {} bits wide, more than 62",
+        key_values({{"y_frac", std::to_string(cfg.y_frac)},
+                    {"exp_bits", std::to_string(cfg.exp_bits)},
+                    {"exp_frac", std::to_string(cfg.exp_frac)}}),
+        exp_r_bits_, cfg.exp_frac + 3 + exp_r_bits_));
   // n_raw * log2t must fit: |log2 t| <= fi, so it needs n width + log2(fi) + log_frac + 1 bits.
   if (cfg.n_format.width() + 6 + cfg.log_frac > 62)
-    throw std::invalid_argument(
-        fmt::format("pow: n register {} with log_frac {}: n log2 t exceeds 62-bit products",
-                    cfg.n_format.name(), cfg.log_frac));
+    // refusal: pow.n_log
+    throw std::invalid_argument(fmt::format(
+        "pow: {}: the product n log2 t would be {} bits wide, more than 62",
+        key_values({{"n", cfg.n_format.name()}, {"log_frac", std::to_string(cfg.log_frac)}}),
+        cfg.n_format.width() + 6 + cfg.log_frac));
 
   if (tables_ == nullptr) {
     tables_ = std::make_shared<const PowTables>(cfg);
   } else if (!tables_->fits(cfg)) {
+    // not from a spec: the build shares tables built from the same keys
     throw std::invalid_argument("pow: shared tables built for other table keys");
   }
   log_table_ = tables_->log_table.data();

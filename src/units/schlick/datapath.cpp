@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "reference/reference.h"
+#include "units/keys.h"
 
 namespace glint {
 
@@ -29,17 +30,22 @@ SchlickUnit::SchlickUnit(const SchlickConfig& cfg, const MaterialParams& m, doub
   check_format(cfg.n_format);
   if (cfg.in.frac_bits < 0 || cfg.out.frac_bits < 0 || cfg.n_format.frac_bits < 0 ||
       cfg.in.raw_one() == 0 || cfg.out.raw_one() == 0) {
+    // not from a spec: read_common_keys refuses such formats, and a format has frac_bits >= 0
     throw std::invalid_argument("schlick: input and output formats must represent 1.0");
   }
   if (!(m.shininess > 0) || m.shininess > cfg.n_format.max_value()) {
-    throw std::invalid_argument(fmt::format("schlick: shininess {} outside the n register {}",
-                                            m.shininess, cfg.n_format.name()));
+    // refusal: schlick.n
+    throw std::invalid_argument(fmt::format(
+        "schlick: {}: shininess {} outside the n register (at most {:.6g})",
+        key_values({{"n", cfg.n_format.name()}}), m.shininess, cfg.n_format.max_value()));
   }
   if (!(n_prime > 0) || n_prime > cfg.n_format.max_value()) {
+    // refusal: schlick.n_prime
     throw std::invalid_argument(fmt::format(
-        "schlick: match={} gives n' = {:.6g} for shininess {}, outside the n register {} "
-        "(give a wider n format)",
-        to_string(cfg.match), n_prime, m.shininess, cfg.n_format.name()));
+        "schlick: {}: match={} gives n' = {:.6g} for shininess {}, outside the n register (at "
+        "most {:.6g}; give a wider n format)",
+        key_values({{"match", to_string(cfg.match)}, {"n", cfg.n_format.name()}}),
+        to_string(cfg.match), n_prime, m.shininess, cfg.n_format.max_value()));
   }
   n_ = n_prime;
   material_n_ = m.shininess;
@@ -51,8 +57,12 @@ SchlickUnit::SchlickUnit(const SchlickConfig& cfg, const MaterialParams& m, doub
   num_shift_ = cfg.n_format.frac_bits + cfg.out.frac_bits;
   // The double-estimate division needs num and den below 2^53.
   if (cfg.in.frac_bits + num_shift_ > 52 || cfg.n_format.width() + cfg.in.frac_bits + 1 > 52) {
-    throw std::invalid_argument(
-        "schlick: formats too wide for the exact divider model (<= 52 bits)");
+    // refusal: schlick.divider
+    throw std::invalid_argument(fmt::format(
+        "schlick: {}: the divider's numerator ({} bits) or denominator ({} bits) would be wider "
+        "than the 52 bits its exact model holds",
+        key_values({{"in", cfg.in.name()}, {"out", cfg.out.name()}, {"n", cfg.n_format.name()}}),
+        cfg.in.frac_bits + num_shift_, cfg.n_format.width() + cfg.in.frac_bits + 1));
   }
 }
 
