@@ -10,6 +10,7 @@
 
 #include "cli/cli.h"
 #include "eval/parallel.h"
+#include "image/image.h"
 #include "sweep/outputs.h"
 #include "sweep/sweep.h"
 
@@ -50,6 +51,8 @@ int run_sweep_command(const SweepCommandOptions& o) {
   job.image = !o.no_image;
   const SweepOutputs outputs = sweep_outputs(o.out, o.csv, o.plot);
   if (options_only()) return kExitOk;
+  // Plots and a scene's renders (contact sheets) draw text: a bad font is refused before any work.
+  if (!o.plot.empty() || (!o.scene.empty() && job.image)) load_text_font();
   OutputSet set;
   set.add_input(o.vectors.empty() ? "--scene" : "VECTORS", job.input.path);
   if (o.json) set.claim_stdout("--json");
