@@ -9,9 +9,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -49,7 +51,8 @@ class WorkFolder {
     const char* tmp = std::getenv("TMPDIR");
     std::string pattern = std::string(tmp && *tmp ? tmp : "/tmp") + "/glint-synth.XXXXXX";
     if (::mkdtemp(pattern.data()) == nullptr)
-      throw OutputError(fmt::format("synth: cannot make a work folder {}", pattern));
+      throw OutputError(fmt::format("synth: cannot make a work folder {} (TMPDIR): {}", pattern,
+                                    std::strerror(errno)));
     dir_ = pattern;
     handles_.push_back(register_cleanup(CleanupKind::kFolder, dir_));
   }

@@ -64,5 +64,9 @@ const Font& text_font();
 int draw_text(Image8& image, const Font& font, int x, int y, std::string_view text, Rgb8 colour,
               int height);
 int text_width(const Font& font, std::string_view text, int height);
+// Glyphs by id, laid out and drawn as draw_text does (kerning included); an id outside
+// 0..glyph_count()-1 throws std::invalid_argument.
+int draw_glyphs(Image8& image, const Font& font, int x, int y, std::vector<int> glyphs, Rgb8 colour,
+                int height);
 
 }  // namespace glint

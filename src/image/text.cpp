@@ -8,6 +8,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "image/font.h"
@@ -63,7 +64,13 @@ struct Layout {
   int width() const { return static_cast<int>(std::ceil(end)); }
 };
 
-Layout layout(const Font& f, std::string_view text, int height) {
+std::vector<int> glyphs_of(const Font& f, std::string_view text) {
+  std::vector<int> glyphs;
+  for (const char32_t cp : decode_utf8(text)) glyphs.push_back(f.glyph(cp));
+  return glyphs;
+}
+
+Layout layout(const Font& f, std::vector<int> glyphs, int height) {
   if (height <= 0) {
     throw std::invalid_argument("text height must be positive, not " + std::to_string(height));
   }
@@ -71,7 +78,7 @@ Layout layout(const Font& f, std::string_view text, int height) {
   // Pixel height = ascent - descent, so a line of `height` pixels holds every glyph of the font.
   l.scale = stbtt_ScaleForPixelHeight(&f.info(), static_cast<float>(height));
   l.baseline = static_cast<int>(std::floor(static_cast<float>(f.ascent()) * l.scale + 0.5f));
-  for (const char32_t cp : decode_utf8(text)) l.glyphs.push_back(f.glyph(cp));
+  l.glyphs = std::move(glyphs);
   float x = 0;
   for (std::size_t i = 0; i < l.glyphs.size(); ++i) {
     if (i > 0) {
@@ -95,7 +102,7 @@ std::uint8_t blend(std::uint8_t under, std::uint8_t over, unsigned coverage) {
 }  // namespace
 
 int text_width(const Font& font, std::string_view text, int height) {
-  return layout(font, text, height).width();
+  return layout(font, glyphs_of(font, text), height).width();
 }
 
 int text_width(std::string_view text, int height) {
@@ -108,7 +115,16 @@ int draw_text(Image8& image, int x, int y, std::string_view text, Rgb8 colour, i
 
 int draw_text(Image8& image, const Font& font, int x, int y, std::string_view text, Rgb8 colour,
               int height) {
-  const Layout l = layout(font, text, height);
+  return draw_glyphs(image, font, x, y, glyphs_of(font, text), colour, height);
+}
+
+int draw_glyphs(Image8& image, const Font& font, int x, int y, std::vector<int> glyphs, Rgb8 colour,
+                int height) {
+  for (const int g : glyphs) {
+    if (g < 0 || g >= font.glyph_count())
+      throw std::invalid_argument("glyph " + std::to_string(g) + " is not in the font");
+  }
+  const Layout l = layout(font, std::move(glyphs), height);
   const stbtt_fontinfo& info = font.info();
   std::vector<unsigned char> bitmap;
   for (std::size_t i = 0; i < l.glyphs.size(); ++i) {

@@ -204,9 +204,11 @@ class Checker {
     u64 at = t.begin + 10;
     need(t, at, 2 * contours + 2, name + "'s contour ends");
     i64 previous = -1;
+    std::vector<u64> firsts(contours);
     for (u64 c = 0; c < contours; ++c) {
       const i64 last = u16(at + 2 * c);
       if (last <= previous) fail("table 'glyf': " + name + "'s contour ends are not increasing");
+      firsts[c] = static_cast<u64>(previous + 1);
       previous = last;
     }
     const u64 points = static_cast<u64>(previous) + 1;
@@ -228,6 +230,13 @@ class Checker {
         --repeat;
       }
       flags[i] = static_cast<unsigned char>(f);
+    }
+    // A contour starting off the curve makes stb read the point after it as well: past the
+    // outline (or into the next contour) when the contour has only that point.
+    for (u64 c = 0; c < contours; ++c) {
+      const u64 last = c + 1 < contours ? firsts[c + 1] - 1 : points - 1;
+      if (!(flags[firsts[c]] & 1) && last == firsts[c])
+        fail("table 'glyf': " + name + " has a one-point contour off the curve");
     }
     i64 extent = 0;
     // x with bits 1 (a byte) and 4 (its sign, or "same as before"), then y with bits 2 and 5.
