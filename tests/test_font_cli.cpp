@@ -147,6 +147,17 @@ TEST_P(BadFontRefused, SweepSceneWritesNoReport) {
   EXPECT_FALSE(fs::exists(dir_.file("sweep.json")));
 }
 
+// size renders its scenes (for the requests) even with --no-image, and merge --plot draws plots.
+TEST_P(BadFontRefused, SizeAndMergeRefuseIt) {
+  const std::string font = make_font();
+  expect_refused(glint_with_font(dir_, font,
+                                 "size --scene " + shell_quote(kScene) +
+                                     " --no-image --grid 'lut:bits=4' --budget 'max_lsb<=4'"),
+                 font);
+  expect_refused(glint_with_font(dir_, font, "merge no-shard.json --plot plots"), font);
+  EXPECT_FALSE(fs::exists(dir_.file("plots")));
+}
+
 INSTANTIATE_TEST_SUITE_P(
     Cases, BadFontRefused,
     ::testing::Values(BadFont{"truncated", "runs past the end of the file"},
