@@ -3,6 +3,7 @@
 // is refused with InputError naming the file, the field and what is wrong.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -145,6 +146,26 @@ TEST(FontCheck, GlyphIdsBeyondTheCountAreQuestionMarks) {
   EXPECT_EQ(font->glyph('Z'), font->glyph('?'));
   EXPECT_FALSE(font->has('Z'));
   for (char32_t c = 0x20; c < 0x7f; ++c) EXPECT_LT(font->glyph(c), cut) << static_cast<int>(c);
+}
+
+// DejaVu Sans Mono Bold (fonts-dejavu-core) has glyphs whose outline, as stb builds it, leaves the
+// box in their header, which stb sizes bitmaps by (its rasteriser asserts on edges outside). They
+// are drawn in a box grown to hold the outline, and something is drawn.
+TEST(FontCheck, OutlinesOutsideTheirBoxAreDrawnInAGrownBox) {
+  const std::unique_ptr<Font> font =
+      read_font("/usr/share/fonts/truetype/dejavu/DejaVuSansMono-Bold.ttf", "GLINT_FONT");
+  int grown = 0;
+  for (int g = 0; g < font->glyph_count(); ++g) {
+    if (font->grown_box(g) == nullptr) continue;
+    ++grown;
+    Image8 image(200, 200);
+    draw_glyphs(image, *font, 100, 90, {g}, {255, 255, 255}, 14);
+    EXPECT_NE(std::count(image.pixels.begin(), image.pixels.end(), 0), image.pixels.size())
+        << "glyph " << g;
+  }
+  EXPECT_GT(grown, 0);
+  // The default font has none: its text takes stb's own path, pixel for pixel as before.
+  for (int g = 0; g < text_font().glyph_count(); ++g) EXPECT_EQ(text_font().grown_box(g), nullptr);
 }
 
 // Every prefix of a font is accepted or refused with InputError, never read past its end (the

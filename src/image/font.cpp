@@ -9,6 +9,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -80,6 +81,27 @@ void Font::init(const unsigned char* data, std::size_t size, const std::string& 
   if (!stbtt_InitFont(info_.get(), data, facts.offset))
     throw InputError(file, 0, field, "not a TrueType font stb_truetype can read");
   glyphs_ = facts.glyph_count;
+  // stb sizes a glyph's bitmap by the box in its header, and its rasteriser asserts (Debian's
+  // libstb keeps assertions) when the outline leaves that box: real fonts have such glyphs (stb
+  // scales transformed components twice; DejaVu Sans Condensed, Mono Bold). Each outline, as stb
+  // builds it, is measured once here (check_truetype made the calls safe and bounded).
+  for (int g = 0; g < glyphs_; ++g) {
+    stbtt_vertex* v = nullptr;
+    const int n = stbtt_GetGlyphShape(info_.get(), g, &v);
+    Box box;
+    stbtt_GetGlyphBox(info_.get(), g, &box.x0, &box.y0, &box.x1, &box.y1);
+    const Box header = box;
+    const auto grow = [&box](int x, int y) {
+      box = {std::min(box.x0, x), std::min(box.y0, y), std::max(box.x1, x), std::max(box.y1, y)};
+    };
+    for (int i = 0; i < n; ++i) {
+      grow(v[i].x, v[i].y);
+      if (v[i].type == STBTT_vcurve || v[i].type == STBTT_vcubic) grow(v[i].cx, v[i].cy);
+    }
+    stbtt_FreeShape(info_.get(), v);
+    if (box.x0 != header.x0 || box.y0 != header.y0 || box.x1 != header.x1 || box.y1 != header.y1)
+      grown_.emplace(g, box);
+  }
   int descent = 0, line_gap = 0;
   stbtt_GetFontVMetrics(info_.get(), &ascent_, &descent, &line_gap);
   question_ = lookup('?');
@@ -95,6 +117,11 @@ int Font::glyph(char32_t cp) const {
   if (cp < 0x20 || (cp >= 0x7f && cp < 0xa0)) return question_;
   const int g = lookup(cp);
   return g != 0 ? g : question_;
+}
+
+const Font::Box* Font::grown_box(int glyph) const {
+  const auto it = grown_.find(glyph);
+  return it == grown_.end() ? nullptr : &it->second;
 }
 
 bool Font::has(char32_t cp) const {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <map>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -39,6 +40,14 @@ class Font {
   int glyph(char32_t cp) const;
   bool has(char32_t cp) const;
 
+  // A glyph's box in font units (y up).
+  struct Box {
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  };
+  // The box holding a glyph's outline when that leaves the box of the glyph's header, which stb
+  // sizes bitmaps by; nullptr when the header's box holds it (nearly always).
+  const Box* grown_box(int glyph) const;
+
  private:
   void init(const unsigned char* data, std::size_t size, const std::string& file,
             const std::string& field);
@@ -49,6 +58,7 @@ class Font {
   int ascent_ = 0;
   int glyphs_ = 0;
   int question_ = 0;
+  std::map<int, Box> grown_;
 };
 
 // Reads the font file at `path`: a regular file (a folder, FIFO, device or socket is refused

@@ -131,15 +131,34 @@ int draw_glyphs(Image8& image, const Font& font, int x, int y, std::vector<int> 
     const float whole = std::floor(l.pen[i]);
     const float shift = l.pen[i] - whole;
     int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-    stbtt_GetGlyphBitmapBoxSubpixel(&info, l.glyphs[i], l.scale, l.scale, shift, 0.0f, &x0, &y0,
-                                    &x1, &y1);
+    const Font::Box* grown = font.grown_box(l.glyphs[i]);
+    if (grown) {
+      // stb's own rounding of a box to pixels (stbtt_GetGlyphBitmapBoxSubpixel), on the box
+      // that holds the outline.
+      x0 = static_cast<int>(std::floor(static_cast<float>(grown->x0) * l.scale + shift));
+      y0 = static_cast<int>(std::floor(static_cast<float>(-grown->y1) * l.scale));
+      x1 = static_cast<int>(std::ceil(static_cast<float>(grown->x1) * l.scale + shift));
+      y1 = static_cast<int>(std::ceil(static_cast<float>(-grown->y0) * l.scale));
+    } else {
+      stbtt_GetGlyphBitmapBoxSubpixel(&info, l.glyphs[i], l.scale, l.scale, shift, 0.0f, &x0, &y0,
+                                      &x1, &y1);
+    }
     const int w = x1 - x0, h = y1 - y0;
     if (w <= 0 || h <= 0) continue;  // a space
     const int left = x + static_cast<int>(whole) + x0, top = y + l.baseline + y0;
     if (left >= image.width || top >= image.height || left + w <= 0 || top + h <= 0) continue;
     bitmap.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0);
-    stbtt_MakeGlyphBitmapSubpixel(&info, bitmap.data(), w, h, w, l.scale, l.scale, shift, 0.0f,
-                                  l.glyphs[i]);
+    if (grown) {
+      // What stbtt_MakeGlyphBitmapSubpixel does, with the grown box's corner as the offset.
+      stbtt_vertex* vertices = nullptr;
+      const int n = stbtt_GetGlyphShape(&info, l.glyphs[i], &vertices);
+      stbtt__bitmap out{w, h, w, bitmap.data()};
+      stbtt_Rasterize(&out, 0.35f, vertices, n, l.scale, l.scale, shift, 0.0f, x0, y0, 1, nullptr);
+      stbtt_FreeShape(&info, vertices);
+    } else {
+      stbtt_MakeGlyphBitmapSubpixel(&info, bitmap.data(), w, h, w, l.scale, l.scale, shift, 0.0f,
+                                    l.glyphs[i]);
+    }
     for (int r = 0; r < h; ++r) {
       const int py = top + r;
       if (py < 0 || py >= image.height) continue;
