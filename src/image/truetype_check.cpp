@@ -181,7 +181,14 @@ class Checker {
     }
     visit_.assign(glyphs_, Visit::kNew);
     sizes_.assign(glyphs_, GlyphSize{});
-    for (u64 g = 0; g < glyphs_; ++g) glyph(g, 0);
+    i64 total = 0;
+    for (u64 g = 0; g < glyphs_; ++g) {
+      glyph(g, 0);
+      total += sizes_[g].vertices;
+      if (total > kMaxFontVertices)
+        fail("table 'glyf': the outlines have more than " + num(kMaxFontVertices) +
+             " points in all");
+    }
   }
 
   void glyph(u64 g, int depth) {
