@@ -25,7 +25,7 @@ class FontError : public std::runtime_error {
 inline constexpr int kMaxCompositeDepth = 16;               // composite glyphs within composites
 inline constexpr std::int64_t kMaxGlyphVertices = 1 << 18;  // outline points of one glyph
 // Of all glyphs together (composites count their components' points): Font builds every outline
-// once when it loads (DejaVu Sans: about 300 000).
+// once when it loads (DejaVu Sans: about 240 000).
 inline constexpr std::int64_t kMaxFontVertices = 1 << 24;
 // Glyph coordinates, advances and kerning, in multiples of the font's height (ascent - descent):
 // DejaVu's widest glyphs are under 3 heights, so a label glyph stays within a few label heights.
