@@ -49,9 +49,10 @@ class WorkFolder {
  public:
   WorkFolder() {
     const char* tmp = std::getenv("TMPDIR");
-    std::string pattern = std::string(tmp && *tmp ? tmp : "/tmp") + "/glint-synth.XXXXXX";
+    const std::string parent = tmp && *tmp ? tmp : "/tmp";
+    std::string pattern = parent + "/glint-synth.XXXXXX";
     if (::mkdtemp(pattern.data()) == nullptr)
-      throw OutputError(fmt::format("synth: cannot make a work folder {} (TMPDIR): {}", pattern,
+      throw OutputError(fmt::format("synth: cannot make a work folder in '{}' (TMPDIR): {}", parent,
                                     std::strerror(errno)));
     dir_ = pattern;
     handles_.push_back(register_cleanup(CleanupKind::kFolder, dir_));
