@@ -54,5 +54,6 @@ GLINT_REPLAY_ON(scene_render, scene)
 GLINT_REPLAY(golden)
 GLINT_REPLAY(report)
 GLINT_REPLAY(options)
+GLINT_REPLAY(font)
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "cli/cli.h"
+#include "image/image.h"
 #include "sweep/outputs.h"
 #include "sweep/report.h"
 
@@ -24,6 +25,7 @@ int run_merge(const MergeOptions& o) {
     throw std::invalid_argument(
         "merge: nothing to write (give -o OUT.json, --csv, --plot or --json)");
   if (options_only()) return kExitOk;
+  if (!outputs.plot_dir.empty()) load_text_font();  // plots draw text: refused before any work
   OutputSet set;
   for (const std::string& path : o.shards) set.add_input("SHARD", path);
   if (o.json) set.claim_stdout("--json");

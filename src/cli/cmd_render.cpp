@@ -7,6 +7,7 @@
 
 #include "cli/cli.h"
 #include "eval/parallel.h"
+#include "image/image.h"
 #include "io/output_set.h"
 #include "io/vectors.h"
 #include "render/render.h"
@@ -37,6 +38,7 @@ int run_render(const RenderCommandOptions& o) {
   options.slot_capacity = o.slots;
   options.progress = isatty(STDERR_FILENO);
   if (options_only()) return kExitOk;
+  load_text_font();  // a bad GLINT_FONT is refused before any work (the sheet has labels)
   // Outputs first, before any work: the folder made if missing, every file checked and its
   // temporary created; all committed together at the end, or none (output_set.h).
   OutputSet outputs;

@@ -9,6 +9,7 @@
 
 #include "cli/cli.h"
 #include "eval/parallel.h"
+#include "image/image.h"
 #include "sweep/size.h"
 
 namespace glint::cli {
@@ -44,6 +45,9 @@ int run_size_command(const SizeOptions& o) {
     grids.push_back(parse_grid(g));
   expand_grids(grids);  // the cap, before any input is read
   if (options_only()) return kExitOk;
+  // A scene's renders (contact sheets, made even with --no-image, which renders once for the
+  // requests) draw text: a bad font is refused before any work.
+  if (!o.scenes.empty()) load_text_font();
   SweepSettings settings;
   settings.display_bits = o.display_bits;
   settings.slot_capacity = o.slots;

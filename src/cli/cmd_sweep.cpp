@@ -10,6 +10,7 @@
 
 #include "cli/cli.h"
 #include "eval/parallel.h"
+#include "image/image.h"
 #include "sweep/outputs.h"
 #include "sweep/sweep.h"
 
@@ -55,6 +56,9 @@ int run_sweep_command(const SweepCommandOptions& o) {
   job.image = !o.no_image;
   const SweepOutputs outputs = sweep_outputs(o.out, o.csv, o.plot);
   if (options_only()) return kExitOk;
+  // Plots and a scene's renders (contact sheets, made even with --no-image, which renders once
+  // for the requests) draw text: a bad font is refused before any work.
+  if (!o.plot.empty() || !o.scene.empty()) load_text_font();
   OutputSet set;
   set.add_input(o.vectors.empty() ? "--scene" : "VECTORS", job.input.path);
   if (o.json) set.claim_stdout("--json");

@@ -10,6 +10,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -51,9 +52,11 @@ class WorkFolder {
  public:
   WorkFolder() {
     const char* tmp = std::getenv("TMPDIR");
-    std::string pattern = std::string(tmp && *tmp ? tmp : "/tmp") + "/glint-synth.XXXXXX";
+    const std::string parent = tmp && *tmp ? tmp : "/tmp";
+    std::string pattern = parent + "/glint-synth.XXXXXX";
     if (::mkdtemp(pattern.data()) == nullptr)
-      throw OutputError(fmt::format("synth: cannot make a work folder {}", pattern));
+      throw OutputError(fmt::format("synth: cannot make a work folder in '{}' (TMPDIR): {}", parent,
+                                    std::strerror(errno)));
     dir_ = pattern;
     handles_.push_back(register_cleanup(CleanupKind::kFolder, dir_));
   }

@@ -48,8 +48,9 @@ inline constexpr Rgb8 kHeatNan{0, 255, 255};
 // rendered by stb_truetype); clipped to the image. Returns the width drawn.
 // The font is DejaVu Sans (/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf, Debian package
 // fonts-dejavu-core), or the TrueType file named by the environment variable GLINT_FONT; it is
-// read once, on first use, and a missing or unreadable font throws std::runtime_error naming the
-// file and the package. `height` spans the font's ascent to descent; text is UTF-8, anti-aliased
+// read once, on first use, and checked (image/font.h): a missing, unreadable or malformed font
+// throws InputError (a std::runtime_error) naming the file, GLINT_FONT or 'font', what is wrong
+// and the package. `height` spans the font's ascent to descent; text is UTF-8, anti-aliased
 // and blended over the pixels beneath in `colour`; control characters, invalid UTF-8 bytes and
 // characters the font lacks are drawn as '?'. The returned width is the text's advance (the same
 // as text_width), however much of it was clipped. A height <= 0 throws std::invalid_argument.
@@ -58,6 +59,9 @@ int text_width(std::string_view text, int height = 14);
 // `text` if it fits in max_width pixels, else its longest prefix (whole characters) followed by
 // an ellipsis that fits; empty if not even the ellipsis fits.
 std::string fit_text(std::string_view text, int max_width, int height = 14);
+// Reads and checks the font now, so that a command refuses a bad one before any work; throws as
+// draw_text would.
+void load_text_font();
 
 // Shapes for charts (glint sweep's plots), anti-aliased: each pixel is blended with the colour by
 // the fraction of it the shape covers (estimated from the distance of its centre to the shape's

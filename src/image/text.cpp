@@ -5,76 +5,18 @@
 // text gives the same pixels on every run.
 #include <stb_truetype.h>
 
-#include <cerrno>
 #include <cmath>
-#include <cstdlib>
-#include <cstring>
-#include <fstream>
-#include <iterator>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "image/font.h"
 #include "image/image.h"
 
 namespace glint {
 
 namespace {
-
-constexpr const char* kDefaultFont = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
-
-class Font {
- public:
-  Font() {
-    const char* env = std::getenv("GLINT_FONT");
-    path_ = env && *env ? env : kDefaultFont;
-    errno = 0;
-    std::ifstream in(path_, std::ios::binary);
-    if (in) data_.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    if (!in || data_.empty()) {
-      const int err = errno;
-      throw std::runtime_error("cannot read the font '" + path_ + "'" +
-                               (err != 0 ? std::string(": ") + std::strerror(err) : "") +
-                               " (DejaVu Sans comes with the Debian package fonts-dejavu-core; "
-                               "GLINT_FONT=FILE.ttf names another TrueType font)");
-    }
-    const int offset = stbtt_GetFontOffsetForIndex(data_.data(), 0);
-    if (offset < 0 || !stbtt_InitFont(&info_, data_.data(), offset)) {
-      throw std::runtime_error("the font '" + path_ +
-                               "' is not a TrueType font stb_truetype can read (DejaVu Sans comes "
-                               "with the Debian package fonts-dejavu-core)");
-    }
-    int descent = 0, line_gap = 0;
-    stbtt_GetFontVMetrics(&info_, &ascent_, &descent, &line_gap);
-    question_ = stbtt_FindGlyphIndex(&info_, '?');
-  }
-  Font(const Font&) = delete;
-  Font& operator=(const Font&) = delete;
-
-  const stbtt_fontinfo& info() const { return info_; }
-  int ascent() const { return ascent_; }
-
-  // The glyph drawn for a code point: '?' for control characters and for what the font lacks.
-  int glyph(char32_t cp) const {
-    if (cp < 0x20 || (cp >= 0x7f && cp < 0xa0)) return question_;
-    const int g = stbtt_FindGlyphIndex(&info_, static_cast<int>(cp));
-    return g != 0 ? g : question_;
-  }
-
- private:
-  std::string path_;
-  std::vector<unsigned char> data_;  // stbtt_fontinfo points into it: never reallocated
-  stbtt_fontinfo info_{};
-  int ascent_ = 0;
-  int question_ = 0;
-};
-
-// Loaded on first use; a static local is initialised once even with threads, and a failed load
-// (exception) is tried again on the next call.
-const Font& font() {
-  static const Font instance;
-  return instance;
-}
 
 // UTF-8 to code points, so that labels may use the font's other characters (e.g. "±", "×"); a
 // byte that does not start a valid sequence is one '?', so any string can be drawn.
@@ -122,16 +64,21 @@ struct Layout {
   int width() const { return static_cast<int>(std::ceil(end)); }
 };
 
-Layout layout(std::string_view text, int height) {
+std::vector<int> glyphs_of(const Font& f, std::string_view text) {
+  std::vector<int> glyphs;
+  for (const char32_t cp : decode_utf8(text)) glyphs.push_back(f.glyph(cp));
+  return glyphs;
+}
+
+Layout layout(const Font& f, std::vector<int> glyphs, int height) {
   if (height <= 0) {
     throw std::invalid_argument("text height must be positive, not " + std::to_string(height));
   }
-  const Font& f = font();
   Layout l;
   // Pixel height = ascent - descent, so a line of `height` pixels holds every glyph of the font.
   l.scale = stbtt_ScaleForPixelHeight(&f.info(), static_cast<float>(height));
   l.baseline = static_cast<int>(std::floor(static_cast<float>(f.ascent()) * l.scale + 0.5f));
-  for (const char32_t cp : decode_utf8(text)) l.glyphs.push_back(f.glyph(cp));
+  l.glyphs = std::move(glyphs);
   float x = 0;
   for (std::size_t i = 0; i < l.glyphs.size(); ++i) {
     if (i > 0) {
@@ -154,27 +101,64 @@ std::uint8_t blend(std::uint8_t under, std::uint8_t over, unsigned coverage) {
 
 }  // namespace
 
+int text_width(const Font& font, std::string_view text, int height) {
+  return layout(font, glyphs_of(font, text), height).width();
+}
+
 int text_width(std::string_view text, int height) {
-  return layout(text, height).width();
+  return text_width(text_font(), text, height);
 }
 
 int draw_text(Image8& image, int x, int y, std::string_view text, Rgb8 colour, int height) {
-  const Layout l = layout(text, height);
-  const stbtt_fontinfo& info = font().info();
+  return draw_text(image, text_font(), x, y, text, colour, height);
+}
+
+int draw_text(Image8& image, const Font& font, int x, int y, std::string_view text, Rgb8 colour,
+              int height) {
+  return draw_glyphs(image, font, x, y, glyphs_of(font, text), colour, height);
+}
+
+int draw_glyphs(Image8& image, const Font& font, int x, int y, std::vector<int> glyphs, Rgb8 colour,
+                int height) {
+  for (const int g : glyphs) {
+    if (g < 0 || g >= font.glyph_count())
+      throw std::invalid_argument("glyph " + std::to_string(g) + " is not in the font");
+  }
+  const Layout l = layout(font, std::move(glyphs), height);
+  const stbtt_fontinfo& info = font.info();
   std::vector<unsigned char> bitmap;
   for (std::size_t i = 0; i < l.glyphs.size(); ++i) {
     const float whole = std::floor(l.pen[i]);
     const float shift = l.pen[i] - whole;
     int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-    stbtt_GetGlyphBitmapBoxSubpixel(&info, l.glyphs[i], l.scale, l.scale, shift, 0.0f, &x0, &y0,
-                                    &x1, &y1);
+    const Font::Box* grown = font.grown_box(l.glyphs[i]);
+    if (grown) {
+      // stb's own rounding of a box to pixels (stbtt_GetGlyphBitmapBoxSubpixel), on the box
+      // that holds the outline.
+      x0 = static_cast<int>(std::floor(static_cast<float>(grown->x0) * l.scale + shift));
+      y0 = static_cast<int>(std::floor(static_cast<float>(-grown->y1) * l.scale));
+      x1 = static_cast<int>(std::ceil(static_cast<float>(grown->x1) * l.scale + shift));
+      y1 = static_cast<int>(std::ceil(static_cast<float>(-grown->y0) * l.scale));
+    } else {
+      stbtt_GetGlyphBitmapBoxSubpixel(&info, l.glyphs[i], l.scale, l.scale, shift, 0.0f, &x0, &y0,
+                                      &x1, &y1);
+    }
     const int w = x1 - x0, h = y1 - y0;
     if (w <= 0 || h <= 0) continue;  // a space
     const int left = x + static_cast<int>(whole) + x0, top = y + l.baseline + y0;
     if (left >= image.width || top >= image.height || left + w <= 0 || top + h <= 0) continue;
     bitmap.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0);
-    stbtt_MakeGlyphBitmapSubpixel(&info, bitmap.data(), w, h, w, l.scale, l.scale, shift, 0.0f,
-                                  l.glyphs[i]);
+    if (grown) {
+      // What stbtt_MakeGlyphBitmapSubpixel does, with the grown box's corner as the offset.
+      stbtt_vertex* vertices = nullptr;
+      const int n = stbtt_GetGlyphShape(&info, l.glyphs[i], &vertices);
+      stbtt__bitmap out{w, h, w, bitmap.data()};
+      stbtt_Rasterize(&out, 0.35f, vertices, n, l.scale, l.scale, shift, 0.0f, x0, y0, 1, nullptr);
+      stbtt_FreeShape(&info, vertices);
+    } else {
+      stbtt_MakeGlyphBitmapSubpixel(&info, bitmap.data(), w, h, w, l.scale, l.scale, shift, 0.0f,
+                                    l.glyphs[i]);
+    }
     for (int r = 0; r < h; ++r) {
       const int py = top + r;
       if (py < 0 || py >= image.height) continue;
@@ -197,8 +181,7 @@ int draw_text(Image8& image, int x, int y, std::string_view text, Rgb8 colour, i
 std::string fit_text(std::string_view text, int max_width, int height) {
   if (text_width(text, height) <= max_width) return std::string(text);
   // U+2026 when the font has it (DejaVu does); three dots otherwise.
-  const std::string ellipsis =
-      stbtt_FindGlyphIndex(&font().info(), 0x2026) != 0 ? "\xe2\x80\xa6" : "...";
+  const std::string ellipsis = text_font().has(0x2026) ? "\xe2\x80\xa6" : "...";
   std::size_t cut = text.size();
   while (cut > 0) {
     // Step back one code point: over continuation bytes (10xxxxxx) to the byte starting it.
