@@ -34,20 +34,18 @@ std::string status_text(int status) {
   return "status " + std::to_string(status);
 }
 
-// The start of a log file on one line ("" if empty).
-std::string log_start(const std::string& path) {
-  constexpr std::size_t kMax = 300;
+}  // namespace
+
+std::string log_start(const std::string& path, std::size_t max) {
   std::ifstream in(path, std::ios::binary);
-  std::string text(kMax + 1, '\0');
+  std::string text(max + 1, '\0');
   in.read(&text[0], static_cast<std::streamsize>(text.size()));
   text.resize(static_cast<std::size_t>(in.gcount()));
-  if (text.size() > kMax) text = text.substr(0, kMax) + " ...";
+  if (text.size() > max) text = text.substr(0, max) + " ...";
   while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
   std::replace(text.begin(), text.end(), '\n', ' ');
   return text;
 }
-
-}  // namespace
 
 FstReadBack read_back_fst(const std::string& fst, const std::string& log, const std::string& what) {
   int fds[2];
@@ -101,7 +99,7 @@ FstReadBack read_back_fst(const std::string& fst, const std::string& log, const 
   }
   release_cleanup(handle);
   back.counts = tally.counts();
-  back.messages = log_start(log);
+  back.messages = log_start(log, 300);
   return back;
 }
 

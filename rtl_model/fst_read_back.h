@@ -4,6 +4,7 @@
 // VCD text, which is counted as it streams (io/vcd_tally.h) and compared with what glint wrote.
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 #include "io/vcd_tally.h"
@@ -33,6 +34,10 @@ std::string fst_incomplete(const FstReadBack& back, const VcdCounts& written);
 // ends inside a block or lacks the last ones. Hand-written: no Debian package has the FST reader
 // as a library, and this needs 8 bytes per block.
 std::string fst_structure_error(const std::string& fst);
+
+// The first `max` bytes of a tool's log on one line ("" if empty; " ..." marks a cut), for an
+// error message.
+std::string log_start(const std::string& path, std::size_t max);
 
 // Both checks: "" when `fst` is whole, else why not (naming vcd2fst, and fst2vcd when it ran).
 std::string check_fst(const std::string& fst, const std::string& log, const std::string& what,

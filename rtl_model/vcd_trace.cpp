@@ -184,14 +184,7 @@ class TraceControl::Vcd2Fst {
 
   // The start of vcd2fst's stderr, for the error message.
   std::string messages() const {
-    constexpr std::size_t kMax = 500;
-    std::ifstream in(log_, std::ios::binary);
-    std::string text(kMax + 1, '\0');
-    in.read(&text[0], static_cast<std::streamsize>(text.size()));
-    text.resize(static_cast<std::size_t>(in.gcount()));
-    if (text.size() > kMax) text = text.substr(0, kMax) + " ...";
-    while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
-    std::replace(text.begin(), text.end(), '\n', ' ');
+    const std::string text = log_start(log_, 500);
     return text.empty() ? "" : ": " + text;
   }
 
