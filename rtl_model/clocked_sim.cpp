@@ -289,6 +289,7 @@ std::vector<TimingStats> run_clocked(const std::vector<const SpecularUnit*>& uni
   control.hold_window(false);
 
   sc_core::sc_start();
+  resync_sanitizer_stack();
   if (control.error()) std::rethrow_exception(control.error());
 
   std::vector<TimingStats> stats;

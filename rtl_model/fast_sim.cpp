@@ -6,6 +6,7 @@
 
 #include "eval/engine.h"
 #include "rtl_model/clocked_sim.h"
+#include "rtl_model/sc_setup.h"
 
 namespace glint {
 namespace {
@@ -176,6 +177,7 @@ std::vector<TimingStats> run_fast_blocks(
     const std::function<void(const FastResult&)>& on_result) {
   FastLanes lanes("fast", units, slots, next_block, options, accumulators, on_result);
   sc_core::sc_start();
+  resync_sanitizer_stack();
   if (lanes.error()) std::rethrow_exception(lanes.error());
   return lanes.stats();
 }
