@@ -1,7 +1,6 @@
 #include "rtl_model/fst_read_back.h"
 
 #include <fcntl.h>
-#include <spawn.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -17,8 +16,7 @@
 
 #include "io/output_set.h"
 #include "io/signal_cleanup.h"
-
-extern char** environ;
+#include "rtl_model/tool_process.h"
 
 namespace glint::rtl {
 
@@ -51,34 +49,19 @@ FstReadBack read_back_fst(const std::string& fst, const std::string& log, const 
   int fds[2];
   if (::pipe2(fds, O_CLOEXEC) != 0)
     throw OutputError(what + ": pipe for fst2vcd: " + std::strerror(errno));
-  posix_spawn_file_actions_t actions;
-  posix_spawnattr_t attr;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawnattr_init(&attr);
-  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_adddup2(&actions, fds[1], 1);
-  posix_spawn_file_actions_addopen(&actions, 2, log.c_str(),
-                                   O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW, 0600);
-  sigset_t none, defaults;
-  sigemptyset(&none);
-  sigemptyset(&defaults);
-  sigaddset(&defaults, SIGPIPE);
-  posix_spawnattr_setsigmask(&attr, &none);
-  posix_spawnattr_setsigdefault(&attr, &defaults);
-  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
-  std::string a0 = "fst2vcd", a1 = "-f", a2 = fst;
-  char* argv[] = {a0.data(), a1.data(), a2.data(), nullptr};
+  ToolStart start;
+  start.argv = {"fst2vcd", "-f", fst};
+  start.stdout_fd = fds[1];
+  start.log = log;
   pid_t pid = -1;
   int handle = -1;
   int err = 0;
   {
     // Signals held from the start to the registration: the process is never unregistered.
     SignalShield shield;
-    err = ::posix_spawnp(&pid, "fst2vcd", &actions, &attr, argv, environ);
+    err = start_tool(start, pid);
     if (err == 0) handle = register_cleanup_process(pid);
   }
-  posix_spawnattr_destroy(&attr);
-  posix_spawn_file_actions_destroy(&actions);
   ::close(fds[1]);
   if (err != 0) {
     ::close(fds[0]);

@@ -1,7 +1,6 @@
 #include "rtl_model/vcd_trace.h"
 
 #include <fcntl.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -23,8 +22,7 @@
 #include "rtl_model/clocked_sim.h"
 #include "rtl_model/fst_read_back.h"
 #include "rtl_model/rtl_common.h"
-
-extern char** environ;
+#include "rtl_model/tool_process.h"
 
 namespace glint::rtl {
 
@@ -133,36 +131,15 @@ class TraceControl::Vcd2Fst {
     }
   }
 
-  // posix_spawnp (not fork + exec of a shell): no quoting of the path, and an exec failure (no
-  // vcd2fst on PATH) is returned here rather than discovered as a broken pipe. stdin = the pipe,
-  // stdout discarded, stderr kept for the error message (a new file, O_EXCL); default SIGPIPE and
-  // SIGXFSZ and an empty signal mask whatever this process uses.
+  // vcd2fst reads the pipe, its stdout discarded, its stderr kept for the error message
+  // (tool_process.h).
   int spawn(int read_fd) {
-    posix_spawn_file_actions_t actions;
-    posix_spawnattr_t attr;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawnattr_init(&attr);
-    posix_spawn_file_actions_adddup2(&actions, read_fd, 0);
-    posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-    posix_spawn_file_actions_addopen(&actions, 2, log_.c_str(),
-                                     O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW, 0600);
-    sigset_t none, defaults;
-    sigemptyset(&none);
-    sigemptyset(&defaults);
-    sigaddset(&defaults, SIGPIPE);
-    // glint ignores SIGXFSZ (its writes then fail with EFBIG, which it reports); vcd2fst might not
-    // check its writes, so past a file size limit it dies as it would by default: a failure seen.
-    sigaddset(&defaults, SIGXFSZ);
-    posix_spawnattr_setsigmask(&attr, &none);
-    posix_spawnattr_setsigdefault(&attr, &defaults);
-    posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
-    std::string a0 = "vcd2fst", a1 = "-v", a2 = "-", a3 = "-f", a4 = fst_;
-    char* argv[] = {a0.data(), a1.data(), a2.data(), a3.data(), a4.data(), nullptr};
-    const int err = ::posix_spawnp(&pid_, "vcd2fst", &actions, &attr, argv, environ);
-    if (err != 0) pid_ = -1;
-    posix_spawnattr_destroy(&attr);
-    posix_spawn_file_actions_destroy(&actions);
-    return err;
+    ToolStart start;
+    start.argv = {"vcd2fst", "-v", "-", "-f", fst_};
+    start.stdin_fd = read_fd;
+    start.log = log_;
+    start.default_sigxfsz = true;  // vcd2fst writes the FST and may not check its writes
+    return start_tool(start, pid_);
   }
 
   int wait() {  // pid_ > 0
