@@ -165,7 +165,9 @@ std::string lane_module(const LaneParams& p, RamTables* ram) {
   } else {
     s += "  wire unit_ok = 1'b1;  // II = 1: the datapath takes a request every edge\n";
   }
-  s += "  assign in_ready = credit_ok & (skip | unit_ok);\n";
+  // Low in reset: a request offered then would be acknowledged and dropped, since the issue
+  // registers below ignore it until rst falls.
+  s += "  assign in_ready = ~rst & credit_ok & (skip | unit_ok);\n";
   s += "  wire issue = in_valid & in_ready;\n";
   s += "  wire start = issue & ~skip;\n";
   s += fmt::format("  reg {} issue_tag;  // merge-buffer entry of the next request (index mod B)\n",
@@ -377,6 +379,11 @@ std::string testbench_module(const LaneParams& p, const TbSink& sink, std::size_
   s += "  always @(posedge clk) begin\n";
   s += "    if (rst) begin\n";
   s += "      idx <= 0;\n      got <= 0;\n      cycle <= 64'd0;\n";
+  // Requests are offered from the start (in_valid = idx < N): none may be taken in reset.
+  s += "      if (in_valid && in_ready) begin\n";
+  s += "        errors = errors + 1;\n";
+  s += "        if (errors <= 10) $display(\"request %0d: accepted during reset\", idx);\n";
+  s += "      end\n";
   s += "    end else begin\n";
   s += "      cycle <= cycle + 64'd1;\n";
   s += "      if (in_valid && in_ready) begin\n";
