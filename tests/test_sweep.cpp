@@ -21,6 +21,7 @@
 #include "sweep/pareto.h"
 #include "sweep/report.h"
 #include "sweep/size.h"
+#include "sweep/size_explain.h"
 #include "sweep/sweep.h"
 #include "test_support.h"
 #include "units/catalogue.h"
@@ -382,6 +383,101 @@ TEST(SweepSize, PicksTheCheapestMeetingTheBudgetOnEveryInput) {
       reports, glint::parse_budgets("max_abs<0", false), glint::SizeObjective::kArea);
   EXPECT_FALSE(none.best);
   EXPECT_EQ(none.meeting, 0u);
+}
+
+// A row of a hand-made sweep report: the measures explain_family reads.
+json hand_row(std::size_t index, double area, double max_abs, double approx, double input_part) {
+  return {{"index", index},
+          {"unit", "lut"},
+          {"spec", fmt::format("lut:bits={}", 4 + index)},
+          {"area_ge", area},
+          {"errors",
+           {{"max_abs", max_abs},
+            {"bound_lsb", 2 * max_abs * 255},
+            {"parts",
+             {{"approximation", {{"max_abs", approx}, {"bound", approx * 2}}},
+              {"input", {{"max_abs", input_part}, {"bound", input_part * 2}}}}},
+            {"slots",
+             {{{"slot", 0},
+               {"name", "material 'a'"},
+               {"bound_lsb", 1.0},
+               {"bound", {{"approximation", 0.001}, {"input", 0.003}, {"total", 0.004}}}},
+              {{"slot", 1},
+               {"name", "material 'b'"},
+               {"bound_lsb", 3.0},
+               {"bound", {{"approximation", 0.009}, {"input", 0.002}, {"total", 0.011}}}}}}}}};
+}
+
+json hand_report(std::vector<json> rows) {
+  return {{"display_bits", 8}, {"input", {{"path", "hand.vec"}}}, {"results", std::move(rows)}};
+}
+
+// What glint size says of a family none of whose configurations meets the budget: the best value
+// per condition, the closest configuration, its largest part and weakest slot, its grid's edges.
+TEST(SweepSize, ExplainsWhatBlocksAFamily) {
+  const std::vector<Grid> grids = {parse_grid("lut:bits=4..6")};
+  const auto configs = glint::expand_grids(grids);
+  // bits=4: refused (no errors), bits=5: 3.8 LSB, bits=6: 2.04 LSB, mostly approximation.
+  json refused = {{"index", 0}, {"unit", "lut"}, {"spec", "lut:bits=4"}, {"refused", "too wide"}};
+  const std::vector<json> reports = {hand_report(
+      {refused, hand_row(1, 200, 0.015, 0.014, 0.001), hand_row(2, 300, 0.008, 0.007, 0.001)})};
+  const auto budgets = glint::parse_budgets("lsb8<=1", false);
+  const std::vector<double> cost = {NAN, 200, 300};
+  const json e = glint::explain_family("lut", reports, budgets, grids, configs, cost, false);
+  ASSERT_EQ(e.at("reached").size(), 1u);
+  EXPECT_EQ(e.at("reached")[0].at("index"), 2);
+  EXPECT_DOUBLE_EQ(e.at("reached")[0].at("best").get<double>(), 0.008 * 255);
+  const json& c = e.at("closest");
+  EXPECT_EQ(c.at("index"), 2);
+  EXPECT_EQ(c.at("missed"), "lsb8<=1");
+  EXPECT_DOUBLE_EQ(c.at("miss").get<double>(), 0.008 * 255 - 1);
+  EXPECT_EQ(c.at("part").at("name"), "approximation");
+  EXPECT_DOUBLE_EQ(c.at("part").at("max_lsb").get<double>(), 0.007 * 255);
+  EXPECT_EQ(c.at("slot").at("slot"), 1);
+  EXPECT_EQ(c.at("slot").at("part"), "approximation");
+  ASSERT_EQ(c.at("grid_edges").size(), 1u);
+  EXPECT_EQ(c.at("grid_edges")[0].at("key"), "bits");
+  EXPECT_EQ(c.at("grid_edges")[0].at("end"), "largest");
+  const std::string text = glint::format_explanation(e);
+  EXPECT_NE(text.find("closest: lut:bits=6 misses lsb8<=1 by a factor 2.04"), std::string::npos)
+      << text;
+  EXPECT_NE(text.find("bits=6 (largest in the grid)"), std::string::npos) << text;
+
+  // An end the error does not improve towards is no hint: bits=5 as good as bits=6.
+  const std::vector<json> flat = {hand_report(
+      {refused, hand_row(1, 200, 0.008, 0.007, 0.001), hand_row(2, 300, 0.008, 0.007, 0.001)})};
+  const json f = glint::explain_family("lut", flat, budgets, grids, configs, cost, false);
+  EXPECT_EQ(f.at("closest").at("index"), 1);  // the cheaper of two equally close
+  EXPECT_TRUE(f.at("closest").at("grid_edges").empty());
+
+  // A bound measure names the part with the largest bound; a family that meets says only how close
+  // it came.
+  const json b = glint::explain_family("lut", reports, glint::parse_budgets("bound_lsb<=1", false),
+                                       grids, configs, cost, false);
+  EXPECT_TRUE(b.at("closest").at("part").contains("bound_lsb"));
+  const json met = glint::explain_family("lut", reports, glint::parse_budgets("lsb8<=6", false),
+                                         grids, configs, cost, true);
+  EXPECT_FALSE(met.contains("closest"));
+  EXPECT_EQ(glint::format_explanation(met), "");
+}
+
+TEST(SweepSize, RelativeMissAndTheCheapestK) {
+  const auto le = glint::parse_budgets("lsb8<=2", false)[0];
+  const auto lt = glint::parse_budgets("lsb8<2", false)[0];
+  const auto ge = glint::parse_budgets("throughput>=0.5", false)[0];
+  EXPECT_EQ(glint::relative_miss(2.0, le), 0);
+  EXPECT_DOUBLE_EQ(glint::relative_miss(3.0, le), 0.5);
+  EXPECT_GT(glint::relative_miss(2.0, lt), 0);  // a strict limit reached is missed
+  EXPECT_DOUBLE_EQ(glint::relative_miss(0.25, ge), 0.5);
+  EXPECT_EQ(glint::relative_miss(std::nullopt, le), std::numeric_limits<double>::infinity());
+
+  glint::SizePick pick;
+  pick.value = {5, 3, 3, NAN, 1, 9};
+  pick.meets = {true, true, true, true, false, true};
+  using V = std::vector<std::size_t>;
+  EXPECT_EQ(glint::cheapest_meeting(pick, glint::SizeObjective::kArea, 3), (V{1, 2, 0}));
+  EXPECT_EQ(glint::cheapest_meeting(pick, glint::SizeObjective::kArea, 10), (V{1, 2, 0, 5}));
+  EXPECT_EQ(glint::cheapest_meeting(pick, glint::SizeObjective::kThroughput, 2), (V{5, 0}));
 }
 
 TEST(SweepReport, CsvHasAHeaderAndARowPerConfiguration) {

@@ -16,6 +16,7 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "test_support.h"
@@ -254,20 +255,28 @@ TEST_F(SweepCli, SizePicksTheCheapestAndExitsOneWhenNoneMeets) {
     sweeps.push_back(glint_json("sweep " + quote(f) + " " + grids + " --json"));
     inputs += " " + quote(f);
   }
-  const json size = glint_json("size --budget 'max_lsb8<=2' " + grids + inputs + " --json");
+  const json size = glint_json("size --budget 'max_lsb8<=2' " + grids + inputs + " --top 4 --json");
   // Brute force: the largest area over the inputs among configurations within 2 LSB on both.
   std::optional<std::size_t> best;
   double best_area = 0;
   std::map<std::string, std::pair<std::size_t, double>> per_family;
+  std::vector<std::pair<double, std::size_t>> meeting;  // (area, index)
+  // Per family: the configuration nearest the budget (least worst error; ties to less area).
+  std::map<std::string, std::tuple<double, double, std::size_t>> nearest;
   for (std::size_t i = 0; i < sweeps[0]["results"].size(); ++i) {
     bool ok = true;
-    double area = 0;
+    double area = 0, lsb = 0;
     for (const json& s : sweeps) {
       const json& row = s["results"][i];
+      lsb = std::max(lsb, row["errors"]["max_abs"].get<double>() * 255);
       ok = ok && row["errors"]["max_abs"].get<double>() * 255 <= 2;
       area = std::max(area, row["area_ge"].get<double>());
     }
+    const std::string family = sweeps[0]["results"][i]["unit"];
+    if (!nearest.count(family) || std::make_tuple(lsb, area, i) < nearest[family])
+      nearest[family] = {lsb, area, i};
     if (!ok) continue;
+    meeting.emplace_back(area, i);
     if (!best || area < best_area) {
       best = i;
       best_area = area;
@@ -281,12 +290,24 @@ TEST_F(SweepCli, SizePicksTheCheapestAndExitsOneWhenNoneMeets) {
   EXPECT_DOUBLE_EQ(size.at("best").at("value").get<double>(), best_area);
   for (const json& f : size.at("families")) {
     const std::string unit = f.at("unit");
+    const auto [lsb, area, index] = nearest.at(unit);
+    EXPECT_DOUBLE_EQ(f.at("reached").at(0).at("best").get<double>(), lsb) << unit;
     if (per_family.count(unit)) {
       EXPECT_EQ(f.at("index"), per_family[unit].first) << unit;
+      EXPECT_FALSE(f.contains("closest")) << unit;
     } else {
       EXPECT_TRUE(f.at("spec").is_null()) << unit;
+      EXPECT_EQ(f.at("closest").at("index"), index) << unit;
+      EXPECT_DOUBLE_EQ(f.at("closest").at("miss").get<double>(), lsb / 2 - 1) << unit;
+      EXPECT_TRUE(f.at("closest").at("part").contains("name")) << unit;
     }
   }
+  EXPECT_LT(per_family.size(), 3u) << "the test wants a family that misses the budget";
+  // --top 4: the four cheapest meeting the budget, over every family, ties to the lower index.
+  std::sort(meeting.begin(), meeting.end());
+  ASSERT_EQ(size.at("top").size(), std::min<std::size_t>(4, meeting.size()));
+  for (std::size_t k = 0; k < size.at("top").size(); ++k)
+    EXPECT_EQ(size.at("top")[k].at("index"), meeting[k].second) << k;
   // The text ends with the spec alone, ready to paste.
   const CliRun text = glint("size --budget 'max_lsb8<=2' " + grids + inputs);
   ASSERT_EQ(text.status, 0) << text.err;

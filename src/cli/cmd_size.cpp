@@ -24,6 +24,7 @@ struct SizeOptions {
   int display_bits = 8;
   std::size_t slots = 0;
   int jobs = 0;
+  std::size_t top = 1;
   bool no_image = false;
   bool json = false;
 };
@@ -57,7 +58,7 @@ int run_size_command(const SizeOptions& o) {
     progress = [](const std::string& line) { std::fprintf(stderr, "\r%s", line.c_str()); };
   SizeRun run;
   try {
-    run = run_size(inputs, grids, budgets, objective, settings, !o.no_image, progress);
+    run = run_size(inputs, grids, budgets, objective, settings, !o.no_image, o.top, progress);
   } catch (const SlotCapacityError& e) {
     refuse_slots(o.slots, e);
   }
@@ -95,6 +96,10 @@ void add_size_command(CLI::App& app, int& status) {
   add_slots_option(sub, o->slots);
   sub->add_option("--jobs", o->jobs, "Threads (default: every core); results do not depend on it")
       ->check(CLI::Range(1, 256));
+  sub->add_option("--top", o->top,
+                  "List the K cheapest configurations meeting the budget (over every family)")
+      ->check(CLI::Range(std::size_t{1}, kMaxSweepConfigurations))
+      ->capture_default_str();
   sub->add_flag("--no-image", o->no_image,
                 "With --scene: leave out the image-level error (request-level errors only)");
   sub->add_flag("--json", o->json, "Print the choice as one JSON document on stdout");

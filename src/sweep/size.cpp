@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "sweep/size_explain.h"
 #include "units/catalogue.h"
 
 namespace glint {
@@ -114,9 +115,21 @@ SizePick pick_cheapest(const std::vector<nlohmann::json>& reports,
   return pick;
 }
 
+std::vector<std::size_t> cheapest_meeting(const SizePick& pick, SizeObjective objective,
+                                          std::size_t k) {
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < pick.value.size(); ++i)
+    if (pick.meets[i] && !std::isnan(pick.value[i])) out.push_back(i);
+  std::stable_sort(out.begin(), out.end(), [&](std::size_t a, std::size_t b) {
+    return cost_of(pick.value[a], objective) < cost_of(pick.value[b], objective);
+  });
+  if (out.size() > k) out.resize(k);
+  return out;
+}
+
 SizeRun run_size(const std::vector<SweepInput>& inputs, const std::vector<Grid>& grids,
                  const std::vector<Budget>& budgets, SizeObjective objective,
-                 const SweepSettings& settings, bool image,
+                 const SweepSettings& settings, bool image, std::size_t top,
                  const std::function<void(const std::string&)>& progress) {
   if (inputs.empty()) throw std::invalid_argument("size: give VECTORS files or --scene SCENE");
   SizeRun run;
@@ -137,13 +150,22 @@ SizeRun run_size(const std::vector<SweepInput>& inputs, const std::vector<Grid>&
   for (const SweepInput& i : inputs)
     in.push_back({{"path", i.path}, {"kind", i.scene ? "scene" : "vectors"}});
   for (const Grid& g : grids) grid_texts.push_back(g.text);
-  // Families in catalogue order.
+  // Families in catalogue order, each with how close it came (size_explain.h).
+  const std::vector<SweepConfig> configs = expand_grids(grids);
+  std::vector<double> cost(run.pick.value.size());
+  for (std::size_t i = 0; i < cost.size(); ++i) cost[i] = cost_of(run.pick.value[i], objective);
   for (const std::string& name : unit_names()) {
     const auto it = run.pick.by_family.find(name);
     if (it == run.pick.by_family.end()) continue;
-    families.push_back(it->second ? choice_json(run, *it->second, budgets)
-                                  : nlohmann::json{{"unit", name}, {"spec", nullptr}});
+    nlohmann::json family = it->second ? choice_json(run, *it->second, budgets)
+                                       : nlohmann::json{{"unit", name}, {"spec", nullptr}};
+    family.update(
+        explain_family(name, run.reports, budgets, grids, configs, cost, it->second.has_value()));
+    families.push_back(std::move(family));
   }
+  nlohmann::json cheapest = nlohmann::json::array();
+  for (std::size_t i : cheapest_meeting(run.pick, objective, top))
+    cheapest.push_back(choice_json(run, i, budgets));
   run.document = {{"glint_size_report", 1},
                   {"budget", conditions},
                   {"objective", to_string(objective)},
@@ -153,6 +175,7 @@ SizeRun run_size(const std::vector<SweepInput>& inputs, const std::vector<Grid>&
                   {"configurations", run.pick.value.size()},
                   {"meeting", run.pick.meeting},
                   {"families", families},
+                  {"top", cheapest},
                   {"best", run.pick.best ? choice_json(run, *run.pick.best, budgets)
                                          : nlohmann::json(nullptr)}};
   return run;
@@ -171,14 +194,25 @@ std::string format_size(const SizeRun& run) {
       paths.size() > 1 ? " (worst over the inputs)" : "", d.at("configurations").get<std::size_t>(),
       d.at("meeting").get<std::size_t>());
   out += fmt::format("{:<8} {:>14}  {}\n", "family", objective, "cheapest spec meeting the budget");
+  std::string why;
   for (const nlohmann::json& f : d.at("families")) {
+    const std::string unit = f.at("unit").get<std::string>();
     if (f.at("spec").is_null()) {
-      out += fmt::format("{:<8} {:>14}  (none meets the budget)\n", f.at("unit").get<std::string>(),
-                         "-");
+      out += fmt::format("{:<8} {:>14}  (none meets the budget)\n", unit, "-");
+      why +=
+          fmt::format("why no {} configuration meets the budget:\n", unit) + format_explanation(f);
     } else {
-      out += fmt::format("{:<8} {:>14.6g}  {}\n", f.at("unit").get<std::string>(),
-                         f.at("value").get<double>(), f.at("spec").get<std::string>());
+      out += fmt::format("{:<8} {:>14.6g}  {}\n", unit, f.at("value").get<double>(),
+                         f.at("spec").get<std::string>());
     }
+  }
+  out += why;
+  const nlohmann::json& top = d.at("top");
+  if (top.size() > 1) {
+    out += fmt::format("the {} cheapest meeting the budget:\n", top.size());
+    for (const nlohmann::json& c : top)
+      out += fmt::format("  {:>14.6g}  {}\n", c.at("value").get<double>(),
+                         c.at("spec").get<std::string>());
   }
   if (d.at("best").is_null()) return out + "no configuration meets the budget\n";
   const nlohmann::json& b = d.at("best");

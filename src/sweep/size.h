@@ -40,8 +40,13 @@ struct SizePick {
 SizePick pick_cheapest(const std::vector<nlohmann::json>& reports,
                        const std::vector<Budget>& budgets, SizeObjective objective);
 
+// The configurations meeting the budget, cheapest first (ties to the lower index), at most `k`.
+std::vector<std::size_t> cheapest_meeting(const SizePick& pick, SizeObjective objective,
+                                          std::size_t k);
+
 // The whole of `glint size`: one sweep per input (each read once), then the pick. The document
-// --json prints: budgets, objective, inputs, the choice per family and overall.
+// --json prints: budgets, objective, inputs, the choice per family and overall, the `top` cheapest
+// and, per family, how close it came (size_explain.h).
 struct SizeRun {
   std::vector<nlohmann::json> reports;  // per input
   SizePick pick;
@@ -49,7 +54,7 @@ struct SizeRun {
 };
 SizeRun run_size(const std::vector<SweepInput>& inputs, const std::vector<Grid>& grids,
                  const std::vector<Budget>& budgets, SizeObjective objective,
-                 const SweepSettings& settings, bool image,
+                 const SweepSettings& settings, bool image, std::size_t top = 1,
                  const std::function<void(const std::string&)>& progress = {});
 
 // The text `glint size` prints: the budget, a line per family and, last, the overall choice's
