@@ -105,6 +105,24 @@ TEST_F(CliOptions, Fit) {
     expect_refused(c.args, c.names);
 }
 
+// What the option parser itself refuses is one line in glint's form, naming the subcommand.
+TEST_F(CliOptions, ParserRefusalsAreOneLineNamingTheSubcommand) {
+  for (const auto& [args, line] : std::vector<std::pair<std::string, std::string>>{
+           {"eval " + kPhong + " --display-bits 17",
+            "glint eval: --display-bits: Value 17 not in range 1 to 16 (see glint eval --help)\n"},
+           {"sim " + kPhong + " --unit lut --frob",
+            "glint sim: The following argument was not expected: --frob (see glint sim --help)\n"},
+           {"size " + kPhong, "glint size: --budget is required (see glint size --help)\n"},
+           {"", "glint: A subcommand is required (see glint --help)\n"},
+       }) {
+    SCOPED_TRACE(args);
+    const CliRun r = glint(args);
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(r.err.rfind(line, 0), 0u) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+}
+
 TEST_F(CliOptions, Eval) {
   std::string many;
   for (int i = 0; i < 65; ++i) many += " --unit pow";

@@ -67,8 +67,13 @@ int run_command(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : kExitBadInput;
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version: printed, exit 0
+    // One line in glint's own form, naming the subcommand, rather than CLI11's two ("MESSAGE",
+    // then "Run with --help for more information.").
+    std::string where = "glint";
+    if (argc >= 2 && argv[1][0] != '-') where += std::string(" ") + argv[1];
+    std::fprintf(stderr, "%s: %s (see %s --help)\n", where.c_str(), e.what(), where.c_str());
+    return kExitBadInput;
   }
   return status;
 }
