@@ -282,7 +282,9 @@ TEST_F(CliTest, FitSamplesReproducesOzturk) {
     const double err = j.at("max_abs_error").get<double>();
     const double digit = std::pow(10.0, std::floor(std::log10(published)) - 2);  // last printed
     EXPECT_NEAR(err, published, digit / 2) << "degree " << degree;
+    EXPECT_EQ(j.at("samples"), 1000);  // the report says which samples it fitted
     const json d = glint_json("fit --shininess 20 --degree " + std::to_string(degree) + " --json");
+    EXPECT_EQ(d.at("samples"), 2000);
     EXPECT_GT(std::abs(d.at("max_abs_error").get<double>() - published), digit / 2)
         << "degree " << degree << ": the default sample count already gives the figure";
     const auto c = j.at("coefficients").get<std::vector<double>>();
@@ -291,6 +293,9 @@ TEST_F(CliTest, FitSamplesReproducesOzturk) {
   // --samples 2000 is the default: the same fit, bit for bit.
   EXPECT_EQ(glint_json("fit --shininess 20 --degree 4 --samples 2000 --json"),
             glint_json("fit --shininess 20 --degree 4 --json"));
+  // Minimax samples nothing.
+  EXPECT_TRUE(
+      glint_json("fit --shininess 20 --degree 4 --method minimax --json").at("samples").is_null());
 }
 
 // Robust fits of t^n itself: a warning on stderr where they threw the highlight away, with the

@@ -68,6 +68,9 @@ int run_fit(const FitCliOptions& o) {
                 {"degree", o.degree},
                 {"method", to_string(f.method)},
                 {"domain", to_string(f.domain)},
+                // The points ls and robust fit; minimax fits t^n itself.
+                {"samples", f.method == FitMethod::kMinimax ? nlohmann::json(nullptr)
+                                                            : nlohmann::json(f.samples)},
                 {"tau", r.tau},
                 {"variable", to_string(r.variable)},
                 {"constrain_one", f.constrain_one},
@@ -82,9 +85,11 @@ int run_fit(const FitCliOptions& o) {
                 {"converged", r.converged}});
     return kExitOk;
   }
-  std::cout << fmt::format("fit of t^{} by a degree-{} polynomial, method {}, domain {}{}\n",
-                           o.shininess, o.degree, to_string(f.method), to_string(f.domain),
-                           o.constrain ? " (constrained)" : "");
+  std::cout << fmt::format(
+      "fit of t^{} by a degree-{} polynomial, method {}, domain {}{}{}\n", o.shininess, o.degree,
+      to_string(f.method), to_string(f.domain),
+      f.method == FitMethod::kMinimax ? "" : fmt::format(", {} samples", f.samples),
+      o.constrain ? " (constrained)" : "");
   if (f.domain == FitDomain::kTau) std::cout << fmt::format("tau {:.6f}\n", r.tau);
   std::cout << fmt::format("variable {}\ncoefficients (c0 first):\n", var);
   for (std::size_t k = 0; k < r.coeffs.size(); ++k)
