@@ -3,7 +3,7 @@
 
 Counts instructions, not seconds: on a shared or virtual machine the wall and CPU clocks of one
 run drift by more than the regressions worth catching, while the instructions a single-threaded
-run executes on fixed inputs repeat to within a few parts per million on any host.
+run executes on fixed inputs repeat to within a few dozen in a billion (tests/bench/RESULTS.md).
 
   instructions.py BUILD_DIR                  compare every workload with its baseline
   instructions.py BUILD_DIR --update [--runs N] [--host TEXT]
@@ -12,7 +12,7 @@ run executes on fixed inputs repeat to within a few parts per million on any hos
 
 Prints "PASS:", "FAIL:" (exit 1, naming each workload outside the tolerance) or "SKIP:" (exit 0)
 when the baselines were measured on another build, counter or C library than BUILD_DIR's, whose
-counts are not comparable.
+counts are not comparable, or when the counter is missing.
 """
 
 import argparse
@@ -38,7 +38,9 @@ BASELINES = os.path.join(HERE, "instructions.json")
 TUNABLES = ("glibc.cpu.hwcaps=-AVX512F,-AVX2,-AVX,-FMA,-FMA4,-BMI1,-BMI2,-LZCNT,-MOVBE,-POPCNT,"
             "-SSE4_1,-SSE4_2,-SSSE3,-ERMS")
 
-UPDATE_HINT = "tests/bench/instructions.py BUILD_DIR --update --runs 5"
+
+def update_hint(build_dir):
+    return f"{os.path.relpath(__file__, SOURCE)} {build_dir} --update --runs 5"
 
 
 def fail_usage(message):
@@ -82,19 +84,13 @@ class Cachegrind:
         return f"cachegrind {out.strip().removeprefix('valgrind-')}"
 
     @staticmethod
-    def count(command, env, scratch, cwd):
-        out = os.path.join(scratch, "cachegrind.out")
-        run = subprocess.run(["valgrind", "-q", "--tool=cachegrind", "--cache-sim=no",
-                              f"--cachegrind-out-file={out}", *command],
-                             env=env, cwd=cwd, stdout=subprocess.DEVNULL,
-                             stderr=subprocess.PIPE, text=True)
-        if run.returncode != 0:
-            raise RuntimeError(f"exit {run.returncode}: {run.stderr.strip()[-400:]}")
-        with open(out, encoding="utf-8") as f:
-            for line in f:
-                if line.startswith("summary:"):
-                    return int(line.split()[1])
-        raise RuntimeError("cachegrind wrote no summary")
+    def wrap(command, out):
+        return ["valgrind", "-q", "--tool=cachegrind", "--cache-sim=no",
+                f"--cachegrind-out-file={out}", *command]
+
+    @staticmethod
+    def parse(line):
+        return int(line.split()[1]) if line.startswith("summary:") else None
 
 
 class Perf:
@@ -114,20 +110,30 @@ class Perf:
         return out.strip().replace("perf version", "perf")
 
     @staticmethod
-    def count(command, env, scratch, cwd):
-        out = os.path.join(scratch, "perf.csv")
-        run = subprocess.run(["perf", "stat", "-x,", "-e", "instructions:u", "-o", out, "--",
-                              *command],
-                             env=env, cwd=cwd, stdout=subprocess.DEVNULL,
-                             stderr=subprocess.PIPE, text=True)
-        if run.returncode != 0:
-            raise RuntimeError(f"exit {run.returncode}: {run.stderr.strip()[-400:]}")
-        with open(out, encoding="utf-8") as f:
-            for line in f:
-                fields = line.split(",")
-                if len(fields) > 2 and fields[2].startswith("instructions"):
-                    return int(fields[0])
-        raise RuntimeError("perf stat counted no instructions")
+    def wrap(command, out):
+        return ["perf", "stat", "-x,", "-e", "instructions:u", "-o", out, "--", *command]
+
+    @staticmethod
+    def parse(line):
+        fields = line.split(",")
+        if len(fields) > 2 and fields[2].startswith("instructions"):
+            return int(fields[0])
+        return None
+
+
+def count(counter, command, env, scratch, cwd):
+    """The instructions one run of `command` executes, as `counter` counts them."""
+    out = os.path.join(scratch, counter.name + ".out")
+    run = subprocess.run(counter.wrap(command, out), env=env, cwd=cwd,
+                         stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    if run.returncode != 0:
+        raise RuntimeError(f"exit {run.returncode}: {run.stderr.strip()[-400:]}")
+    with open(out, encoding="utf-8") as f:
+        for line in f:
+            value = counter.parse(line)
+            if value is not None:
+                return value
+    raise RuntimeError(f"{counter.name} counted no instructions")
 
 
 COUNTERS = {counter.name: counter for counter in (Cachegrind, Perf)}
@@ -163,7 +169,7 @@ def measure(counter, workload, places, runs):
             out = places["out"] + "." + workload["name"]
             shutil.rmtree(out, ignore_errors=True)
             command = [arg.format(**dict(places, out=out)) for arg in workload["command"]]
-            counts.append(counter.count(command, env, scratch, places["work"]))
+            counts.append(count(counter, command, env, scratch, places["work"]))
             shutil.rmtree(out, ignore_errors=True)
     return counts
 
@@ -179,7 +185,7 @@ def percent(measured, baseline):
     return 100.0 * (measured - baseline) / baseline
 
 
-def compare(baselines, counts):
+def compare(baselines, counts, build_dir):
     tolerance = baselines["tolerance_percent"]
     failures = 0
     for workload in baselines["workloads"]:
@@ -191,12 +197,12 @@ def compare(baselines, counts):
         if change > tolerance:
             failures += 1
             print(f"FAIL: {line}: more instructions than the baseline, a regression; if the "
-                  f"change is meant to cost more, update the baselines: {UPDATE_HINT}")
+                  f"change is meant to cost more, update the baselines: {update_hint(build_dir)}")
         elif change < -tolerance:
             failures += 1
             print(f"FAIL: {line}: fewer instructions than the baseline; if the change is meant "
                   f"to save them, update the baselines so that the guard keeps its edge: "
-                  f"{UPDATE_HINT}")
+                  f"{update_hint(build_dir)}")
         else:
             print(f"ok: {line}")
     count = len(baselines["workloads"])
@@ -248,6 +254,9 @@ def main():
     with open(BASELINES, encoding="utf-8") as f:
         baselines = json.load(f)
     args.build_dir = os.path.abspath(args.build_dir)
+    for program in ("glint", "tests/eval_speed"):
+        if not os.access(os.path.join(args.build_dir, program), os.X_OK):
+            fail_usage(f"no {program} in {args.build_dir}: build it (benchmarks on) first")
     build = build_identity(args.build_dir)
     counter = COUNTERS[args.counter or baselines["counter"].split()[0]]
     counter_version = counter.version()
@@ -265,7 +274,7 @@ def main():
             differs.append(f"counter {baselines['counter']!r} here {counter_version!r}")
         if differs:
             print("SKIP: the baselines are for another build, whose counts are not comparable: "
-                  + "; ".join(differs) + f" (to guard this build, {UPDATE_HINT})")
+                  + "; ".join(differs) + f" (to guard this build, {update_hint(args.build_dir)})")
             return 0
 
     places = prepare_inputs(args.build_dir, baselines["inputs"])
@@ -291,7 +300,7 @@ def main():
         write_baselines(baselines)
         print(f"updated {BASELINES}")
         return 0
-    return compare(baselines, counts) if comparing else 0
+    return compare(baselines, counts, args.build_dir) if comparing else 0
 
 
 def default_host():
