@@ -1,8 +1,9 @@
 // `glint eval` speed end to end: writes a vector file of N rows into the build folder once (t
 // uniform over [-1, 1] with six decimals, one white Blinn material n = 50, the same rows for any
 // run), then runs `glint eval FILE --json` (all five units) as a child process and prints rows per
-// second of wall clock, parsing included.
-//   eval_speed [--rows N] [--threads T] [--glint PATH] [--file PATH]
+// second of wall clock, parsing included. --write-only writes the file and stops (the input of
+// tests/bench/instructions.py).
+//   eval_speed [--rows N] [--threads T] [--glint PATH] [--file PATH] [--write-only]
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -43,14 +44,22 @@ void write_rows(const std::string& path, std::uint64_t rows) {
 int main(int argc, char* argv[]) {
   std::uint64_t rows = 10'000'000;
   std::string glint = GLINT_BINARY, file, threads;
-  for (int i = 1; i + 1 < argc; i += 2) {
+  bool run = true;
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--write-only")) {
+      run = false;
+      continue;
+    }
+    if (i + 1 == argc) break;
     if (!std::strcmp(argv[i], "--rows")) rows = std::stoull(argv[i + 1]);
     if (!std::strcmp(argv[i], "--threads")) threads = argv[i + 1];
     if (!std::strcmp(argv[i], "--glint")) glint = argv[i + 1];
     if (!std::strcmp(argv[i], "--file")) file = argv[i + 1];
+    ++i;
   }
   if (file.empty()) file = std::string(GLINT_BUILD_DIR) + "/eval_" + std::to_string(rows) + ".vec";
   write_rows(file, rows);
+  if (!run) return 0;
   const auto start = std::chrono::steady_clock::now();
   const pid_t pid = fork();
   if (pid == 0) {
