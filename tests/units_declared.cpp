@@ -4,6 +4,7 @@
 //                    tests/rtl/discover.cmake turns into the ctest entries rtl.UNIT.CASE
 #include <cstring>
 #include <iostream>
+#include <regex>
 #include <string>
 
 #include "units/catalogue.h"
@@ -13,12 +14,7 @@ namespace {
 
 // A table cell: a '|' in a meaning or a list of values would end it.
 std::string cell(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    if (c == '|') out += '\\';
-    out += c;
-  }
-  return out;
+  return std::regex_replace(text, std::regex(R"(\|)"), R"(\|)");
 }
 
 void key_table(const std::vector<glint::UnitKey>& keys, std::size_t first) {
