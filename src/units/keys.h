@@ -21,26 +21,30 @@ class KeyReader {
   // `known`: every key the unit takes (common keys included).
   KeyReader(const UnitSpec& spec, const std::vector<UnitKey>& known);
 
-  const std::string* find(const std::string& key) const;
-  QFormat format(const std::string& key, QFormat def) const;
-  // An integer in lo..hi; allow_auto: "auto" gives def.
-  int integer(const std::string& key, int def, int lo, int hi, bool allow_auto = false) const;
-  // A finite real number x with lo <= x < hi; nullopt when the key is absent.
-  std::optional<double> real(const std::string& key, double lo, double hi) const;
-  bool flag(const std::string& key, bool def) const;
-  std::string choice(const std::string& key, const std::string& def,
-                     const std::vector<std::string>& allowed) const;
-  [[noreturn]] void fail(const std::string& key, const std::string& value,
-                         const std::string& why) const;
-
   // A declared key (key_table.h): its value, checked against the declaration, or its default.
+  // Keys are read only through their declarations, so that no build states a default or a range
+  // of its own.
   QFormat read(const FormatKey& k) const;
   int read(const IntKey& k) const;
   bool read(const FlagKey& k) const;
   std::string read(const ChoiceKey& k) const;
   std::optional<double> read(const RealKey& k) const;  // nullopt: absent or "none"
 
+  // The key's text as given (nullptr: absent).
+  const std::string* find(const std::string& key) const;
+  [[noreturn]] void fail(const std::string& key, const std::string& value,
+                         const std::string& why) const;
+
  private:
+  QFormat format(const std::string& key, QFormat def) const;
+  // An integer in lo..hi; allow_auto: "auto" gives def.
+  int integer(const std::string& key, int def, int lo, int hi, bool allow_auto) const;
+  // A finite real number x with lo <= x < hi; nullopt when the key is absent.
+  std::optional<double> real(const std::string& key, double lo, double hi) const;
+  bool flag(const std::string& key, bool def) const;
+  std::string choice(const std::string& key, const std::string& def,
+                     const std::vector<std::string>& allowed) const;
+
   const UnitSpec& spec_;
 };
 
