@@ -84,6 +84,13 @@ TEST(StagedEval, Lut) {
     check_spec(spec);
 }
 
+// The specs each unit declares it is co-simulated with (kCosimCases): a new unit is covered here
+// by declaring them.
+TEST(StagedEval, EveryDeclaredCase) {
+  for (const UnitInfo& u : unit_catalog())
+    for (const CosimCase& c : u.cosim_cases) check_spec(cosim_spec(u, c));
+}
+
 // The layout names what the hardware holds, in pipeline order.
 TEST(StagedEval, LayoutsNameTheRegisters) {
   const auto hast = make_unit(parse_unit_spec("hast:d=3"), materials());

@@ -251,6 +251,58 @@ TEST(UnitBuild, ManySlotsEqualOneSlotAtATime) {
   }
 }
 
+// ---- the contract in code: key tables and declared cases -------------------------------------
+
+// Every unit declares its co-simulation cases (kCosimCases, src/units/<unit>/<unit>.cpp): its
+// defaults, a tables=ram case (the testbench loads the RAMs) and at least one other spec, names
+// unique. Each builds, and its canonical spec builds the same unit again.
+TEST(DeclaredCases, EveryUnitDeclaresCasesThatBuild) {
+  const std::vector<MaterialParams> slots = {material(50.0, 1.0), material(300.0, 0.2),
+                                             material(20.0, 5e-4)};
+  for (const UnitInfo& u : unit_catalog()) {
+    bool defaults = false, ram = false;
+    std::vector<std::string> names;
+    for (const CosimCase& c : u.cosim_cases) {
+      SCOPED_TRACE(cosim_name(u, c));
+      EXPECT_EQ(std::count(names.begin(), names.end(), c.name), 0) << "declared twice";
+      names.emplace_back(c.name);
+      defaults |= c.spec.empty();
+      ram |= c.spec.find("tables=ram") != std::string_view::npos;
+      EXPECT_NE(c.input.find("--vectors traces/"), std::string_view::npos);
+      const auto unit = make_unit(parse_unit_spec(cosim_spec(u, c)), slots);
+      const auto again = make_unit(parse_unit_spec(unit->canonical_spec()), slots);
+      EXPECT_EQ(again->canonical_spec(), unit->canonical_spec());
+      EXPECT_EQ(again->describe(), unit->describe());
+    }
+    EXPECT_TRUE(defaults) << u.name;
+    EXPECT_TRUE(ram) << u.name;
+    EXPECT_GE(u.cosim_cases.size(), 3u) << u.name;
+  }
+}
+
+// The canonical spec is written from the key table: at the defaults it names keys of the table
+// only, in the table's order, each at the default `glint units` lists (an `auto` key at what it
+// resolved to); a key it leaves out is one whose default the canonical form omits.
+TEST(KeyTables, CanonicalSpecFollowsTheTable) {
+  const std::vector<MaterialParams> slots = {material(50.0, 1.0)};
+  for (const UnitInfo& u : unit_catalog()) {
+    SCOPED_TRACE(u.name);
+    const UnitSpec canonical = parse_unit_spec(make_unit({u.name, {}}, slots)->canonical_spec());
+    std::size_t i = 0;
+    for (const auto& [key, value] : canonical.keys) {
+      for (; i < u.keys.size() && u.keys[i].key != key; ++i) {
+        const std::string& left_out = u.keys[i].default_value;
+        EXPECT_TRUE(left_out == "none" || left_out == "rom") << u.keys[i].key << " left out";
+      }
+      ASSERT_LT(i, u.keys.size()) << key << ": not in the table, or out of its order";
+      if (u.keys[i].default_value != "auto") {
+        EXPECT_EQ(value, u.keys[i].default_value) << key;
+      }
+      ++i;
+    }
+  }
+}
+
 // ---- wide input formats: built or refused, promptly ------------------------------------------
 
 // Every unit at input formats up to the 62-bit registers either builds or refuses the format with

@@ -96,6 +96,14 @@ const std::vector<UnitInfo>& unit_catalog() {
   return catalog;
 }
 
+std::string cosim_spec(const UnitInfo& unit, const CosimCase& c) {
+  return c.spec.empty() ? unit.name : unit.name + ":" + std::string(c.spec);
+}
+
+std::string cosim_name(const UnitInfo& unit, const CosimCase& c) {
+  return unit.name + "." + std::string(c.name);
+}
+
 std::vector<std::string> unit_names() {
   std::vector<std::string> names;
   for (const auto& u : unit_catalog()) names.push_back(u.name);

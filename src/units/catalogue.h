@@ -23,6 +23,11 @@ const UnitInfo& unit_info(std::string_view name);  // throws std::invalid_argume
 // Every unit's name in catalogue order: the default set of `glint eval` and `glint sim`.
 std::vector<std::string> unit_names();
 
+// A co-simulation case's whole spec ("lut" or "lut:bits=4,table_frac=20") and its name as the
+// tests know it ("lut.bits4": ctest rtl.lut.bits4).
+std::string cosim_spec(const UnitInfo& unit, const CosimCase& c);
+std::string cosim_name(const UnitInfo& unit, const CosimCase& c);
+
 // Display labels of units shown side by side: the unit's name, or name.1, name.2, ... when the same
 // kind appears more than once (e.g. hast and hast:d=3).
 std::vector<std::string> unit_labels(const std::vector<std::string>& names);

@@ -6,6 +6,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 
 namespace glint {
@@ -99,25 +100,83 @@ std::string auto_value(bool given, long long resolved) {
   return given ? std::to_string(resolved) : fmt::format("'auto' ({})", resolved);
 }
 
+QFormat KeyReader::read(const FormatKey& k) const {
+  return format(std::string(k.name), k.def);
+}
+
+int KeyReader::read(const IntKey& k) const {
+  return integer(std::string(k.name), k.def, k.lo, k.hi, k.takes_auto);
+}
+
+bool KeyReader::read(const FlagKey& k) const {
+  return flag(std::string(k.name), k.def);
+}
+
+std::string KeyReader::read(const ChoiceKey& k) const {
+  return choice(std::string(k.name), std::string(k.def), k.choices());
+}
+
+std::optional<double> KeyReader::read(const RealKey& k) const {
+  const std::string* v = find(std::string(k.name));
+  if (!v || *v == "none") return std::nullopt;
+  return real(std::string(k.name), k.lo, k.hi);
+}
+
+void put_key(nlohmann::json& config, const FormatKey& k, const QFormat& value) {
+  config[std::string(k.name)] = value.name();
+}
+
+void put_key(nlohmann::json& config, const IntKey& k, int value) {
+  config[std::string(k.name)] = value;
+}
+
+void put_key(nlohmann::json& config, const FlagKey& k, bool value) {
+  config[std::string(k.name)] = on_off(value);
+}
+
+void put_key(nlohmann::json& config, const ChoiceKey& k, std::string_view value) {
+  if (!k.in_canonical_at_default && value == k.def) return;
+  config[std::string(k.name)] = std::string(value);
+}
+
+void put_key(nlohmann::json& config, const RealKey& k, std::optional<double> value) {
+  if (value) config[std::string(k.name)] = *value;
+}
+
+UnitKey key_entry(const FormatKey& k) {
+  return {std::string(k.name), std::string(k.doc), k.def.name(), "uqI.F or sqI.F"};
+}
+
+UnitKey key_entry(const IntKey& k) {
+  const bool is_auto = k.takes_auto && k.def == kAutoInt;
+  return {std::string(k.name), std::string(k.doc), is_auto ? "auto" : std::to_string(k.def),
+          fmt::format("{}..{}{}", k.lo, k.hi, k.takes_auto ? " or auto" : "")};
+}
+
+UnitKey key_entry(const FlagKey& k) {
+  return {std::string(k.name), std::string(k.doc), on_off(k.def), "on or off"};
+}
+
+UnitKey key_entry(const ChoiceKey& k) {
+  return {std::string(k.name), std::string(k.doc), std::string(k.def),
+          fmt::format("{}", fmt::join(k.choices(), "|"))};
+}
+
+UnitKey key_entry(const RealKey& k) {
+  return {std::string(k.name), std::string(k.doc), "none",
+          fmt::format("{} <= x < {}, or none", k.lo, k.hi)};
+}
+
 std::vector<UnitKey> common_keys() {
-  return {
-      {"in", "input format of t (clamped to [0, 1], rounded to nearest)", kDefaultIn.name()},
-      {"out", "output format of the highlight", kDefaultOut.name()},
-      {"skip",
-       "tau comparator on|off: skips t where the unit's own output is <= eps_K/c_y, never above "
-       "Källberg's tau (eq.5, §3)",
-       "on"},
-      {"buffer", "merge-buffer entries (timing; auto: latency + 3, full throughput)", "auto"},
-      {"tables",
-       "per-slot tables (tau thresholds, per-material tables) as rom: case ROMs of the scene's "
-       "materials, or ram: registers with a write port (glint rtl: cfg_*), loaded at run time",
-       "rom"}};
+  using K = CommonKeyTable;
+  return key_list(K::in, K::out, K::skip, K::buffer, K::tables);
 }
 
 CommonKeys read_common_keys(const KeyReader& keys) {
   CommonKeys c;
-  c.in = keys.format("in", kDefaultIn);
-  c.out = keys.format("out", kDefaultOut);
+  using K = CommonKeyTable;
+  c.in = keys.read(K::in);
+  c.out = keys.read(K::out);
   // A format without a fraction bit cannot carry a highlight: uq1.0 holds 0 and 1 only (its
   // input rounding alone is a whole-range error), so it is refused rather than reported.
   for (const auto& [key, f] : {std::pair<const char*, QFormat>{"in", c.in}, {"out", c.out}}) {
@@ -127,9 +186,9 @@ CommonKeys read_common_keys(const KeyReader& keys) {
           fmt::format("key '{}' = '{}': needs at least one fraction bit and must represent 1.0",
                       key, f.name()));
   }
-  c.skip = keys.flag("skip", true);
-  c.buffer = keys.integer("buffer", -1, 1, 1 << 16, true);
-  c.tables_ram = keys.choice("tables", "rom", {"rom", "ram"}) == "ram";
+  c.skip = keys.read(K::skip);
+  c.buffer = keys.read(K::buffer);
+  c.tables_ram = keys.read(K::tables) == "ram";
   return c;
 }
 

@@ -21,7 +21,7 @@
 #pragma once
 
 #include <string>
-#include <vector>
+#include <string_view>
 
 namespace glint {
 
@@ -29,10 +29,8 @@ namespace glint {
 enum class MatchMode { kNone, kMinimax, kWidth };
 MatchMode parse_match_mode(const std::string& text);  // "minimax", "width", else none
 const char* to_string(MatchMode mode);
-// The key values, for KeyReader::choice.
-inline std::vector<std::string> match_mode_names() {
-  return {"none", "minimax", "width"};
-}
+// The key's values (schlick's and hast's keys.h).
+inline constexpr std::string_view kMatchModeNames[] = {"none", "minimax", "width"};
 
 // Largest overshoot and undershoot of an approximant against t^n over [0, 1].
 struct MatchError {

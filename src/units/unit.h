@@ -3,10 +3,10 @@
 // description each unit registers in the catalogue (units/catalogue.h): its name, keys and how to
 // build it.
 //
-// A unit's knowledge lives in its own folder, src/units/<unit>/: datapath.h (the bit-accurate
-// datapath, one behaviour for eval and the staged evaluation), datapath.cpp (construction, real
-// models, error budget), and <unit>.cpp (keys, build, timing, stage layout, cost inventory,
-// description). Nothing outside that folder compares unit names.
+// A unit's knowledge lives in its own folder, src/units/<unit>/: keys.h (its key table), datapath.h
+// (the bit-accurate datapath, one behaviour for eval and the staged evaluation), datapath.cpp
+// (construction, real models, error budget), and <unit>.cpp (co-simulation cases, build, timing,
+// stage layout, cost inventory, description). Nothing outside that folder compares unit names.
 #pragma once
 
 #include <cstddef>
@@ -20,6 +20,7 @@
 
 #include "timing/timing.h"
 #include "units/common.h"
+#include "units/key_table.h"
 #include "units/slot_plan.h"
 #include "units/stages.h"
 
@@ -36,15 +37,19 @@ struct UnitSpec {
   std::vector<std::pair<std::string, std::string>> keys;  // in the order given
 };
 
-struct UnitKey {
-  std::string key;
-  std::string meaning;
-  std::string default_value;
+// A spec the unit is tested and co-simulated with, in its own folder (the kind's kCosimCases):
+// ctest `rtl.<unit>.<name>` runs `glint rtl <unit>:SPEC INPUT` and the Verilog testbench over every
+// input code of every slot (tests/rtl/cosim.sh), and the unit tests build every such spec.
+struct CosimCase {
+  std::string_view name;
+  std::string_view spec;   // the keys after "<unit>:", empty for the defaults
+  std::string_view input;  // glint rtl's input options, paths from the source folder
 };
 struct UnitInfo {
   std::string name;
   std::string summary;
   std::vector<UnitKey> keys;  // common keys first, then the unit's own
+  std::vector<CosimCase> cosim_cases;
 };
 
 // One unit built for a scene's slots (units/slot_plan.h): a comparator threshold per slot, in front

@@ -3,27 +3,23 @@
 // loop the compiler inlines the datapath into, the staged evaluation through the same datapath
 // function, and the description with its elaboration report.
 //
-// A kind (src/units/<unit>/<unit>.cpp) is a struct with:
+// A kind (src/units/<unit>/<unit>.cpp) is a struct deriving from UnitKindDefaults with:
 //   using Config = ...;  using Datapath = ...;      // Datapath(config, MaterialParams)
 //   static constexpr const char* kName, kSummary;
-//   static std::vector<UnitKey> keys();            // its own keys, in catalogue order
+//   using Keys = ...;                              // its key table (src/units/<unit>/keys.h)
+//   static constexpr CosimCase kCosimCases[];      // the specs it is co-simulated with (unit.h)
 //   static std::unique_ptr<SpecularUnit> build(const KeyReader&, const CommonKeys&,
 //                                              const SlotPlan&);   // a datapath per plan.groups
 //   static std::vector<Stage> stages(const Config&, const std::vector<Datapath>&, UnitTiming);
 //   static void cost(CostBuilder&, const LaneShape&, const Config&, const std::vector<Datapath>&);
 //   static nlohmann::json describe_slot(const Datapath&);
-//   static double error_bound(const Datapath&);    // optional (UnitKindDefaults: NaN)
-//   static bool carries_root(const Config&);       // optional (UnitKindDefaults: false)
-//   static std::optional<NRegister> n_register(const Config&, const std::vector<Datapath>&,
-//                                              bool fixed);   // optional: units with an n register
-//   static std::string rtl(const hdl::DatapathPorts&, const Config&, const std::vector<Datapath>&,
-//                          const StageLayout&);   // optional: its Verilog
-//                          (src/units/<unit>/rtl.cpp)
-// (deriving from UnitKindDefaults for the optional ones), and its Datapath has eval(t), run(t,
-// probe) (eval is run with NoProbe), model, float_model and datapath_bound_ulps() (its error
-// budget: |eval - model| in output ulps). build() ends with make_unit_set<Kind>(...), which also
-// sets every slot's comparator threshold from the unit's own output (unit_threshold_raw) through
-// the datapath of the slot's group.
+// and, where UnitKindDefaults' do not fit, error_bound, carries_root, n_register and rtl (below).
+// Its Datapath has eval(t), run(t, probe) (eval is run with NoProbe), model, float_model and
+// datapath_bound_ulps() (its error budget: |eval - model| in output ulps). build() reads the keys
+// (KeyReader::read), writes each resolved value back (put_key) and ends with make_unit_set<Kind>,
+// which also sets every slot's comparator threshold from the unit's own output
+// (unit_threshold_raw) through the datapath of the slot's group. kind_check.h checks all of it at
+// compile time.
 #pragma once
 
 #include <fmt/format.h>
@@ -41,6 +37,7 @@
 
 #include "cost/builder.h"
 #include "units/keys.h"
+#include "units/kind_check.h"
 #include "units/lane_cost.h"
 #include "units/n_register.h"
 #include "units/slot_plan.h"
@@ -74,6 +71,8 @@ struct UnitKindDefaults {
 
 template <class Kind>
 class UnitSet final : public SpecularUnit {
+  static_assert(check_unit_kind<Kind>());
+
  public:
   using Config = typename Kind::Config;
   using Datapath = typename Kind::Datapath;
@@ -249,10 +248,12 @@ class UnitSet final : public SpecularUnit {
 
 // The description JSON's config of the common keys; a kind's build adds its own keys.
 inline nlohmann::json common_config(const CommonKeys& c) {
-  nlohmann::json j{{"in", c.in.name()}, {"out", c.out.name()}, {"skip", on_off(c.skip)}};
-  // tables=rom is left out of the canonical spec, so that specs and goldens written before the
-  // key existed keep their bytes.
-  if (c.tables_ram) j["tables"] = "ram";
+  using K = CommonKeyTable;
+  nlohmann::json j;
+  put_key(j, K::in, c.in);
+  put_key(j, K::out, c.out);
+  put_key(j, K::skip, c.skip);
+  put_key(j, K::tables, c.tables_ram ? "ram" : "rom");
   return j;
 }
 
@@ -311,19 +312,20 @@ std::vector<Datapath> build_per_group_bounded(const char* unit, const std::strin
 }
 
 // Finishes a kind's build: the merge-buffer depth (auto: enough credits that a result never waits
-// for one when the sink keeps up), the canonical spec (keys in catalogue order, so it reads like
-// the `glint units` listing) and the unit.
-template <class Kind>
+// for one when the sink keeps up), the canonical spec (every key the build wrote back, in the key
+// table's order, so it reads like the `glint units` listing) and the unit. Config and Datapath are
+// deduced rather than named through Kind, so that a kind lacking them is reported by
+// check_unit_kind and not as a call that matches nothing.
+template <class Kind, class Config, class Datapath>
 std::unique_ptr<SpecularUnit> make_unit_set(const CommonKeys& common, nlohmann::json config,
-                                            typename Kind::Config cfg,
-                                            std::vector<typename Kind::Datapath> datapaths,
+                                            Config cfg, std::vector<Datapath> datapaths,
                                             const SlotPlan& plan, UnitTiming timing) {
   timing.buffer_depth = common.buffer > 0 ? common.buffer : timing.latency + 3;
-  config["buffer"] = timing.buffer_depth;
+  put_key(config, CommonKeyTable::buffer, timing.buffer_depth);
   std::string canonical = Kind::kName;
   char sep = ':';
   std::vector<UnitKey> keys = common_keys();
-  for (UnitKey& k : Kind::keys()) keys.push_back(std::move(k));
+  for (UnitKey& k : Kind::Keys::list()) keys.push_back(std::move(k));
   for (const UnitKey& key : keys) {
     const auto it = config.find(key.key);
     if (it == config.end()) continue;
@@ -338,8 +340,15 @@ std::unique_ptr<SpecularUnit> make_unit_set(const CommonKeys& common, nlohmann::
 // The catalogue entry of a kind.
 template <class Kind>
 class DescriptionOf final : public UnitDescription {
+  static_assert(check_unit_kind<Kind>());
+
  public:
-  UnitInfo info() const override { return {Kind::kName, Kind::kSummary, Kind::keys()}; }
+  UnitInfo info() const override {
+    return {Kind::kName,
+            Kind::kSummary,
+            Kind::Keys::list(),
+            {std::begin(Kind::kCosimCases), std::end(Kind::kCosimCases)}};
+  }
   std::unique_ptr<SpecularUnit> build(const KeyReader& keys, const SlotPlan& plan) const override {
     return Kind::build(keys, read_common_keys(keys), plan);
   }

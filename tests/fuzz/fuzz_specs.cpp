@@ -1,10 +1,11 @@
 // Unit SPEC parsing alone, fast (the units harness builds a unit per input, at tens of inputs per
 // second): parse_unit_spec, the unit's name against the catalogue, every key against the unit's
 // list (KeyReader) and every key the units share (read_common_keys: formats, skip, buffer), and
-// every key's value through each of KeyReader's readers. A spec written back as NAME:k=v,...
+// every key's value through each kind of declared key. A spec written back as NAME:k=v,...
 // parses to the same spec. std::invalid_argument is a refusal (exit 2); anything else a finding.
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include "fuzz.h"
 #include "units/catalogue.h"
@@ -24,19 +25,21 @@ std::string spec_text(const UnitSpec& spec) {
   return out;
 }
 
-// Each reader on a key's value: a refusal names the key (invalid_argument), nothing else.
+// Each reader on a key's value, the key declared as each kind of key (units/key_table.h): a
+// refusal names the key (invalid_argument), nothing else.
 void read_every_way(const KeyReader& keys, const std::string& key) {
+  static constexpr std::string_view kWords[] = {"a", "minimax", "width", "none"};
   const auto attempt = [](auto&& f) {
     try {
       f();
     } catch (const std::invalid_argument&) {
     }
   };
-  attempt([&] { keys.format(key, uq(1, 15)); });
-  attempt([&] { keys.integer(key, 0, -1000, 1000, true); });
-  attempt([&] { keys.real(key, 0.0, 1.0); });
-  attempt([&] { keys.flag(key, false); });
-  attempt([&] { keys.choice(key, "a", {"a", "minimax", "width", "none"}); });
+  attempt([&] { keys.read(FormatKey{key, uq(1, 15), ""}); });
+  attempt([&] { keys.read(IntKey{key, 0, -1000, 1000, "", true}); });
+  attempt([&] { keys.read(RealKey{key, 0.0, 1.0, ""}); });
+  attempt([&] { keys.read(FlagKey{key, false, ""}); });
+  attempt([&] { keys.read(ChoiceKey{key, "a", kWords, ""}); });
 }
 
 }  // namespace

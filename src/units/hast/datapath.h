@@ -27,17 +27,18 @@
 #include <string>
 
 #include "units/common.h"
+#include "units/hast/keys.h"
 #include "units/stages.h"
 #include "units/u_scaler.h"
 
 namespace glint {
 
 struct HastConfig {
-  QFormat in = kDefaultIn;
-  QFormat out = kDefaultOut;
-  int d = 4;       // exponent (the chain's length D with d=auto), one multiplier per step
-  int guard = -1;  // guard bits of the chain register; -1: derive from d (see budget)
-  bool skip = true;
+  QFormat in = CommonKeyTable::in.def;
+  QFormat out = CommonKeyTable::out.def;
+  int d = HastKeys::d.def;  // exponent (the chain's length D with d=auto), one multiplier per step
+  int guard = HastKeys::guard.def;  // guard bits of the chain register; kAutoInt: from d (budget)
+  bool skip = CommonKeyTable::skip.def;
   bool per_slot_d = false;  // d=auto: each slot has its own order <= d (operand muxes)
   // What refusals name: guard resolved from guard=auto, and the key an explicit or matched root
   // comes from ("key 'root' = '0.9'"; empty: the material's threshold).

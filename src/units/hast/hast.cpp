@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <unordered_map>
 
 #include "units/hast/datapath.h"
@@ -31,24 +32,16 @@ struct Hast : UnitKindDefaults {
   static constexpr const char* kSummary =
       "Hast kappa (t - tau)^d as u^d, u = (t - tau)/(1 - tau): multiplier chain";
 
-  static std::vector<UnitKey> keys() {
-    return {{"d",
-             "exponent: d - 1 multipliers (auto, with match=minimax: per slot, d in 1..16 and "
-             "the root jointly by minimax, the chain as long as the largest d; ~0.25 ms per "
-             "distinct n)",
-             "4"},
-            {"guard", "guard bits of the chain (auto: ceil(log2(2d-2)) + 1)", "auto"},
-            {"match",
-             "root against t^n of the material's n (Gaussian lobes: their equivalent n = "
-             "2/omega^2): none (the material's Källberg threshold, or root=) | minimax (the root "
-             "minimizing max |f - t^n| on [0, 1]; ~40 us per distinct n) | width (f(t_half) = "
-             "1/2 where t_half^n = 1/2: matched half-width, closed form, clamped at 0)",
-             "none"},
-            {"root",
-             "explicit root tau in [0, 1) for every slot, as Hast et al. 2003 use it (their "
-             "tau = 0.92 for s = 75); not with match=minimax|width",
-             "none"}};
-  }
+  using Keys = HastKeys;
+  static constexpr CosimCase kCosimCases[] = {
+      {"default", "", "--vectors traces/phong_basic.vec --sink-ready 0.6"},
+      {"d3_materials", "d=3", "--vectors traces/blinn_colored.vec"},
+      {"auto_d", "d=auto,match=minimax", "--vectors traces/multi_light.vec --sink-ready 0.5"},
+      {"d1_narrow", "d=1,in=uq1.9,out=uq1.8,guard=0",
+       "--vectors traces/gaussian.vec --sink-ready 0.4"},
+      {"ram", "tables=ram", "--vectors traces/phong_basic.vec --sink-ready 0.6"},
+      {"ram_auto_d", "tables=ram,d=auto,match=minimax,in=uq1.12",
+       "--vectors traces/blinn_colored.vec --sink-ready 0.5"}};
 
   // Each slot's root and order from the keys (root >= 0: explicit); solved once per distinct n.
   static std::vector<HastSlot> slot_roots(const KeyReader& keys, MatchMode match, bool auto_d,
@@ -97,12 +90,12 @@ struct Hast : UnitKindDefaults {
     const std::vector<MaterialParams>& groups = plan.groups;
     const std::string* d_key = keys.find("d");
     const bool auto_d = d_key && *d_key == "auto";
-    HastConfig c{common.in, common.out, auto_d ? 16 : keys.integer("d", 4, 1, 16),
-                 keys.integer("guard", -1, 0, 20, true), common.skip};
-    const MatchMode match = parse_match_mode(keys.choice("match", "none", match_mode_names()));
+    HastConfig c{common.in, common.out, auto_d ? 16 : keys.read(Keys::d), keys.read(Keys::guard),
+                 common.skip};
+    const MatchMode match = parse_match_mode(keys.read(Keys::match));
     const std::string* root_key = keys.find("root");
-    double root = -1.0;  // < 0: no explicit root
-    if (root_key && *root_key != "none") root = keys.real("root", 0.0, 1.0).value_or(-1.0);
+    const std::optional<double> root_given = keys.read(Keys::root);
+    const double root = root_given.value_or(-1.0);  // < 0: no explicit root
     if (root >= 0 && match != MatchMode::kNone)
       // refusal: hast.root_match
       keys.fail("root", *keys.find("root"),
@@ -130,13 +123,17 @@ struct Hast : UnitKindDefaults {
         root >= 0 ? KeyValue{"root", *root_key} : KeyValue{"match", std::string(to_string(match))};
     c.root_source = key_values({root_from});
     nlohmann::json config = common_config(common);
-    config["d"] = auto_d ? nlohmann::json("auto") : nlohmann::json(c.d);
-    if (auto_d) config["chain"] = c.d;
-    config["guard"] = c.guard;
-    // match=none is left out of the canonical spec, so that specs and goldens written before the
-    // key existed read the same.
-    if (match != MatchMode::kNone) config["match"] = to_string(match);
-    if (root >= 0) config["root"] = root;
+    if (auto_d) {
+      // The key as given (each slot has its own d); the chain's length is described beside it,
+      // outside the spec.
+      config[std::string(Keys::d.name)] = "auto";
+      config["chain"] = c.d;
+    } else {
+      put_key(config, Keys::d, c.d);
+    }
+    put_key(config, Keys::guard, c.guard);
+    put_key(config, Keys::match, to_string(match));
+    put_key(config, Keys::root, root_given);
     // u scaler stage, then d - 1 multiplier stages.
     const UnitTiming timing{c.d, 1, 0};
     std::vector<HastUnit> units;

@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "units/common.h"
+#include "units/horner/keys.h"
 #include "units/stages.h"
 #include "units/u_scaler.h"
 
@@ -51,10 +52,10 @@ struct HornerCoefficients {
 };
 
 struct HornerConfig {
-  QFormat in = kDefaultIn;
-  QFormat out = kDefaultOut;
-  int guard = -1;  // fh - fo; -1: horner_required_guard over every slot
-  bool skip = true;
+  QFormat in = CommonKeyTable::in.def;
+  QFormat out = CommonKeyTable::out.def;
+  int guard = HornerKeys::guard.def;  // fh - fo; kAutoInt: horner_required_guard over every slot
+  bool skip = CommonKeyTable::skip.def;
   bool guard_auto = false;  // guard resolved from key guard=auto (refusals say so)
 };
 

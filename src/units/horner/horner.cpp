@@ -35,27 +35,24 @@ struct Horner : UnitKindDefaults {
   static constexpr const char* kSummary =
       "fitted polynomial, Horner pipeline (Öztürk eq.12), one multiply-add per stage";
 
-  static std::vector<UnitKey> keys() {
-    return {{"degree", "polynomial degree p (1..10)", "4"},
-            {"method",
-             "fit: ls | robust (Öztürk's bisquare weights, for noisy measured data: on t^n "
-             "itself they can reject the highlight, and the build warns) | minimax (Remez); "
-             "each made monotone",
-             "minimax"},
-            {"domain",
-             "fit domain: tau ([tau_q, 1], u = (t-tau_q)/(1-tau_q), tau_q the root code) | full",
-             "tau"},
-            {"constrain", "on: P(1) = 1 and, on the tau domain, P(tau) = 0", "on"},
-            {"guard", "guard bits (auto: faithful bound from the coefficients)", "auto"}};
-  }
+  using Keys = HornerKeys;
+  static constexpr CosimCase kCosimCases[] = {
+      {"default", "", "--vectors traces/phong_basic.vec --sink-ready 0.7"},
+      {"full_ls", "degree=2,domain=full,method=ls", "--vectors traces/blinn_colored.vec"},
+      {"wide", "degree=10,guard=12", "--vectors traces/phong_basic.vec --sink-ready 0.5"},
+      {"deg6_lights", "degree=6,guard=8",
+       "--vectors traces/eight_lights.vec --sink-ready 0.9 --seed 3"},
+      {"ram", "tables=ram", "--vectors traces/phong_basic.vec --sink-ready 0.7"},
+      {"ram_full", "tables=ram,degree=3,domain=full,in=uq1.12",
+       "--vectors traces/multi_light.vec --sink-ready 0.5"}};
 
   static std::unique_ptr<SpecularUnit> build(const KeyReader& keys, const CommonKeys& common,
                                              const SlotPlan& plan) {
-    const int degree = keys.integer("degree", 4, 1, 10);
-    const std::string method = keys.choice("method", "minimax", {"ls", "robust", "minimax"});
-    const std::string domain = keys.choice("domain", "tau", {"tau", "full"});
-    const bool constrain = keys.flag("constrain", true);
-    HornerConfig c{common.in, common.out, keys.integer("guard", -1, 0, 20, true), common.skip};
+    const int degree = keys.read(Keys::degree);
+    const std::string method = keys.read(Keys::method);
+    const std::string domain = keys.read(Keys::domain);
+    const bool constrain = keys.read(Keys::constrain);
+    HornerConfig c{common.in, common.out, keys.read(Keys::guard), common.skip};
     HornerFitSpec spec;
     spec.degree = degree;
     spec.method = parse_fit_method(method);
@@ -65,11 +62,11 @@ struct Horner : UnitKindDefaults {
     // every input any of their comparators lets through lies in the fitted domain.
     std::vector<HornerUnit> units = build_horner_slots(spec, c, plan.groups);
     nlohmann::json config = common_config(common);
-    config["degree"] = degree;
-    config["method"] = method;
-    config["domain"] = domain;
-    config["constrain"] = on_off(constrain);
-    config["guard"] = c.guard;
+    put_key(config, Keys::degree, degree);
+    put_key(config, Keys::method, method);
+    put_key(config, Keys::domain, domain);
+    put_key(config, Keys::constrain, constrain);
+    put_key(config, Keys::guard, c.guard);
     // u scaler stage, then one multiply-add stage per degree.
     const UnitTiming timing{degree + 1, 1, 0};
     return make_unit_set<Horner>(common, std::move(config), HornerSetup{c, domain == "tau"},

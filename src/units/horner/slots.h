@@ -13,11 +13,12 @@ namespace glint {
 
 // Every field is part of fit_slot's memo key (slots.cpp): a new field goes there too.
 struct HornerFitSpec {
-  int degree = 4;
+  int degree = HornerKeys::degree.def;
   FitMethod method = FitMethod::kMinimax;
-  bool tau_domain = true;
-  bool constrain = true;
+  bool tau_domain = HornerKeys::domain.def == "tau";
+  bool constrain = HornerKeys::constrain.def;
 };
+static_assert(HornerKeys::method.def == "minimax", "HornerFitSpec::method is the key's default");
 
 // The lower end of a slot's fit domain: tau_q, the value of the u scaler's root code
 // (root_threshold_raw), so that the fitted polynomial's u is the hardware's; 0 on the full domain

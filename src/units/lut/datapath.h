@@ -25,16 +25,17 @@
 #include <vector>
 
 #include "units/common.h"
+#include "units/lut/keys.h"
 #include "units/stages.h"
 
 namespace glint {
 
 struct LutConfig {
-  QFormat in = kDefaultIn;
-  QFormat out = kDefaultOut;
-  int bits = 6;         // table address bits: 2^bits + 1 entries
-  int table_frac = -1;  // entry fraction bits; -1: out.frac_bits + 2
-  bool skip = true;
+  QFormat in = CommonKeyTable::in.def;
+  QFormat out = CommonKeyTable::out.def;
+  int bits = LutKeys::bits.def;              // table address bits: 2^bits + 1 entries
+  int table_frac = LutKeys::table_frac.def;  // entry fraction bits; kAutoInt: out.frac_bits + 2
+  bool skip = CommonKeyTable::skip.def;
   bool table_frac_auto = false;  // resolved from table_frac=auto (refusals say so)
 };
 

@@ -26,20 +26,26 @@ struct Lut : UnitKindDefaults {
   static constexpr const char* kSummary =
       "table of t^n over [t0, 1] + linear interpolation, one table per material";
 
-  static std::vector<UnitKey> keys() {
-    return {{"bits", "table address bits (2^b + 1 entries)", "6"},
-            {"table_frac", "table entry fraction bits (auto: out + 2)", "auto"}};
-  }
+  using Keys = LutKeys;
+  static constexpr CosimCase kCosimCases[] = {
+      {"default", "", "--vectors traces/phong_basic.vec --sink-ready 0.6"},
+      {"bits4", "bits=4,table_frac=20",
+       "--vectors traces/multi_light.vec --sink-ready 0.3 --seed 5"},
+      {"narrow_skip_off", "bits=9,in=uq1.7,out=uq1.10,skip=off",
+       "--vectors traces/eight_lights.vec --sink-ready 0.8"},
+      {"ram", "tables=ram", "--vectors traces/phong_basic.vec --sink-ready 0.6"},
+      {"ram_bits4", "tables=ram,bits=4,table_frac=20,in=uq1.12",
+       "--vectors traces/multi_light.vec --sink-ready 0.5"}};
 
   static std::unique_ptr<SpecularUnit> build(const KeyReader& keys, const CommonKeys& common,
                                              const SlotPlan& plan) {
-    LutConfig c{common.in, common.out, keys.integer("bits", 6, 1, 16),
-                keys.integer("table_frac", -1, 0, 40, true), common.skip};
+    LutConfig c{common.in, common.out, keys.read(Keys::bits), keys.read(Keys::table_frac),
+                common.skip};
     c.table_frac_auto = c.table_frac < 0;
     if (c.table_frac < 0) c.table_frac = common.out.frac_bits + 2;
     nlohmann::json config = common_config(common);
-    config["bits"] = c.bits;
-    config["table_frac"] = c.table_frac;
+    put_key(config, Keys::bits, c.bits);
+    put_key(config, Keys::table_frac, c.table_frac);
     // index + table read, interpolation + rounding.
     const UnitTiming timing{2, 1, 0};
     // One table per datapath group, spanning from the group's smallest tau (its slots' comparators

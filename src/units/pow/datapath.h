@@ -24,20 +24,21 @@
 #include <vector>
 
 #include "units/common.h"
+#include "units/pow/keys.h"
 #include "units/stages.h"
 
 namespace glint {
 
 struct PowConfig {
-  QFormat in = kDefaultIn;
-  QFormat out = kDefaultOut;
-  QFormat n_format = uq(14, 4);
-  int log_bits = 8;   // log2 table address bits
-  int log_frac = 24;  // log2 table entry fraction bits
-  int y_frac = 20;    // fraction bits of y = n log2 t
-  int exp_bits = 6;   // exp2 table address bits
-  int exp_frac = 24;  // exp2 table entry fraction bits
-  bool skip = true;
+  QFormat in = CommonKeyTable::in.def;
+  QFormat out = CommonKeyTable::out.def;
+  QFormat n_format = PowKeys::n.def;
+  int log_bits = PowKeys::log_bits.def;  // log2 table address bits
+  int log_frac = PowKeys::log_frac.def;  // log2 table entry fraction bits
+  int y_frac = PowKeys::y_frac.def;      // fraction bits of y = n log2 t
+  int exp_bits = PowKeys::exp_bits.def;  // exp2 table address bits
+  int exp_frac = PowKeys::exp_frac.def;  // exp2 table entry fraction bits
+  bool skip = CommonKeyTable::skip.def;
 };
 
 // What pow's datapath reads that does not depend on the material: the log2 and exp2 tables and

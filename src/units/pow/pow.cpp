@@ -27,15 +27,16 @@ struct Pow : UnitKindDefaults {
   static constexpr const char* kSummary =
       "exact-power baseline: log2 table + interp, multiply by n, exp2 table + interp";
 
-  static std::vector<UnitKey> keys() {
-    const PowConfig pw;
-    return {{"n", "shininess register format", pw.n_format.name()},
-            {"log_bits", "log2 table address bits (2^b + 1 entries)", std::to_string(pw.log_bits)},
-            {"log_frac", "log2 table entry fraction bits", std::to_string(pw.log_frac)},
-            {"y_frac", "fraction bits of y = n log2 t", std::to_string(pw.y_frac)},
-            {"exp_bits", "exp2 table address bits", std::to_string(pw.exp_bits)},
-            {"exp_frac", "exp2 table entry fraction bits", std::to_string(pw.exp_frac)}};
-  }
+  using Keys = PowKeys;
+  static constexpr CosimCase kCosimCases[] = {
+      {"default", "", "--vectors traces/phong_basic.vec --sink-ready 0.6"},
+      {"small_tables", "log_bits=6,exp_bits=4,in=uq1.16,out=uq1.10",
+       "--vectors traces/multi_light.vec --sink-ready 0.5"},
+      {"n_wide", "n=uq14.6,y_frac=16,log_frac=20",
+       "--vectors traces/contract_cases.vec --sink-ready 0.9 --seed 11"},
+      {"ram", "tables=ram", "--vectors traces/phong_basic.vec --sink-ready 0.6"},
+      {"ram_small_tables", "tables=ram,log_bits=6,exp_bits=4,in=uq1.12,out=uq1.10",
+       "--vectors traces/blinn_colored.vec --sink-ready 0.5"}};
 
   static std::unique_ptr<SpecularUnit> build(const KeyReader& keys, const CommonKeys& common,
                                              const SlotPlan& plan) {
@@ -43,19 +44,19 @@ struct Pow : UnitKindDefaults {
     c.in = common.in;
     c.out = common.out;
     c.skip = common.skip;
-    c.n_format = keys.format("n", c.n_format);
-    c.log_bits = keys.integer("log_bits", c.log_bits, 1, 16);
-    c.log_frac = keys.integer("log_frac", c.log_frac, 4, 30);
-    c.y_frac = keys.integer("y_frac", c.y_frac, 4, 30);
-    c.exp_bits = keys.integer("exp_bits", c.exp_bits, 1, 16);
-    c.exp_frac = keys.integer("exp_frac", c.exp_frac, 4, 30);
+    c.n_format = keys.read(Keys::n);
+    c.log_bits = keys.read(Keys::log_bits);
+    c.log_frac = keys.read(Keys::log_frac);
+    c.y_frac = keys.read(Keys::y_frac);
+    c.exp_bits = keys.read(Keys::exp_bits);
+    c.exp_frac = keys.read(Keys::exp_frac);
     nlohmann::json config = common_config(common);
-    config.update({{"n", c.n_format.name()},
-                   {"log_bits", c.log_bits},
-                   {"log_frac", c.log_frac},
-                   {"y_frac", c.y_frac},
-                   {"exp_bits", c.exp_bits},
-                   {"exp_frac", c.exp_frac}});
+    put_key(config, Keys::n, c.n_format);
+    put_key(config, Keys::log_bits, c.log_bits);
+    put_key(config, Keys::log_frac, c.log_frac);
+    put_key(config, Keys::y_frac, c.y_frac);
+    put_key(config, Keys::exp_bits, c.exp_bits);
+    put_key(config, Keys::exp_frac, c.exp_frac);
     // leading-one detect + log2 table read, log2 interpolation, multiply by n, exp2 table read,
     // exp2 interpolation + shift + rounding.
     const UnitTiming timing{5, 1, 0};

@@ -16,17 +16,19 @@
 
 #include "units/common.h"
 #include "units/match.h"
+#include "units/schlick/keys.h"
 #include "units/stages.h"
 
 namespace glint {
 
 struct SchlickConfig {
-  QFormat in = kDefaultIn;
-  QFormat out = kDefaultOut;
-  QFormat n_format = uq(14, 4);  // shininess register: n <= 16383.9375 in steps of 1/16
-  bool skip = true;
+  QFormat in = CommonKeyTable::in.def;
+  QFormat out = CommonKeyTable::out.def;
+  QFormat n_format = SchlickKeys::n.def;  // shininess register
+  bool skip = CommonKeyTable::skip.def;
   MatchMode match = MatchMode::kNone;  // how n' is chosen from the material's n
 };
+static_assert(SchlickKeys::match.def == "none", "SchlickConfig::match is the key's default");
 
 // The n' a slot's register gets for the material's n (n itself for match=none).
 double schlick_n_prime(MatchMode match, double n);

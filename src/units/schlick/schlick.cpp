@@ -39,31 +39,25 @@ struct Schlick : UnitKindDefaults {
   static constexpr const char* kSummary =
       "Schlick t/(n - n t + t) with an exact, correctly rounded divider";
 
-  static std::vector<UnitKey> keys() {
-    return {{"n", "shininess register format (holds n')", SchlickConfig{}.n_format.name()},
-            {"match",
-             "n' in S = t/(n' - n' t + t), against t^n of the material's n (Gaussian lobes: their "
-             "equivalent n = 2/omega^2): none (n' = n, as Schlick 1994) | minimax (n' minimizing "
-             "max |S - t^n| on [0, 1]; ~30 us per distinct n) | width (S(t_half) = 1/2 where "
-             "t_half^n = 1/2: matched half-width, n' = t_half/(1 - t_half))",
-             "none"},
-            {"divider",
-             "divider kind (timing): pipelined (one quotient bit per stage, II 1) | "
-             "iterative (radix-2, one quotient bit per cycle, II = quotient bits)",
-             "pipelined"}};
-  }
+  using Keys = SchlickKeys;
+  static constexpr CosimCase kCosimCases[] = {
+      {"default", "", "--vectors traces/phong_basic.vec --sink-ready 0.7"},
+      {"iterative", "divider=iterative,n=uq10.2", "--vectors traces/gaussian.vec"},
+      {"minimax_narrow", "match=minimax,in=uq1.12,out=uq1.10",
+       "--vectors traces/hard_cases.vec --sink-ready 0.4"},
+      {"ram", "tables=ram", "--vectors traces/phong_basic.vec --sink-ready 0.7"},
+      {"ram_iterative", "tables=ram,divider=iterative,in=uq1.12",
+       "--vectors traces/multi_light.vec"}};
 
   static std::unique_ptr<SpecularUnit> build(const KeyReader& keys, const CommonKeys& common,
                                              const SlotPlan& plan) {
-    SchlickConfig c{common.in, common.out, keys.format("n", SchlickConfig{}.n_format), common.skip};
-    c.match = parse_match_mode(keys.choice("match", "none", match_mode_names()));
+    SchlickConfig c{common.in, common.out, keys.read(Keys::n), common.skip};
+    c.match = parse_match_mode(keys.read(Keys::match));
     nlohmann::json config = common_config(common);
-    config["n"] = c.n_format.name();
-    // match=none is left out of the canonical spec, so that specs and goldens written before the
-    // key existed read the same.
-    if (c.match != MatchMode::kNone) config["match"] = to_string(c.match);
-    const std::string divider = keys.choice("divider", "pipelined", {"pipelined", "iterative"});
-    config["divider"] = divider;
+    put_key(config, Keys::n, c.n_format);
+    put_key(config, Keys::match, to_string(c.match));
+    const std::string divider = keys.read(Keys::divider);
+    put_key(config, Keys::divider, divider);
     // Denominator multiply-add stage, q quotient bits, rounding stage.
     const int q = common.out.frac_bits + 2;
     const bool iterative = divider == "iterative";
