@@ -103,25 +103,6 @@ EvalEngine::EvalEngine(const SlotMap& slots, std::vector<LaneAccumulator*> lanes
   for (auto& p : partials_) p.resize(lanes_.size());
 }
 
-// The deferral bound of the next rows, 2^e for the e every lane's sum of squares allows
-// (LaneAccumulator::deferred_exponent), given to every lane; called between windows, while no
-// lane works. A slot's small references are deferred only up to where every lane skips its rows
-// with a reference at most the bound (the smallest of the lanes' drop_t): a lane that computes
-// them would make each call in the middle of its rows, where this pass makes them back to back.
-void EvalEngine::update_deferral() {
-  if (lanes_.empty()) return;
-  int e = std::numeric_limits<int>::max();
-  for (const LaneAccumulator* lane : lanes_) e = std::min(e, lane->deferred_exponent());
-  for (LaneAccumulator* lane : lanes_) lane->set_deferred_exponent(e);
-  if (e == deferred_exponent_) return;
-  deferred_exponent_ = e;
-  defer_t_.assign(slots_.params.size(), std::numeric_limits<double>::infinity());
-  for (std::size_t s = 0; s < defer_t_.size(); ++s) {
-    for (const LaneAccumulator* lane : lanes_) defer_t_[s] = std::min(defer_t_[s], lane->drop_t(s));
-    defer_t_[s] = std::max(defer_t_[s], 0.0);
-  }
-}
-
 EvalEngine::~EvalEngine() = default;
 
 bool EvalEngine::overlaps_side_work(std::size_t lanes, int threads) {
@@ -212,7 +193,7 @@ void EvalEngine::prepare_run(const VectorRow* rows, std::size_t a, std::size_t b
                slots_.slot_of.data(),
                slots_.light_stride,
                deferred_t_.data(),
-               defer_t_.data(),
+               deferral_.defer_t().data(),
                slot_known_.data(),
                out == nullptr,
                t_out,
@@ -275,7 +256,7 @@ void EvalEngine::prepare(const VectorRow* rows, std::size_t count, std::size_t o
 
 void EvalEngine::add_window(const VectorRow* rows, std::size_t count, std::size_t offset,
                             BatchResults* out) {
-  update_deferral();
+  deferral_.update(lanes_, slots_.params.size());
   t_.resize(count);
   slot_.resize(count);
   reference_.resize(count);
@@ -363,7 +344,7 @@ void EvalEngine::add_span(const VectorRow* rows, std::size_t count, std::size_t 
                           BatchResults* out, const SideWork& side, bool& side_more) {
   const std::size_t window = options_.window_rows;
   const std::size_t windows = ceil_div(count, window);
-  update_deferral();
+  deferral_.update(lanes_, slots_.params.size());
   t_.resize(count);
   slot_.resize(count);
   reference_.resize(count);
