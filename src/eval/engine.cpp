@@ -52,7 +52,8 @@ std::size_t scan_rows(const RowScan& scan, std::size_t a, std::size_t b, bool& u
   bool all_known = true;
   // The rows are usually beyond the core's cache (a block of a quarter of a million rows, filled
   // by the reader's threads): fetched 2 KiB ahead, which the hardware's prefetcher, stopping at
-  // every 4 KiB page, does not do on its own (x1.04 on the skipped stream).
+  // every 4 KiB page, does not do on its own. Without it sim_speed took 6-8 % more CPU time and
+  // glint eval 3 % (medians of 7 alternating runs; tests/bench/RESULTS.md, "Issue 30").
   // The address is worked out as an integer: past the block's end it is only a hint.
   constexpr std::uintptr_t kAhead = 64 * sizeof(VectorRow);
   for (std::size_t i = a; i < b; ++i) {
@@ -68,7 +69,8 @@ std::size_t scan_rows(const RowScan& scan, std::size_t a, std::size_t b, bool& u
     const double cut = deferred[s];
     const bool zero = (cut > 0.0) & (t <= 0.0);
     const bool late = defer & (t > 0.0) & (t <= defer_cut[s]);
-    // -late, not late ? kDeferredReference : 0.0, which GCC made a branch taken at random.
+    // -late, not late ? kDeferredReference : 0.0, which GCC made a branch taken at random:
+    // sim_speed's skipped stream took 42 % more CPU time with it (tests/bench/RESULTS.md).
     static_assert(kDeferredReference == -1.0, "the conversion below writes -1 or 0");
     ref_out[i] = -static_cast<double>(late);
     need[needed] = static_cast<std::uint32_t>(i);

@@ -291,8 +291,6 @@ class LaneAccumulator {
 
  private:
   struct Memo;
-  // One run of accumulate(): its lists of rows, maxima and counts, and its passes.
-  struct Run;
   // The facts of (slot, code), from the memo for narrow inputs (filled on first use; safe from
   // any thread), computed otherwise.
   CodeFacts facts(std::size_t slot, std::int64_t t_raw) const;

@@ -19,7 +19,9 @@ namespace {
 constexpr std::int64_t kUnset = std::numeric_limits<std::int64_t>::min();
 
 // round(clamp(v, 0, 1) * scale) as std::lround rounds (half away from zero), inline: lround is
-// a library call, and the engine asks for two display codes per row.
+// a library call, and the engine asks for two display codes per row. With lround, sim_speed
+// with every request computed took 20 % more CPU time and glint eval 4 % (tests/bench/RESULTS.md,
+// "Issue 30").
 inline long display_code(double v, double scale) {
   const double y = std::clamp(v, 0.0, 1.0) * scale;
   const long k = static_cast<long>(y);  // y >= 0: truncation is floor, and y - k is exact
@@ -34,7 +36,9 @@ inline void max_at(LanePartial::MaxAt& m, double value, double t) {
 }
 
 // c ? a : b on the bits: GCC turns the plain form into a branch, which costs a misprediction on
-// every other row when c follows the stream's t.
+// every other row when c follows the stream's t. With the plain form sim_speed took 8 % more CPU
+// time with every request computed and 4 % with 94 % skipped, for 1 % fewer instructions
+// (medians of 7 alternating runs; tests/bench/RESULTS.md, "Issue 30").
 inline double select(bool c, double a, double b) {
   std::uint64_t x = 0, y = 0;
   std::memcpy(&x, &a, sizeof x);
@@ -103,7 +107,7 @@ inline void fold_row(double& sum, std::uint64_t& digest, double square, std::uin
   digest = fold_digest(digest, word);
 }
 
-// The first pass of LaneAccumulator::accumulate_rows over the rows row_at(0 .. n - 1) of a run
+// The first pass of a lane's run (Run::classify) over the rows row_at(0 .. n - 1) of the run
 // (consecutive rows, or those of a list): each row's input code and comparator, the computed rows
 // listed with their codes and the skipped ones apart (no branch between the two: a stream takes it
 // at random), every row's digest word that of a skipped row (a computed row's is written later).
@@ -345,31 +349,49 @@ void LaneAccumulator::add_scalar(std::size_t slot, const RowReference& ref, std:
   if (display_code(fixed, display_) != ref_code) ++stats_.mismatch;
 }
 
+namespace {
+
+// What a run reads of its lane, filled by LaneAccumulator::accumulate_rows.
+struct LaneView {
+  const SlotMap& slots;
+  InputQuantizer quantize;
+  const std::int64_t* tau;   // per slot: the comparator's threshold
+  const std::int8_t* state;  // per slot: 1 always skipped
+  const double* drop_t;      // per slot (LaneAccumulator::drop_t)
+  double max_c_y, ulp, display;
+  bool any_always;  // some begun slot is always skipped
+  SettledRows settled;
+};
+
 // One run of accumulate(): rows a .. b - 1 of a window, numbered 0 .. n - 1 in its lists. Its
-// state is one local object whose passes are inlined into accumulate_rows: the loops store through
-// pointers the compiler cannot tell from a lane's members, which would send every maximum through
-// memory on every row.
+// state is one local object, and its passes are inlined into accumulate_rows (a class of this file
+// alone, each pass called once), so the maxima stay in registers: as members of an object the
+// loops' stores may reach, they went through memory on every row (sim_speed 4-10 % more CPU time
+// at the same instruction count, when the passes were members of a nested class of the lane).
+// Memo and Facts: the lane's memo type and its compute_facts, which are private to it.
 //
 // The passes: every row's code and comparator (classify: the computed and the skipped rows listed
 // without a branch between them, which a stream takes at random); the skipped rows' statistics
 // (add_skipped_rows, or add_skipped_rows_leaving_out_dropped for a lane that may leave rows out);
 // then the computed rows' (add_computed_rows). The maxima that both lists enter keep the row of
 // their first largest value (FirstMax), to be joined as one pass in stream order would have.
-struct LaneAccumulator::Run {
-  Run(const LaneAccumulator& lane, const RowsView& rows, std::size_t a, std::size_t b,
-      LanePartial& p)
+template <class Memo, class Facts>
+struct Run {
+  Run(const LaneView& lane, const Memo* memo, const Facts& facts, const RowsView& rows,
+      std::size_t a, std::size_t b, LanePartial& p)
       : lane(lane),
+        memo(memo),
+        facts(facts),
         rows(rows),
         a(a),
         n(b - a),
         p(p),
-        quantize(lane.unit_.in_format()),
-        tau(lane.tau_.data()),
-        state(lane.slot_state_.data()),
-        c_y(lane.slots_.c_y.data()),
-        ulp(lane.ulp_),
-        display(lane.display_),
-        settled(lane.deferred_exponent_, lane.sum_settled_) {
+        tau(lane.tau),
+        state(lane.state),
+        c_y(lane.slots.c_y.data()),
+        ulp(lane.ulp),
+        display(lane.display),
+        settled(lane.settled) {
     p.square.resize(n);
     p.word.resize(n);
     p.folded.clear();
@@ -392,7 +414,7 @@ struct LaneAccumulator::Run {
   // how many were skipped.
   std::size_t classify(const std::uint32_t* at, std::size_t k0, std::size_t count) {
     const auto sort = [&](auto row_at) {
-      return classify_rows(quantize, rows.t + a, rows.slot + a, tau, row_at, count,
+      return classify_rows(lane.quantize, rows.t + a, rows.slot + a, tau, row_at, count,
                            computed + computed_count, code + computed_count, skipped_rows, word);
     };
     const ClassifiedRows c =
@@ -419,7 +441,7 @@ struct LaneAccumulator::Run {
     // display code 0): no branch on which rows were deferred, which a stream takes at random.
     const bool is_settled =
         (always | scalars_settled()) & settled.weighted(skipped_weighted.value, c_y[s]);
-    if ((ref < 0.0) & !is_settled) ref = reference_value(lane.slots_, s, t);
+    if ((ref < 0.0) & !is_settled) ref = reference_value(lane.slots, s, t);
     ref = select(ref < 0.0, 0.0, ref);  // kDeferredReference is negative, a lobe never
     skipped_weighted.add(ref * c_y[s], t, k);
     if (always) {
@@ -481,7 +503,7 @@ struct LaneAccumulator::Run {
       const std::size_t some = classify(nullptr, k, std::min(n, k + kSettledCheck) - k);
       for (std::size_t x = 0; x < some; ++x) add_skipped(skipped_rows[x]);
     }
-    const bool drop = settled.weighted(skipped_weighted.value, lane.max_c_y_);
+    const bool drop = settled.weighted(skipped_weighted.value, lane.max_c_y);
     const std::size_t rest = drop ? leave_out_dropped(k) : n - k;
     add_unsettled_skipped(0, classify(drop ? listed : nullptr, k, rest));
   }
@@ -490,12 +512,12 @@ struct LaneAccumulator::Run {
   // counted with their digest words and zero squares in bulk; the others listed in `listed`.
   // Returns how many were listed.
   std::size_t leave_out_dropped(std::size_t k) {
-    const double* const drop_t = lane.drop_t_.data();
+    const double* const drop_t = lane.drop_t;
     const std::size_t count = list_rows(rows.t + a, rows.slot + a, drop_t, k, n, listed);
     std::fill(word + k, word + n, digest_word(0, true));
     std::fill(square + k, square + n, 0.0);
     skipped_count += (n - k) - count;
-    if (lane.any_always_)
+    if (lane.any_always)
       for (std::size_t j = k; j < n; ++j) {
         const std::size_t s = rows.slot[a + j];
         always_rows += (rows.t[a + j] <= drop_t[s]) & (state[s] == 1);
@@ -523,12 +545,14 @@ struct LaneAccumulator::Run {
   template <bool kMemo>
   void add_computed_rows(std::int64_t* raw) {
     // How many computed rows ahead the memo entry is fetched: five lanes' tables of 2^15 codes
-    // are beyond the L2 cache, and a row's entry is where its t falls.
+    // are beyond the L2 cache, and a row's entry is where its t falls. Without the prefetch,
+    // sim_speed with every request computed took 35 % more CPU time and glint eval 10 %, for
+    // 5 % and 1.4 % fewer instructions (tests/bench/RESULTS.md, "Issue 30").
     constexpr std::size_t kAhead = 8;
     for (std::size_t x = 0; x < computed_count; ++x) {
       if constexpr (kMemo) {
         if (x + kAhead < computed_count) {
-          const Memo::Table& ahead = lane.memo_->tables[rows.slot[a + computed[x + kAhead]]];
+          const auto& ahead = memo->tables[rows.slot[a + computed[x + kAhead]]];
           __builtin_prefetch(&ahead.hot[static_cast<std::size_t>(code[x + kAhead] - ahead.first)]);
         }
       }
@@ -539,22 +563,22 @@ struct LaneAccumulator::Run {
       double ref = rows.reference[i];
       const std::int64_t t_raw = code[x];
       const bool always = state[s] == 1;
-      if (ref < 0.0) ref = reference_value(lane.slots_, s, t);
+      if (ref < 0.0) ref = reference_value(lane.slots, s, t);
       std::int64_t out = 0;
       double r = 0;
       if constexpr (kMemo) {
-        const Memo::Table& table = lane.memo_->tables[s];
+        const auto& table = memo->tables[s];
         const auto c = static_cast<std::size_t>(t_raw - table.first);
         out = table.hot[c].out.load(std::memory_order_acquire);
         if (out == kUnset) {
-          const CodeFacts f = Memo::fill(table, c, lane.compute_facts(s, t_raw));
+          const CodeFacts f = Memo::fill(table, c, facts(s, t_raw));
           out = f.out;
           r = f.r;
         } else {
           r = table.hot[c].r.load(std::memory_order_relaxed);
         }
         if (!table.is_folded(c)) {
-          const Memo::Parts& mp = table.parts[c];
+          const auto& mp = table.parts[c];
           fold_parts(CodeFacts{out, r, mp.approximation.load(std::memory_order_relaxed),
                                mp.parameter.load(std::memory_order_relaxed),
                                mp.datapath.load(std::memory_order_relaxed)},
@@ -562,7 +586,7 @@ struct LaneAccumulator::Run {
           p.folded.emplace_back(static_cast<std::uint32_t>(s), static_cast<std::uint32_t>(c));
         }
       } else {
-        const CodeFacts f = lane.compute_facts(s, t_raw);
+        const CodeFacts f = facts(s, t_raw);
         out = f.out;
         r = f.r;
         fold_parts(f, t);
@@ -599,11 +623,12 @@ struct LaneAccumulator::Run {
     p.datapath = datapath;
   }
 
-  const LaneAccumulator& lane;
+  const LaneView& lane;
+  const Memo* const memo;  // null: no memo (add_computed_rows<false>)
+  const Facts& facts;
   const RowsView rows;
   const std::size_t a, n;
   LanePartial& p;
-  const InputQuantizer quantize;
   const std::int64_t* const tau;
   const std::int8_t* const state;
   const double* const c_y;
@@ -622,6 +647,8 @@ struct LaneAccumulator::Run {
   std::uint64_t always_rows = 0, mismatch = 0;
 };
 
+}  // namespace
+
 void LaneAccumulator::accumulate(const RowsView& rows, std::size_t a, std::size_t b, LanePartial& p,
                                  std::int64_t* raw, std::uint8_t* skipped) const {
   if (memo_) {
@@ -635,14 +662,24 @@ template <bool kMemo>
 void LaneAccumulator::accumulate_rows(const RowsView& rows, std::size_t a, std::size_t b,
                                       LanePartial& p, std::int64_t* raw,
                                       std::uint8_t* skipped) const {
-  Run run(*this, rows, a, b, p);
+  const LaneView lane{
+      slots_,         InputQuantizer(unit_.in_format()),
+      tau_.data(),    slot_state_.data(),
+      drop_t_.data(), max_c_y_,
+      ulp_,           display_,
+      any_always_,    SettledRows(deferred_exponent_, sum_settled_),
+  };
+  const auto facts = [this](std::size_t slot, std::int64_t t_raw) {
+    return compute_facts(slot, t_raw);
+  };
+  Run<Memo, decltype(facts)> run(lane, memo_.get(), facts, rows, a, b, p);
   if (drops_any_) {
     run.add_skipped_rows_leaving_out_dropped();
   } else {
     run.add_skipped_rows();
   }
   run.write_skip_flags(raw, skipped);
-  run.add_computed_rows<kMemo>(raw);
+  run.template add_computed_rows<kMemo>(raw);
   run.finish();
 }
 
