@@ -439,8 +439,9 @@ struct Run {
     // A deferred reference that can change nothing goes through the statistics below as 0,
     // which changes nothing either (every maximum it enters is larger, its square is 0, its
     // display code 0): no branch on which rows were deferred, which a stream takes at random.
-    const bool is_settled =
-        (always | scalars_settled()) & settled.weighted(skipped_weighted.value, c_y[s]);
+    const bool scalars = scalars_settled();
+    const bool weighted = settled.weighted(skipped_weighted.value, c_y[s]);
+    const bool is_settled = (always | scalars) & weighted;
     if ((ref < 0.0) & !is_settled) ref = reference_value(lane.slots, s, t);
     ref = select(ref < 0.0, 0.0, ref);  // kDeferredReference is negative, a lobe never
     skipped_weighted.add(ref * c_y[s], t, k);
@@ -468,7 +469,8 @@ struct Run {
       const std::size_t i = a + j;
       const std::size_t s = rows.slot[i];
       const double ref = rows.reference[i];
-      const bool keep = (ref > 0.0) | ((ref < 0.0) & !settled.weighted(weighted_now, c_y[s]));
+      const bool weighted = settled.weighted(weighted_now, c_y[s]);
+      const bool keep = (ref > 0.0) | ((ref < 0.0) & !weighted);
       square[j] = 0;
       always_rows += (state[s] == 1) & !keep;
       skipped_rows[live] = static_cast<std::uint32_t>(j);
