@@ -8,10 +8,12 @@
 #include <atomic>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "eval/deferral.h"
 #include "eval/engine.h"
 #include "eval/evaluate.h"
 #include "io/thread_pool.h"
@@ -264,6 +266,135 @@ TEST(Engine, LeavesRowsOutOnlyWhenEveryWeightIsSettled) {
     rows[i].line = i + 1;
   }
   expect_engine_equals_rows(header, rows);
+}
+
+// The deferral policy's pieces (eval/deferral.h) on values checked by hand.
+// A sum S absorbs x^2 when x^2 is below half an ulp of S, 2^(ilogb(S) - 53): for S = 1, x =
+// 2^-27 squares to 2^-54 (absorbed) and 2^-26 to 2^-52 (one ulp, not).
+TEST(Deferral, ExponentAbsorbedBySumsOfSquares) {
+  EXPECT_EQ(exponent_absorbed_by(0.0), std::numeric_limits<int>::min());
+  EXPECT_EQ(exponent_absorbed_by(std::numeric_limits<double>::min() / 2),
+            std::numeric_limits<int>::min());
+  EXPECT_EQ(exponent_absorbed_by(1.0), -27);
+  EXPECT_EQ(exponent_absorbed_by(1.999), -27);  // (0 - 54) / 2
+  EXPECT_EQ(exponent_absorbed_by(2.0), -27);    // (1 - 54) / 2 = -26.5
+  EXPECT_EQ(exponent_absorbed_by(4.0), -26);
+  EXPECT_EQ(exponent_absorbed_by(0x1.0p-26), -40);
+  // The bound is absorbed by every sum of its binade, and one more is not by the sum 2^E of even
+  // E (where 2^(e+1) squares to a whole ulp).
+  std::uint64_t state = 0x9E3779B97F4A7C15ULL;
+  for (int i = 0; i < 2000; ++i) {
+    const double sum = std::ldexp(1.0 + next_uniform(state), static_cast<int>(i % 120) - 80);
+    const int e = exponent_absorbed_by(sum);
+    const double x = std::ldexp(1.0, e);
+    EXPECT_EQ(sum + x * x, sum) << sum;
+    EXPECT_EQ(sum + x * x * next_uniform(state), sum) << sum;
+  }
+  for (int even = -80; even <= 40; even += 2) {
+    const double sum = std::ldexp(1.0, even);
+    const double x = std::ldexp(1.0, exponent_absorbed_by(sum) + 1);
+    EXPECT_NE(sum + x * x, sum) << even;
+  }
+}
+
+// allowed_deferral_exponent: the sum's exponent, capped below any display code, at least -40.
+TEST(Deferral, AllowedExponentIsFlooredAndCapped) {
+  const double eight_bits = 255;
+  EXPECT_EQ(allowed_deferral_exponent(0.0, eight_bits), kDeferredExponent);
+  EXPECT_EQ(allowed_deferral_exponent(0x1.0p-30, eight_bits), kDeferredExponent);  // -42
+  EXPECT_EQ(allowed_deferral_exponent(1.0, eight_bits), -27);
+  EXPECT_EQ(allowed_deferral_exponent(0x1.0p40, eight_bits), -10);  // -7 capped: ilogb(255) = 7
+  EXPECT_EQ(allowed_deferral_exponent(0x1.0p40, 1023), -12);        // 10 bits: ilogb(1023) = 9
+  for (int bits = 1; bits <= 16; ++bits) {
+    const double display = std::ldexp(1.0, bits) - 1;
+    const int cap = allowed_deferral_exponent(1e300, display);
+    EXPECT_EQ(std::lround(std::ldexp(1.0, cap) * display), 0) << bits;
+    // Not far below: two steps up, the reference's code is 1.
+    EXPECT_EQ(std::lround(std::ldexp(1.0, cap + 2) * display), 1) << bits;
+  }
+}
+
+// deferred_t: a power lobe at or below it is at most 2^e, and the t is within 2e-9 of
+// 2^((e-1)/n); a Gaussian lobe has none.
+TEST(Deferral, DeferredTBoundsTheLobe) {
+  VectorHeader header;
+  header.eps = 1e-3;
+  for (const double n : {1.0, 2.5, 8.0, 50.0, 1000.0, 10000.0})
+    header.materials.push_back(
+        {"n" + std::to_string(header.materials.size()), {1, 1, 1}, n, Lobe::kBlinn, 0});
+  header.materials.push_back({"gauss", {1, 1, 1}, 0, Lobe::kGaussian, 0.2});
+  const SlotMap slots = make_slots(header);
+  for (const int e : {kDeferredExponent, -33, -27, -10}) {
+    const std::vector<double> cut = deferred_t(slots, e);
+    ASSERT_EQ(cut.size(), slots.params.size());
+    for (std::size_t s = 0; s < cut.size(); ++s) {
+      if (slots.lobe[s] == Lobe::kGaussian) {
+        EXPECT_EQ(cut[s], 0.0);
+        continue;
+      }
+      const double n = slots.params[s].shininess;
+      EXPECT_LE(reference_value(slots, s, cut[s]), std::ldexp(1.0, e)) << n << " " << e;
+      EXPECT_NEAR(cut[s], std::exp2((e - 1.0) / n), 2e-9) << n << " " << e;
+    }
+  }
+}
+
+// SettledRows: at the least bound a run's own error of 2^-13 absorbs the bound's square; above
+// it only the lane's sum before the window does.
+TEST(Deferral, SettledRowsNeedEveryMaximumAboveTheBound) {
+  const SettledRows least(kDeferredExponent, false);
+  EXPECT_EQ(least.bound(), kDeferredBound);
+  EXPECT_TRUE(least.scalars(0x1.0p-13, 1e-12));
+  EXPECT_FALSE(least.scalars(0x1.0p-13 * 0.999, 1.0));  // the sum not yet absorbing
+  EXPECT_FALSE(least.scalars(1.0, kDeferredBound));     // skip not above the bound (strict)
+  EXPECT_TRUE(least.weighted(1e-12, 0.5));              // bound x c_y = 4.5e-13
+  EXPECT_FALSE(least.weighted(4e-13, 0.5));
+  const SettledRows higher(-30, false);
+  EXPECT_FALSE(higher.scalars(1.0, 1.0));  // a run's error does not absorb 2^-60
+  const SettledRows absorbed(-30, true);
+  EXPECT_TRUE(absorbed.scalars(0x1.0p-29, 0x1.0p-29));
+  EXPECT_FALSE(absorbed.scalars(0x1.0p-30, 1.0));
+  EXPECT_FALSE(absorbed.weighted(0x1.0p-31, 0.5));
+}
+
+// Deferring never changes a result: the engine (which defers up to the bound its lanes' sums
+// allow, here from 2^-40 up past 2^-27) against the row-at-a-time path (which never defers) on
+// rows at each bound's deferred_t, one ulp above and below, among rows of large error that let
+// the bound grow; with one lane and with two whose thresholds differ.
+TEST(Deferral, NeverChangesAResult) {
+  VectorHeader header;
+  header.eps = 1e-3;
+  header.materials.push_back({"shiny", {1, 1, 1}, 50, Lobe::kBlinn, 0});
+  const SlotMap slots = make_slots(header);
+  std::vector<VectorRow> rows(120000);
+  std::uint64_t state = 0x3C6EF372FE94F82BULL;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const int e = kDeferredExponent + static_cast<int>(i / 7 % 31);
+    const double cut = deferred_t(slots, e)[0];
+    switch (i % 4) {
+      case 0:
+        rows[i].t = cut;
+        break;
+      case 1:
+        rows[i].t = std::nextafter(cut, 2.0);
+        break;
+      case 2:
+        rows[i].t = std::nextafter(cut, 0.0);
+        break;
+      default:
+        rows[i].t = -1.0 + 2.0 * next_uniform(state);
+    }
+    rows[i].line = i + 1;
+  }
+  for (const auto& units :
+       std::vector<std::vector<std::string>>{{"horner"}, {"lut:bits=4", "schlick"}})
+    expect_engine_equals_rows(header, rows, specs_of(units));
+  Lanes lanes(slots, specs_of({"lut:bits=4"}));
+  EngineOptions options;
+  options.window_rows = 4096;
+  EvalEngine engine(slots, {&lanes.acc[0]}, {}, options);
+  engine.add(rows.data(), rows.size());
+  EXPECT_GE(engine.deferred_exponent(), -30);  // the test is about a bound that grew
 }
 
 // The engine's pool: every task once per run, over many short runs, and a task's exception

@@ -52,7 +52,8 @@ std::size_t scan_rows(const RowScan& scan, std::size_t a, std::size_t b, bool& u
   bool all_known = true;
   // The rows are usually beyond the core's cache (a block of a quarter of a million rows, filled
   // by the reader's threads): fetched 2 KiB ahead, which the hardware's prefetcher, stopping at
-  // every 4 KiB page, does not do on its own (x1.04 on the skipped stream).
+  // every 4 KiB page, does not do on its own. Without it sim_speed took 6-8 % more CPU time and
+  // glint eval 3 % (medians of 7 alternating runs; tests/bench/RESULTS.md, "Issue 30").
   // The address is worked out as an integer: past the block's end it is only a hint.
   constexpr std::uintptr_t kAhead = 64 * sizeof(VectorRow);
   for (std::size_t i = a; i < b; ++i) {
@@ -68,7 +69,8 @@ std::size_t scan_rows(const RowScan& scan, std::size_t a, std::size_t b, bool& u
     const double cut = deferred[s];
     const bool zero = (cut > 0.0) & (t <= 0.0);
     const bool late = defer & (t > 0.0) & (t <= defer_cut[s]);
-    // -late, not late ? kDeferredReference : 0.0, which GCC made a branch taken at random.
+    // -late, not late ? kDeferredReference : 0.0, which GCC made a branch taken at random:
+    // sim_speed's skipped stream took 42 % more CPU time with it (tests/bench/RESULTS.md).
     static_assert(kDeferredReference == -1.0, "the conversion below writes -1 or 0");
     ref_out[i] = -static_cast<double>(late);
     need[needed] = static_cast<std::uint32_t>(i);
@@ -101,25 +103,6 @@ EvalEngine::EvalEngine(const SlotMap& slots, std::vector<LaneAccumulator*> lanes
   slot_known_.assign(slots.params.size(), 0);
   deferred_t_ = deferred_t(slots);
   for (auto& p : partials_) p.resize(lanes_.size());
-}
-
-// The deferral bound of the next rows, 2^e for the e every lane's sum of squares allows
-// (LaneAccumulator::deferred_exponent), given to every lane; called between windows, while no
-// lane works. A slot's small references are deferred only up to where every lane skips its rows
-// with a reference at most the bound (the smallest of the lanes' drop_t): a lane that computes
-// them would make each call in the middle of its rows, where this pass makes them back to back.
-void EvalEngine::update_deferral() {
-  if (lanes_.empty()) return;
-  int e = std::numeric_limits<int>::max();
-  for (const LaneAccumulator* lane : lanes_) e = std::min(e, lane->deferred_exponent());
-  for (LaneAccumulator* lane : lanes_) lane->set_deferred_exponent(e);
-  if (e == deferred_exponent_) return;
-  deferred_exponent_ = e;
-  defer_t_.assign(slots_.params.size(), std::numeric_limits<double>::infinity());
-  for (std::size_t s = 0; s < defer_t_.size(); ++s) {
-    for (const LaneAccumulator* lane : lanes_) defer_t_[s] = std::min(defer_t_[s], lane->drop_t(s));
-    defer_t_[s] = std::max(defer_t_[s], 0.0);
-  }
 }
 
 EvalEngine::~EvalEngine() = default;
@@ -212,7 +195,7 @@ void EvalEngine::prepare_run(const VectorRow* rows, std::size_t a, std::size_t b
                slots_.slot_of.data(),
                slots_.light_stride,
                deferred_t_.data(),
-               defer_t_.data(),
+               deferral_.defer_t().data(),
                slot_known_.data(),
                out == nullptr,
                t_out,
@@ -275,7 +258,7 @@ void EvalEngine::prepare(const VectorRow* rows, std::size_t count, std::size_t o
 
 void EvalEngine::add_window(const VectorRow* rows, std::size_t count, std::size_t offset,
                             BatchResults* out) {
-  update_deferral();
+  deferral_.update(lanes_, slots_.params.size());
   t_.resize(count);
   slot_.resize(count);
   reference_.resize(count);
@@ -363,7 +346,7 @@ void EvalEngine::add_span(const VectorRow* rows, std::size_t count, std::size_t 
                           BatchResults* out, const SideWork& side, bool& side_more) {
   const std::size_t window = options_.window_rows;
   const std::size_t windows = ceil_div(count, window);
-  update_deferral();
+  deferral_.update(lanes_, slots_.params.size());
   t_.resize(count);
   slot_.resize(count);
   reference_.resize(count);

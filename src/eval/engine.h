@@ -61,8 +61,8 @@ class EvalEngine {
   void finish();
 
   // The deferral bound of the last rows, 2^deferred_exponent(): references at most that (of rows
-  // every lane skips) were left to the lanes (update_deferral).
-  int deferred_exponent() const { return deferred_exponent_; }
+  // every lane skips) were left to the lanes (eval/deferral.h).
+  int deferred_exponent() const { return deferral_.exponent(); }
 
   // Whether an engine of `lanes` lanes on `threads` threads runs side work beside its lanes:
   // whole windows per lane (at least two lanes per thread), more than one thread.
@@ -85,7 +85,6 @@ class EvalEngine {
                  std::size_t offset, BatchResults* out);
   std::size_t runs_per_lane(std::size_t count) const;
   void merge_pending();
-  void update_deferral();
   void merge(const std::vector<LanePartial>& runs, std::size_t lane);
 
   const SlotMap& slots_;
@@ -95,10 +94,7 @@ class EvalEngine {
   ThreadPool pool_;
   std::vector<std::uint8_t> slot_known_;  // slots begun in every lane
   std::vector<double> deferred_t_;        // per slot (deferred_t)
-  // Per slot, the largest t whose reference is deferred: at most 2^deferred_exponent_ and skipped
-  // by every lane (LaneAccumulator::drop_t); 0 for none.
-  std::vector<double> defer_t_;
-  int deferred_exponent_ = std::numeric_limits<int>::min();  // none yet (update_deferral)
+  SharedDeferral deferral_;
   std::vector<double> t_;
   std::vector<std::uint32_t> slot_;
   std::vector<double> reference_;

@@ -211,17 +211,6 @@ double reference_value(const SlotMap& slots, std::size_t slot, double t) {
   return glossy_scalar(t, slots.params[slot].shininess);
 }
 
-std::vector<double> deferred_t(const SlotMap& slots, int exponent) {
-  std::vector<double> cut(slots.params.size(), 0.0);
-  for (std::size_t s = 0; s < cut.size(); ++s) {
-    if (slots.lobe[s] == Lobe::kGaussian) continue;
-    // t <= 2^((e-1)/n) gives t^n <= 2^(e-1), half the bound; the factor below the exact root
-    // covers exp2's and the division's rounding many times over, and libm's pow is within an ulp.
-    cut[s] = std::exp2((exponent - 1.0) / slots.params[s].shininess) * (1.0 - 1e-9);
-  }
-  return cut;
-}
-
 double ErrorStats::rms() const {
   return count ? std::sqrt(sum_sq / count) : 0.0;
 }

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "eval/contract.h"
+#include "eval/deferral.h"
 #include "io/vectors.h"
 #include "reference/reference.h"
 #include "timing/timing.h"
@@ -233,15 +234,6 @@ struct RowsView {
   const std::uint32_t* slot = nullptr;
   const double* reference = nullptr;
 };
-inline constexpr double kDeferredReference = -1.0;
-// The least deferral bound, 2^kDeferredExponent: a run's own rows settle it (accumulate_rows).
-inline constexpr int kDeferredExponent = -40;
-inline constexpr double kDeferredBound = 0x1.0p-40;
-
-// Per slot, the largest t at or below which the slot's reference is surely at most 2^exponent
-// (libm's pow within an ulp, a margin beside); 0 for lobes it does not bound (Gaussian ones).
-std::vector<double> deferred_t(const SlotMap& slots, int exponent = kDeferredExponent);
-
 // Accuracy statistics of one lane (a unit): fed one result at a time by `glint eval --dump`
 // and the clocked mode's scoreboard (add), or a run of rows at a time by the evaluation engine
 // (eval/engine.h: begin_slot, accumulate on any thread, merge in stream order). One accumulation
@@ -341,7 +333,6 @@ class LaneAccumulator {
   // The largest t the comparator of `slot` surely skips (the value of its threshold's code;
   // -inf when it skips nothing).
   double skips_at_or_below(std::size_t slot) const;
-  int sum_exponent() const;  // deferred_exponent() but for its floor and cap
 };
 
 // One evaluated request for the optional per-vector dump.

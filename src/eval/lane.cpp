@@ -6,6 +6,7 @@
 #include <cstring>
 #include <limits>
 
+#include "eval/deferral.h"
 #include "eval/evaluate.h"
 
 namespace glint {
@@ -18,7 +19,9 @@ namespace {
 constexpr std::int64_t kUnset = std::numeric_limits<std::int64_t>::min();
 
 // round(clamp(v, 0, 1) * scale) as std::lround rounds (half away from zero), inline: lround is
-// a library call, and the engine asks for two display codes per row.
+// a library call, and the engine asks for two display codes per row. With lround, sim_speed
+// with every request computed took 20 % more CPU time and glint eval 4 % (tests/bench/RESULTS.md,
+// "Issue 30").
 inline long display_code(double v, double scale) {
   const double y = std::clamp(v, 0.0, 1.0) * scale;
   const long k = static_cast<long>(y);  // y >= 0: truncation is floor, and y - k is exact
@@ -33,7 +36,9 @@ inline void max_at(LanePartial::MaxAt& m, double value, double t) {
 }
 
 // c ? a : b on the bits: GCC turns the plain form into a branch, which costs a misprediction on
-// every other row when c follows the stream's t.
+// every other row when c follows the stream's t. With the plain form sim_speed took 8 % more CPU
+// time with every request computed and 4 % with 94 % skipped, for 1 % fewer instructions
+// (medians of 7 alternating runs; tests/bench/RESULTS.md, "Issue 30").
 inline double select(bool c, double a, double b) {
   std::uint64_t x = 0, y = 0;
   std::memcpy(&x, &a, sizeof x);
@@ -102,7 +107,7 @@ inline void fold_row(double& sum, std::uint64_t& digest, double square, std::uin
   digest = fold_digest(digest, word);
 }
 
-// The first pass of LaneAccumulator::accumulate_rows over the rows row_at(0 .. n - 1) of a run
+// The first pass of a lane's run (Run::classify) over the rows row_at(0 .. n - 1) of the run
 // (consecutive rows, or those of a list): each row's input code and comparator, the computed rows
 // listed with their codes and the skipped ones apart (no branch between the two: a stream takes it
 // at random), every row's digest word that of a skipped row (a computed row's is written later).
@@ -270,23 +275,12 @@ void LaneAccumulator::set_drop_t(int e) {
   }
 }
 
-// A square x^2 leaves a sum S >= 2^E (E = ilogb(S)) as it is when below half its ulp, 2^(E-53):
-// x <= 2^e does for 2e <= E - 54. -inf (INT_MIN) while the sum is 0 or subnormal.
-int LaneAccumulator::sum_exponent() const {
-  const double sum = stats_.total.sum_sq;
-  if (!(sum >= std::numeric_limits<double>::min())) return std::numeric_limits<int>::min();
-  return static_cast<int>(std::floor((std::ilogb(sum) - 54) / 2.0));
-}
-
 int LaneAccumulator::deferred_exponent() const {
-  // The display code of a reference at most 2^e is 0 while 2^e display < 0.5: display < 2^(k+1)
-  // for k = ilogb(display), so e <= -k - 3 keeps it below 0.25.
-  const int cap = -std::ilogb(display_) - 3;
-  return std::max(kDeferredExponent, std::min(sum_exponent(), cap));
+  return allowed_deferral_exponent(stats_.total.sum_sq, display_);
 }
 
 void LaneAccumulator::set_deferred_exponent(int e) {
-  sum_settled_ = sum_exponent() >= e;
+  sum_settled_ = exponent_absorbed_by(stats_.total.sum_sq) >= e;
   if (e == deferred_exponent_) return;
   deferred_exponent_ = e;
   set_drop_t(e);
@@ -355,6 +349,308 @@ void LaneAccumulator::add_scalar(std::size_t slot, const RowReference& ref, std:
   if (display_code(fixed, display_) != ref_code) ++stats_.mismatch;
 }
 
+namespace {
+
+// What a run reads of its lane, filled by LaneAccumulator::accumulate_rows.
+struct LaneView {
+  const SlotMap& slots;
+  InputQuantizer quantize;
+  const std::int64_t* tau;   // per slot: the comparator's threshold
+  const std::int8_t* state;  // per slot: 1 always skipped
+  const double* drop_t;      // per slot (LaneAccumulator::drop_t)
+  double max_c_y, ulp, display;
+  bool any_always;  // some begun slot is always skipped
+  SettledRows settled;
+};
+
+// One run of accumulate(): rows a .. b - 1 of a window, numbered 0 .. n - 1 in its lists. Its
+// state is one local object, and its passes are inlined into accumulate_rows (a class of this file
+// alone, each pass called once), so the maxima stay in registers: as members of an object the
+// loops' stores may reach, they went through memory on every row (sim_speed 4-10 % more CPU time
+// at the same instruction count, when the passes were members of a nested class of the lane).
+// Memo and Facts: the lane's memo type and its compute_facts, which are private to it.
+//
+// The passes: every row's code and comparator (classify: the computed and the skipped rows listed
+// without a branch between them, which a stream takes at random); the skipped rows' statistics
+// (add_skipped_rows, or add_skipped_rows_leaving_out_dropped for a lane that may leave rows out);
+// then the computed rows' (add_computed_rows). The maxima that both lists enter keep the row of
+// their first largest value (FirstMax), to be joined as one pass in stream order would have.
+template <class Memo, class Facts>
+struct Run {
+  Run(const LaneView& lane, const Memo* memo, const Facts& facts, const RowsView& rows,
+      std::size_t a, std::size_t b, LanePartial& p)
+      : lane(lane),
+        memo(memo),
+        facts(facts),
+        rows(rows),
+        a(a),
+        n(b - a),
+        p(p),
+        tau(lane.tau),
+        state(lane.state),
+        c_y(lane.slots.c_y.data()),
+        ulp(lane.ulp),
+        display(lane.display),
+        settled(lane.settled) {
+    p.square.resize(n);
+    p.word.resize(n);
+    p.folded.clear();
+    square = p.square.data();
+    word = p.word.data();
+    thread_local std::vector<std::uint32_t> computed_list, skipped_list, row_list;
+    thread_local std::vector<std::int64_t> code_list;
+    computed_list.resize(n);
+    skipped_list.resize(n);
+    row_list.resize(n);
+    code_list.resize(n);
+    computed = computed_list.data();
+    skipped_rows = skipped_list.data();
+    listed = row_list.data();
+    code = code_list.data();
+  }
+
+  // Rows k0 .. k0 + count - 1, or those of `at` (not null), through classify_rows: the computed
+  // ones appended to `computed` and `code`, the skipped ones listed from skipped_rows[0]; returns
+  // how many were skipped.
+  std::size_t classify(const std::uint32_t* at, std::size_t k0, std::size_t count) {
+    const auto sort = [&](auto row_at) {
+      return classify_rows(lane.quantize, rows.t + a, rows.slot + a, tau, row_at, count,
+                           computed + computed_count, code + computed_count, skipped_rows, word);
+    };
+    const ClassifiedRows c =
+        at ? sort([at](std::size_t x) { return at[x]; })
+           : sort([k0](std::size_t x) { return static_cast<std::uint32_t>(k0 + x); });
+    computed_count += c.computed;
+    skipped_count += c.skipped;
+    return c.skipped;
+  }
+
+  // The two halves of "settled" (SettledRows) on this run's maxima so far; add_skipped and the
+  // filter of add_unsettled_skipped rely on judging rows alike.
+  bool scalars_settled() const { return settled.scalars(skipped_total.value, skip.value); }
+
+  // Skipped row k: its result is 0, so its error is its reference.
+  void add_skipped(std::size_t k) {
+    const std::size_t i = a + k;
+    const std::size_t s = rows.slot[i];
+    const double t = rows.t[i];
+    double ref = rows.reference[i];
+    const bool always = state[s] == 1;
+    // A deferred reference that can change nothing goes through the statistics below as 0,
+    // which changes nothing either (every maximum it enters is larger, its square is 0, its
+    // display code 0): no branch on which rows were deferred, which a stream takes at random.
+    const bool scalars = scalars_settled();
+    const bool weighted = settled.weighted(skipped_weighted.value, c_y[s]);
+    const bool is_settled = (always | scalars) & weighted;
+    if ((ref < 0.0) & !is_settled) ref = reference_value(lane.slots, s, t);
+    ref = select(ref < 0.0, 0.0, ref);  // kDeferredReference is negative, a lobe never
+    skipped_weighted.add(ref * c_y[s], t, k);
+    if (always) {
+      ++always_rows;
+      square[k] = 0;
+    } else {
+      skipped_total.add(ref, t, k);
+      square[k] = ref * ref;
+      max_at(skip, ref, t);
+      // The result's display code is 0; the reference's is not when it rounds up from 0.5.
+      mismatch += min1(ref) * display >= 0.5;
+    }
+  }
+
+  // The skipped rows skipped_rows[x .. end - 1], once the scalar maxima are settled: a row of
+  // reference 0, or deferred in a slot whose weighted maximum is settled, changes nothing but its
+  // square (0) and the count of always-skipped rows, so it is counted at once; the others go
+  // through add_skipped.
+  void add_unsettled_skipped(std::size_t x, std::size_t end) {
+    const double weighted_now = skipped_weighted.value;
+    std::size_t live = 0;
+    for (std::size_t y = x; y < end; ++y) {
+      const std::size_t j = skipped_rows[y];
+      const std::size_t i = a + j;
+      const std::size_t s = rows.slot[i];
+      const double ref = rows.reference[i];
+      const bool weighted = settled.weighted(weighted_now, c_y[s]);
+      const bool keep = (ref > 0.0) | ((ref < 0.0) & !weighted);
+      square[j] = 0;
+      always_rows += (state[s] == 1) & !keep;
+      skipped_rows[live] = static_cast<std::uint32_t>(j);
+      live += keep;
+    }
+    for (std::size_t y = 0; y < live; ++y) add_skipped(skipped_rows[y]);
+  }
+
+  // Rows between two looks at the maxima: they only grow, and settle within a few dozen rows on a
+  // typical stream.
+  static constexpr std::size_t kSettledCheck = 64;
+
+  // Passes 1 and 2 for a lane that leaves no row out: every row classified, then the skipped rows
+  // in order through add_skipped until the scalar maxima are settled, the rest filtered.
+  void add_skipped_rows() {
+    const std::size_t skipped = classify(nullptr, 0, n);
+    std::size_t x = 0;
+    for (; x < skipped; ++x) {
+      if (x % kSettledCheck == 0 && scalars_settled()) break;
+      add_skipped(skipped_rows[x]);
+    }
+    add_unsettled_skipped(x, skipped);
+  }
+
+  // Passes 1 and 2 for a lane with a drop_t: a chunk of rows at a time until the scalar maxima are
+  // settled; from there, if every slot's weighted maximum is settled too, the rows at or below
+  // their slot's drop_t are left out at once (leave_out_dropped), so that most of a mostly skipped
+  // stream costs a few operations a row.
+  void add_skipped_rows_leaving_out_dropped() {
+    std::size_t k = 0;
+    for (; k < n && !scalars_settled(); k = std::min(n, k + kSettledCheck)) {
+      const std::size_t some = classify(nullptr, k, std::min(n, k + kSettledCheck) - k);
+      for (std::size_t x = 0; x < some; ++x) add_skipped(skipped_rows[x]);
+    }
+    const bool drop = settled.weighted(skipped_weighted.value, lane.max_c_y);
+    const std::size_t rest = drop ? leave_out_dropped(k) : n - k;
+    add_unsettled_skipped(0, classify(drop ? listed : nullptr, k, rest));
+  }
+
+  // Rows k .. n - 1: those at or below their slot's drop_t (skipped, reference at most the bound)
+  // counted with their digest words and zero squares in bulk; the others listed in `listed`.
+  // Returns how many were listed.
+  std::size_t leave_out_dropped(std::size_t k) {
+    const double* const drop_t = lane.drop_t;
+    const std::size_t count = list_rows(rows.t + a, rows.slot + a, drop_t, k, n, listed);
+    std::fill(word + k, word + n, digest_word(0, true));
+    std::fill(square + k, square + n, 0.0);
+    skipped_count += (n - k) - count;
+    if (lane.any_always)
+      for (std::size_t j = k; j < n; ++j) {
+        const std::size_t s = rows.slot[a + j];
+        always_rows += (rows.t[a + j] <= drop_t[s]) & (state[s] == 1);
+      }
+    return count;
+  }
+
+  // Every row's result 0 and skip flag 1, but the computed rows' (whose results
+  // add_computed_rows writes).
+  void write_skip_flags(std::int64_t* raw, std::uint8_t* skipped) const {
+    if (raw) std::fill(raw + a, raw + a + n, 0);
+    if (skipped) {
+      std::fill(skipped + a, skipped + a + n, 1);
+      for (std::size_t x = 0; x < computed_count; ++x) skipped[a + computed[x]] = 0;
+    }
+  }
+
+  void fold_parts(const CodeFacts& f, double t) {
+    max_at(approximation, std::fabs(f.approximation), t);
+    max_at(parameter, std::fabs(f.parameter), t);
+    max_at(datapath, std::fabs(f.datapath), t);
+  }
+
+  // Pass 3: the computed rows, their facts from the per-code memo (kMemo) or computed.
+  template <bool kMemo>
+  void add_computed_rows(std::int64_t* raw) {
+    // How many computed rows ahead the memo entry is fetched: five lanes' tables of 2^15 codes
+    // are beyond the L2 cache, and a row's entry is where its t falls. Without the prefetch,
+    // sim_speed with every request computed took 35 % more CPU time and glint eval 10 %, for
+    // 5 % and 1.4 % fewer instructions (tests/bench/RESULTS.md, "Issue 30").
+    constexpr std::size_t kAhead = 8;
+    for (std::size_t x = 0; x < computed_count; ++x) {
+      if constexpr (kMemo) {
+        if (x + kAhead < computed_count) {
+          const auto& ahead = memo->tables[rows.slot[a + computed[x + kAhead]]];
+          __builtin_prefetch(&ahead.hot[static_cast<std::size_t>(code[x + kAhead] - ahead.first)]);
+        }
+      }
+      const std::size_t k = computed[x];
+      const std::size_t i = a + k;
+      const std::size_t s = rows.slot[i];
+      const double t = rows.t[i];
+      double ref = rows.reference[i];
+      const std::int64_t t_raw = code[x];
+      const bool always = state[s] == 1;
+      if (ref < 0.0) ref = reference_value(lane.slots, s, t);
+      std::int64_t out = 0;
+      double r = 0;
+      if constexpr (kMemo) {
+        const auto& table = memo->tables[s];
+        const auto c = static_cast<std::size_t>(t_raw - table.first);
+        out = table.hot[c].out.load(std::memory_order_acquire);
+        if (out == kUnset) {
+          const CodeFacts f = Memo::fill(table, c, facts(s, t_raw));
+          out = f.out;
+          r = f.r;
+        } else {
+          r = table.hot[c].r.load(std::memory_order_relaxed);
+        }
+        if (!table.is_folded(c)) {
+          const auto& mp = table.parts[c];
+          fold_parts(CodeFacts{out, r, mp.approximation.load(std::memory_order_relaxed),
+                               mp.parameter.load(std::memory_order_relaxed),
+                               mp.datapath.load(std::memory_order_relaxed)},
+                     t);
+          p.folded.emplace_back(static_cast<std::uint32_t>(s), static_cast<std::uint32_t>(c));
+        }
+      } else {
+        const CodeFacts f = facts(s, t_raw);
+        out = f.out;
+        r = f.r;
+        fold_parts(f, t);
+      }
+      const double fixed = static_cast<double>(out) * ulp;
+      const double err = fixed - ref;
+      computed_weighted.add(std::fabs(err * c_y[s]), t, k);
+      if (always) {
+        ++always_rows;
+        square[k] = 0;
+      } else {
+        computed_total.add(std::fabs(err), t, k);
+        square[k] = err * err;
+        max_at(input, std::fabs(r - ref), t);
+        mismatch += display_code(fixed, display) != display_code(ref, display);
+      }
+      word[k] = digest_word(out, false);
+      if (raw) raw[i] = out;
+    }
+  }
+
+  // The run's counts and maxima into its partial (its squares and words are there already).
+  void finish() {
+    p.vectors = n;
+    p.skipped = skipped_count;
+    p.always_skipped = always_rows;
+    p.mismatch = mismatch;
+    p.total = FirstMax::join(skipped_total, computed_total);
+    p.weighted = FirstMax::join(skipped_weighted, computed_weighted);
+    p.input = input;
+    p.skip = skip;
+    p.approximation = approximation;
+    p.parameter = parameter;
+    p.datapath = datapath;
+  }
+
+  const LaneView& lane;
+  const Memo* const memo;  // null: no memo (add_computed_rows<false>)
+  const Facts& facts;
+  const RowsView rows;
+  const std::size_t a, n;
+  LanePartial& p;
+  const std::int64_t* const tau;
+  const std::int8_t* const state;
+  const double* const c_y;
+  const double ulp, display;
+  const SettledRows settled;
+  double* square = nullptr;
+  std::uint64_t* word = nullptr;
+  std::uint32_t* computed = nullptr;      // computed rows, in order
+  std::int64_t* code = nullptr;           // their input codes
+  std::uint32_t* skipped_rows = nullptr;  // skipped rows of the last classify, in order
+  std::uint32_t* listed = nullptr;        // rows not left out (leave_out_dropped)
+  std::size_t computed_count = 0, skipped_count = 0;
+  FirstMax skipped_total, skipped_weighted, computed_total, computed_weighted;
+  LanePartial::MaxAt input{0, 0}, skip{0, 0};
+  LanePartial::MaxAt approximation{0, 0}, parameter{0, 0}, datapath{0, 0};
+  std::uint64_t always_rows = 0, mismatch = 0;
+};
+
+}  // namespace
+
 void LaneAccumulator::accumulate(const RowsView& rows, std::size_t a, std::size_t b, LanePartial& p,
                                  std::int64_t* raw, std::uint8_t* skipped) const {
   if (memo_) {
@@ -368,236 +664,25 @@ template <bool kMemo>
 void LaneAccumulator::accumulate_rows(const RowsView& rows, std::size_t a, std::size_t b,
                                       LanePartial& p, std::int64_t* raw,
                                       std::uint8_t* skipped) const {
-  const InputQuantizer quantize(unit_.in_format());
-  const std::size_t n = b - a;
-  p.square.resize(n);
-  p.word.resize(n);
-  p.folded.clear();
-  // Locals, the statistics too: the loop stores through pointers the compiler cannot tell from
-  // the members, which would send every maximum through memory on every row.
-  const std::int64_t* const tau = tau_.data();
-  const std::int8_t* const state = slot_state_.data();
-  const double* const c_y = slots_.c_y.data();
-  const double ulp = ulp_, display = display_;
-  double* const square = p.square.data();
-  std::uint64_t* const word = p.word.data();
-  thread_local std::vector<std::uint32_t> computed_list, skipped_list, row_list;
-  thread_local std::vector<std::int64_t> code_list;
-  computed_list.resize(n);
-  skipped_list.resize(n);
-  row_list.resize(n);
-  code_list.resize(n);
-  std::uint32_t* const computed = computed_list.data();
-  std::uint32_t* const skipped_rows = skipped_list.data();
-  std::uint32_t* const listed = row_list.data();
-  std::int64_t* const code = code_list.data();
-  const double bound = std::ldexp(1.0, deferred_exponent_);
-  const bool sum_settled = sum_settled_;
-  FirstMax total1, weighted1, total2, weighted2;
-  LanePartial::MaxAt input{0, 0}, skip{0, 0};
-  LanePartial::MaxAt approximation{0, 0}, parameter{0, 0}, datapath{0, 0};
-  std::uint64_t always_rows = 0, mismatch = 0;
-  // A skipped row whose reference was deferred (at most `bound`) changes nothing once earlier
-  // rows of this run are larger in every maximum it enters and its square is below half an ulp
-  // of the running sum: the sum before this window's rows puts it there (sum_settled_: the sum
-  // only grows, sums of non-negative terms rounding monotonically), or else, for the least bound
-  // 2^-40, one squared error of this run of at least 2^-26 does. Else it is computed. The maxima
-  // of the skipped rows alone are at most those of every row so far, so this pass computes at
-  // least the references one pass in stream order would.
-  constexpr double kSumFloor = 0x1.0p-13;  // an error whose square is 2^-26
-  static_assert(kDeferredBound * kDeferredBound < 0x1.0p-26 * 0x1.0p-53, "half an ulp of 2^-26");
-  // The two halves of "settled", shared by add_skipped and the filter below it, which relies on
-  // judging rows as add_skipped would.
-  const auto scalars_settled = [&] {
-    const bool sum = sum_settled | ((bound <= kDeferredBound) & (total1.value >= kSumFloor));
-    return sum & (total1.value > bound) & (skip.value > bound);
+  const LaneView lane{
+      slots_,         InputQuantizer(unit_.in_format()),
+      tau_.data(),    slot_state_.data(),
+      drop_t_.data(), max_c_y_,
+      ulp_,           display_,
+      any_always_,    SettledRows(deferred_exponent_, sum_settled_),
   };
-  const auto weighted_settled = [&](double weighted, std::size_t s) {
-    return weighted > bound * c_y[s];
+  const auto facts = [this](std::size_t slot, std::int64_t t_raw) {
+    return compute_facts(slot, t_raw);
   };
-  const auto add_skipped = [&](std::size_t k) {
-    const std::size_t i = a + k;
-    const std::size_t s = rows.slot[i];
-    const double t = rows.t[i];
-    double ref = rows.reference[i];
-    const bool always = state[s] == 1;
-    // A deferred reference that can change nothing goes through the statistics below as 0,
-    // which changes nothing either (every maximum it enters is larger, its square is 0, its
-    // display code 0): no branch on which rows were deferred, which a stream takes at random.
-    const bool settled = (always | scalars_settled()) & weighted_settled(weighted1.value, s);
-    if ((ref < 0.0) & !settled) ref = reference_value(slots_, s, t);
-    ref = select(ref < 0.0, 0.0, ref);  // kDeferredReference is negative, a lobe never
-    // The result is 0: the error is -ref, of magnitude ref.
-    weighted1.add(ref * c_y[s], t, k);
-    if (always) {
-      ++always_rows;
-      square[k] = 0;
-    } else {
-      total1.add(ref, t, k);
-      square[k] = ref * ref;
-      max_at(skip, ref, t);
-      // The result's display code is 0; the reference's is not when it rounds up from 0.5.
-      mismatch += min1(ref) * display >= 0.5;
-    }
-  };
-  // The passes: every row's code and comparator (classify_rows), which lists the skipped and the
-  // computed rows without a branch between them (a stream takes it at random); the skipped rows'
-  // statistics; then the computed rows'. The maxima that both lists enter keep the row of their
-  // first largest value, to be joined as one pass in stream order would have.
-  // classify: rows k0 .. k0 + count - 1, or those of `at` (not null).
-  const auto classify = [&](const std::uint32_t* at, std::size_t k0, std::size_t count,
-                            std::size_t& computed_at) {
-    const auto sort = [&](auto row_at) {
-      return classify_rows(quantize, rows.t + a, rows.slot + a, tau, row_at, count,
-                           computed + computed_at, code + computed_at, skipped_rows, word);
-    };
-    const ClassifiedRows c =
-        at ? sort([at](std::size_t x) { return at[x]; })
-           : sort([k0](std::size_t x) { return static_cast<std::uint32_t>(k0 + x); });
-    computed_at += c.computed;
-    return c.skipped;
-  };
-  // Skipped rows in order through add_skipped until the maxima that a skipped row with reference
-  // 0 could change are above 0 and those that a deferred one could change are settled (they only
-  // grow; it takes a few dozen rows on a typical stream). From there a skipped row of reference
-  // at most the bound (0, deferred or computed) in a slot whose weighted maximum is settled
-  // changes nothing but its square (0) and the count of always-skipped rows: the rest of the
-  // skipped rows are filtered (`settle` below), the others going through add_skipped as before.
-  constexpr std::size_t kSettledCheck = 64;  // rows between two looks at the maxima
-  const auto settle = [&](std::size_t x, std::size_t end) {
-    const double weighted_now = weighted1.value;
-    std::size_t live = 0;
-    for (std::size_t y = x; y < end; ++y) {
-      const std::size_t j = skipped_rows[y];
-      const std::size_t i = a + j;
-      const std::size_t s = rows.slot[i];
-      const double ref = rows.reference[i];
-      const bool keep = (ref > 0.0) | ((ref < 0.0) & !weighted_settled(weighted_now, s));
-      square[j] = 0;
-      always_rows += (state[s] == 1) & !keep;
-      skipped_rows[live] = static_cast<std::uint32_t>(j);
-      live += keep;
-    }
-    for (std::size_t y = 0; y < live; ++y) add_skipped(skipped_rows[y]);
-  };
-  std::size_t computed_count = 0, skipped_count = 0;
-  if (!drops_any_) {
-    skipped_count = classify(nullptr, 0, n, computed_count);
-    std::size_t x = 0;
-    for (; x < skipped_count; ++x) {
-      if (x % kSettledCheck == 0 && scalars_settled()) break;
-      add_skipped(skipped_rows[x]);
-    }
-    settle(x, skipped_count);
+  Run<Memo, decltype(facts)> run(lane, memo_.get(), facts, rows, a, b, p);
+  if (drops_any_) {
+    run.add_skipped_rows_leaving_out_dropped();
   } else {
-    // The same a chunk of rows at a time; once the scalar maxima and every slot's weighted
-    // maximum are settled, the rows at or below their slot's drop_t are left out at once, so that
-    // most of a mostly skipped stream costs a few operations a row.
-    std::size_t k = 0;
-    for (; k < n && !scalars_settled(); k = std::min(n, k + kSettledCheck)) {
-      const std::size_t some =
-          classify(nullptr, k, std::min(n, k + kSettledCheck) - k, computed_count);
-      skipped_count += some;
-      for (std::size_t x = 0; x < some; ++x) add_skipped(skipped_rows[x]);
-    }
-    const bool drop = weighted1.value > bound * max_c_y_;
-    const std::size_t count =
-        drop ? list_rows(rows.t + a, rows.slot + a, drop_t_.data(), k, n, listed) : n - k;
-    if (drop) {
-      std::fill(word + k, word + n, digest_word(0, true));
-      std::fill(square + k, square + n, 0.0);
-      skipped_count += (n - k) - count;
-      if (any_always_)
-        for (std::size_t j = k; j < n; ++j) {
-          const std::size_t s = rows.slot[a + j];
-          always_rows += (rows.t[a + j] <= drop_t_[s]) & (state[s] == 1);
-        }
-    }
-    const std::size_t rest = classify(drop ? listed : nullptr, k, count, computed_count);
-    skipped_count += rest;
-    settle(0, rest);
+    run.add_skipped_rows();
   }
-  if (raw) std::fill(raw + a, raw + a + n, 0);  // a computed row's is written below
-  if (skipped) {
-    std::fill(skipped + a, skipped + a + n, 1);
-    for (std::size_t x = 0; x < computed_count; ++x) skipped[a + computed[x]] = 0;
-  }
-  const auto fold_parts = [&](const CodeFacts& f, double t) {
-    max_at(approximation, std::fabs(f.approximation), t);
-    max_at(parameter, std::fabs(f.parameter), t);
-    max_at(datapath, std::fabs(f.datapath), t);
-  };
-  // How many computed rows ahead the memo entry is fetched: five lanes' tables of 2^15 codes
-  // are beyond the L2 cache, and a row's entry is where its t falls.
-  constexpr std::size_t kAhead = 8;
-  for (std::size_t x = 0; x < computed_count; ++x) {
-    if constexpr (kMemo) {
-      if (x + kAhead < computed_count) {
-        const Memo::Table& ahead = memo_->tables[rows.slot[a + computed[x + kAhead]]];
-        __builtin_prefetch(&ahead.hot[static_cast<std::size_t>(code[x + kAhead] - ahead.first)]);
-      }
-    }
-    const std::size_t k = computed[x];
-    const std::size_t i = a + k;
-    const std::size_t s = rows.slot[i];
-    const double t = rows.t[i];
-    double ref = rows.reference[i];
-    const std::int64_t t_raw = code[x];
-    const bool always = state[s] == 1;
-    if (ref < 0.0) ref = reference_value(slots_, s, t);
-    std::int64_t out = 0;
-    double r = 0;
-    if constexpr (kMemo) {
-      const Memo::Table& table = memo_->tables[s];
-      const auto c = static_cast<std::size_t>(t_raw - table.first);
-      out = table.hot[c].out.load(std::memory_order_acquire);
-      if (out == kUnset) {
-        const CodeFacts f = Memo::fill(table, c, compute_facts(s, t_raw));
-        out = f.out;
-        r = f.r;
-      } else {
-        r = table.hot[c].r.load(std::memory_order_relaxed);
-      }
-      if (!table.is_folded(c)) {
-        const Memo::Parts& mp = table.parts[c];
-        fold_parts(CodeFacts{out, r, mp.approximation.load(std::memory_order_relaxed),
-                             mp.parameter.load(std::memory_order_relaxed),
-                             mp.datapath.load(std::memory_order_relaxed)},
-                   t);
-        p.folded.emplace_back(static_cast<std::uint32_t>(s), static_cast<std::uint32_t>(c));
-      }
-    } else {
-      const CodeFacts f = compute_facts(s, t_raw);
-      out = f.out;
-      r = f.r;
-      fold_parts(f, t);
-    }
-    const double fixed = static_cast<double>(out) * ulp;
-    const double err = fixed - ref;
-    weighted2.add(std::fabs(err * c_y[s]), t, k);
-    if (always) {
-      ++always_rows;
-      square[k] = 0;
-    } else {
-      total2.add(std::fabs(err), t, k);
-      square[k] = err * err;
-      max_at(input, std::fabs(r - ref), t);
-      mismatch += display_code(fixed, display) != display_code(ref, display);
-    }
-    word[k] = digest_word(out, false);
-    if (raw) raw[i] = out;
-  }
-  p.vectors = n;
-  p.skipped = skipped_count;
-  p.always_skipped = always_rows;
-  p.mismatch = mismatch;
-  p.total = FirstMax::join(total1, total2);
-  p.weighted = FirstMax::join(weighted1, weighted2);
-  p.input = input;
-  p.skip = skip;
-  p.approximation = approximation;
-  p.parameter = parameter;
-  p.datapath = datapath;
+  run.write_skip_flags(raw, skipped);
+  run.template add_computed_rows<kMemo>(raw);
+  run.finish();
 }
 
 void LaneAccumulator::merge_counts(const LanePartial& p) {

@@ -38,6 +38,8 @@ NumberStatus parse_decimal(const char* b, const char* e, double& out);
 // which is all that is looked at. The value: the digits moved to the high end (zeros in front of
 // them), then 10 d_i + d_(i+1) in every even byte, then the four pairs weighted 10^6, 10^4, 100
 // and 1 by two multiplies whose high halves add up to the number (at most 10^8 - 1, no carry).
+// With the digit loop alone, glint eval of six-decimal rows ran 5 % more instructions
+// (tests/bench/RESULTS.md, "Issue 30").
 inline unsigned leading_digits(const char* p, std::uint64_t& value) {
   std::uint64_t w = 0;
   std::memcpy(&w, p, sizeof w);
@@ -59,7 +61,9 @@ inline unsigned leading_digits(const char* p, std::uint64_t& value) {
 // and there are k <= 22 of them after the point, m and 10^k are exact doubles and m / 10^k is one
 // correctly rounded division (Clinger's fast path), so `out` gets the bits fast_float's correctly
 // rounded conversion gives, at a third of its cost; returns the end of the number. Else nullptr
-// (the caller takes parse_decimal's path). Inline: rows call it per field.
+// (the caller takes parse_decimal's path). Inline: rows call it per field. With fast_float alone
+// (the row parser calling it directly), glint eval of six-decimal rows ran 11 % more instructions
+// (tests/bench/RESULTS.md, "Issue 30").
 inline const char* parse_plain_decimal(const char* b, const char* e, double& out) {
   static constexpr double kPow10[23] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
                                         1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
