@@ -5,7 +5,7 @@
 // mode implements cycle by cycle (src/timing.h). SystemC time advances once per batch, by the
 // cycles the batch took: cycle stamps come from latency, II and stalls instead of from clock edges,
 // which is what makes long streams cheap. Both modes must give identical outputs and cycle counts
-// (tests/test_rtl_*.cpp).
+// (tests/rtl_model/test_rtl_*.cpp).
 #pragma once
 
 #include <cstdint>

@@ -75,7 +75,7 @@ struct Field {
 };
 
 // The sim report's fixed part (src/eval/sim_report.md, version 3): its top level and each
-// unit's keys. tests/test_golden.cpp checks that a report of this build passes.
+// unit's keys. tests/eval/test_golden.cpp checks that a report of this build passes.
 constexpr Field kReportFields[] = {{"glint_sim_report", Kind::kUnsigned},
                                    {"vectors_file", Kind::kString},
                                    {"rows", Kind::kUnsigned},

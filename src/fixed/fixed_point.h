@@ -15,7 +15,8 @@
 // The hot paths (round_shift, fit_overflow, quantize_raw for results that fit an int64, and the
 // Fixed operations built on them) are inline; only rare wide cases and error paths are out of line.
 //
-// Known SystemC 2.3.4 deviation (tests/test_fixed_point.cpp, FixedEdge.SystemCProductCarryDefect):
+// Known SystemC 2.3.4 deviation (tests/fixed/test_fixed_point.cpp,
+// FixedEdge.SystemCProductCarryDefect):
 // SystemC can lose the rounding carry when quantizing a product whose mantissa is all ones up to
 // its top word (the result depends on how SystemC computed the value, not only on the value).
 // glint always rounds the value as the mode defines, which equals SystemC's result for the same

@@ -1,7 +1,7 @@
 // libFuzzer harnesses of glint's parsers (tests/fuzz/README.md). Each harness is a function over
 // one input; built with GLINT_FUZZ_ENTRY (the fuzz_* programs of GLINT_FUZZ=ON) it is also the
-// program's LLVMFuzzerTestOneInput, and without it tests/test_fuzz_replay.cpp calls it on every
-// seed and every regression input in the normal suite.
+// program's LLVMFuzzerTestOneInput, and without it tests/fuzz/test_fuzz_replay.cpp calls it on
+// every seed and every regression input in the normal suite.
 //
 // A harness returns 0 for any input that glint accepts or refuses the way the CLI would with exit
 // 2 (InputError, std::invalid_argument); anything else is a finding and aborts through fail():

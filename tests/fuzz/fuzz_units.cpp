@@ -10,7 +10,7 @@
 // eval(), its batch with eval_with_skip(), and its canonical spec must build the same unit again.
 // The work per input is bounded: at most 8 materials x 4 lights, 24 codes per slot, and the
 // accuracy contract (a sweep over the kept input codes) of one slot when the input has at most 12
-// fraction bits (the contract's cost grows with the codes; tests/test_contract_properties.cpp
+// fraction bits (the contract's cost grows with the codes; tests/eval/test_contract_properties.cpp
 // sweeps wide inputs).
 #include <algorithm>
 #include <cstdint>

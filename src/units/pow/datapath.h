@@ -15,7 +15,7 @@
 // pow's real-valued model is t^n itself, so this whole bound is its datapath budget (the tables
 // and their interpolation are how the datapath computes t^n, not a different function).
 // The bound grows linearly in n: with the defaults it stays under ½ LSB of an 8-bit display for
-// n <= 512 and under 1 LSB for n <= 1024 (tests/test_units_exhaustive.cpp holds it to that).
+// n <= 512 and under 1 LSB for n <= 1024 (tests/units/test_units_exhaustive.cpp holds it to that).
 #pragma once
 
 #include <cmath>

@@ -10,6 +10,7 @@
 #include "io/vectors.h"
 #include "test_support.h"
 #include "units/catalogue.h"
+#include "vector_rows.h"
 
 namespace glint {
 namespace {

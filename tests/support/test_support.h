@@ -1,5 +1,6 @@
 // Small helpers shared by the test programs: a scratch directory per test, shell quoting, whole
-// file reads, a vector file's rows and runs of the glint binary.
+// file reads and runs of the glint binary. Standard library and gtest only, so that a test of any
+// layer (or of the glint binary alone) can use them; a vector file's rows are in vector_rows.h.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -13,8 +14,6 @@
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include "io/vectors.h"
 
 namespace glint::test {
 
@@ -86,16 +85,6 @@ inline CliRun run_glint(const std::filesystem::path& dir, const std::string& arg
   std::filesystem::remove(out);
   std::filesystem::remove(err);
   return r;
-}
-
-// Every row of a vector file, and its header.
-inline std::vector<VectorRow> read_rows(const std::string& path, VectorHeader& header) {
-  VectorReader reader(path);
-  header = reader.header();
-  std::vector<VectorRow> rows;
-  VectorRow row;
-  while (reader.next(row)) rows.push_back(row);
-  return rows;
 }
 
 }  // namespace glint::test

@@ -3,7 +3,7 @@
 // input is read or output written; the limits are stated in --help. And `glint regress` cannot be
 // fooled: a golden that lacks a field, has an extra one or a value of another type is refused
 // naming the file and the field, a golden without its trace is refused, and a tampered trace fails.
-// Runs the real binary, as tests/test_cli.cpp does (its own small fixture).
+// Runs the real binary, as tests/cli/test_cli.cpp does (its own small fixture).
 #include <gtest/gtest.h>
 
 #include <filesystem>

@@ -21,6 +21,7 @@
 #include "test_support.h"
 #include "units/catalogue.h"
 #include "units/lane_cost.h"
+#include "vector_rows.h"
 
 namespace glint {
 namespace {
