@@ -23,7 +23,7 @@
 // - The lane, not the shared pass, decides: a deferred reference of a row that is not settled is
 //   computed by the lane (the same reference_value, the same bits), so one lane's weak bound
 //   never costs another lane its exactness.
-// tests/test_engine.cpp holds each step to hand-checked values and the engine to the
+// tests/eval/test_engine.cpp holds each step to hand-checked values and the engine to the
 // row-at-a-time path, which never defers.
 #pragma once
 
