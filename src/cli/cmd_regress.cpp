@@ -158,9 +158,6 @@ std::vector<Check> trace_checks(const RegressOptions& o, const fs::path& dir,
   for (const auto& e : fs::directory_iterator(dir))
     if (e.path().extension() == ".vec") traces.push_back(e.path());
   std::sort(traces.begin(), traces.end());
-  // Nothing checked must not read as "nothing failed".
-  if (traces.empty())
-    throw std::invalid_argument(fmt::format("--traces {}: no *.vec trace in it", o.traces));
   // Nor may a golden go unchecked because its trace is gone.
   if (fs::is_directory(golden_dir)) {
     for (const auto& e : fs::directory_iterator(golden_dir)) {
@@ -293,6 +290,10 @@ int run_regress(const RegressOptions& o) {
   std::vector<Check> checks = trace_checks(o, dir, golden_dir);
   const std::size_t trace_count = checks.size();
   for (Check& c : scene_checks(o, dir, golden_dir)) checks.push_back(std::move(c));
+  // Nothing checked must not read as "nothing failed".
+  if (checks.empty())
+    throw std::invalid_argument(fmt::format(
+        "--traces {}: no *.vec trace in it, and no scene golden in golden/scenes/", o.traces));
   // Every golden and its budgets are checked before the first child runs.
   for (Check& c : checks) {
     if (o.update && !o.units.empty()) {
@@ -381,8 +382,11 @@ int run_regress(const RegressOptions& o) {
 void add_regress_command(CLI::App& app, int& status) {
   auto o = std::make_shared<RegressOptions>();
   CLI::App* sub = app.add_subcommand(
-      "regress", "Accuracy regression: re-run the shipped traces against traces/golden/");
-  sub->add_option("--traces", o->traces, "Folder of *.vec traces with golden/ inside")
+      "regress",
+      "Accuracy regression: re-run the shipped traces and scenes against traces/golden/");
+  sub->add_option("--traces", o->traces,
+                  "Folder of *.vec traces and scenes/, with their goldens in golden/ and "
+                  "golden/scenes/")
       ->capture_default_str();
   CLI::Option* update =
       sub->add_flag("--update", o->update, "Rewrite the goldens from this build (deliberately)");

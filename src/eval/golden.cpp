@@ -329,6 +329,10 @@ Golden parse_golden(const std::string& text, const std::string& file, GoldenUse 
   // --update may complete a golden that records only its settings.
   const bool completing = use == GoldenUse::kUpdate && doc.is_object() && !doc.contains("report");
   if (completing) doc["report"] = nlohmann::json::object();
+  if (use == GoldenUse::kCompare && doc.is_object() && !doc.contains("report"))
+    c.fail("report",
+           "missing: `glint regress --update` records it (or write null for a golden of budgets "
+           "only)");
   if (g.kind == GoldenKind::kTrace) {
     c.object(doc, "", kGoldenFields);
     g.trace = checked_input_name(c, doc, "trace", ".vec");

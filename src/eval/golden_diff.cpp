@@ -160,18 +160,20 @@ void leaf_changes(const Json* g, const Json* f, const std::string& path,
 template <std::size_t N>
 void field_changes(const Json& g, const Json& f, const HardwareField (&fields)[N],
                    const std::string& who, std::vector<std::string>& out) {
+  // The run's fields read alone ("slot capacity 42 -> 64"), a lane's after its label.
+  const std::string prefix = who.empty() ? "" : who + ": ";
   for (const HardwareField& h : fields) {
     const Json* gv = at(g, h.pointer);
     const Json* fv = at(f, h.pointer);
     if (!gv && !fv) continue;
     if (std::string(h.words) == "spec" && gv && fv && gv->is_string() && fv->is_string()) {
       if (*gv != *fv)
-        out.push_back(who + ": " + spec_change(gv->get<std::string>(), fv->get<std::string>()));
+        out.push_back(prefix + spec_change(gv->get<std::string>(), fv->get<std::string>()));
       continue;
     }
     std::vector<std::string> leaves;
     leaf_changes(gv, fv, h.words, leaves);
-    for (const auto& l : leaves) out.push_back(who + ": " + l);
+    for (const auto& l : leaves) out.push_back(prefix + l);
   }
 }
 
@@ -209,7 +211,11 @@ bool moved(double a, double b, double rel_tol) {
 struct Move {
   double size = 0;  // |relative change|; infinite from 0
   std::string text;
+  int order = 0;  // the headline's place in its table: errors first, then cost, then counts
 };
+
+// A lane's line names its largest few moves, in the table's order.
+constexpr std::size_t kMovesPerLane = 4;
 
 template <std::size_t N>
 void headline_moves(const Json& g, const Json& f, const Headline (&list)[N], double rel_tol,
@@ -221,12 +227,13 @@ void headline_moves(const Json& g, const Json& f, const Headline (&list)[N], dou
     const double scale = h.style == Style::kPercent ? 100.0 : 1.0;
     const double was = gv->get<double>() * scale, now = fv->get<double>() * scale;
     if (!moved(was, now, rel_tol)) continue;
-    const std::string unit = *h.unit ? std::string(h.unit[0] == '%' ? "" : " ") + h.unit : "";
+    const std::string unit = *h.unit ? std::string(" ") + h.unit : "";
     const char* verb = h.style == Style::kError ? (now > was ? " rose" : " fell") : "";
     Move m;
+    m.order = static_cast<int>(&h - list);
     m.size = was == 0 ? HUGE_VAL : std::fabs(now - was) / std::fabs(was);
     // "max error rose 0.31 LSB -> 0.52 LSB", "area 6 301 -> 6 762 GE".
-    const std::string first_unit = h.style == Style::kError ? unit : "";
+    const std::string first_unit = h.style == Style::kPlain ? "" : unit;
     m.text = fmt::format("{}{} {}{} -> {}{} {}", h.words, verb, number_text(was, now), first_unit,
                          number_text(now, was), unit, percent_text(was, now));
     out.push_back(std::move(m));
@@ -260,20 +267,37 @@ std::vector<std::string> hardware_changes(GoldenKind kind, const nlohmann::json&
   std::vector<std::string> out;
   const bool trace = kind == GoldenKind::kTrace;
   if (trace) {
-    field_changes(golden, fresh, kSimRunHardware, "chip", out);
+    field_changes(golden, fresh, kSimRunHardware, "", out);
   } else {
-    field_changes(golden, fresh, kRenderRunHardware, "chip", out);
+    field_changes(golden, fresh, kRenderRunHardware, "", out);
   }
   const auto labels = lane_labels(golden);
   const auto& gu = golden.at("units");
   const auto& fu = fresh.at("units");
   if (gu.size() != fu.size()) out.push_back(fmt::format("lanes: {} -> {}", gu.size(), fu.size()));
-  for (std::size_t i = 0; i < std::min(gu.size(), fu.size()); ++i) {
+  // A change shared by several lanes (a chip's capacity reaches every table) is one line naming
+  // them, "every lane" when it is all of them; lines in order of first appearance.
+  std::vector<std::pair<std::string, std::vector<std::string>>> shared;  // change, lanes
+  const std::size_t lanes = std::min(gu.size(), fu.size());
+  for (std::size_t i = 0; i < lanes; ++i) {
+    std::vector<std::string> changes;
     if (trace) {
-      field_changes(gu[i], fu[i], kSimLaneHardware, labels[i], out);
+      field_changes(gu[i], fu[i], kSimLaneHardware, "", changes);
     } else {
-      field_changes(gu[i], fu[i], kRenderLaneHardware, labels[i], out);
+      field_changes(gu[i], fu[i], kRenderLaneHardware, "", changes);
     }
+    for (auto& c : changes) {
+      auto it =
+          std::find_if(shared.begin(), shared.end(), [&](const auto& s) { return s.first == c; });
+      if (it == shared.end()) it = shared.insert(shared.end(), {std::move(c), {}});
+      it->second.push_back(labels[i]);
+    }
+  }
+  for (const auto& [change, who] : shared) {
+    std::string names;
+    for (const auto& w : who) names += (names.empty() ? "" : ", ") + w;
+    out.push_back((who.size() == lanes && lanes > 1 ? std::string("every lane") : names) + ": " +
+                  change);
   }
   return out;
 }
@@ -300,10 +324,17 @@ std::vector<std::string> largest_changes(GoldenKind kind, const nlohmann::json& 
     }
     std::stable_sort(lane.moves.begin(), lane.moves.end(),
                      [](const Move& a, const Move& b) { return a.size > b.size; });
+    const std::size_t more =
+        lane.moves.size() > kMovesPerLane ? lane.moves.size() - kMovesPerLane : 0;
+    lane.moves.resize(lane.moves.size() - more);
+    std::sort(lane.moves.begin(), lane.moves.end(),
+              [](const Move& a, const Move& b) { return a.order < b.order; });
+    if (more > 0)
+      lane.moves.push_back({0, fmt::format("{} more figure{}", more, more == 1 ? "" : "s"), 0});
     // A lane whose every figure held may still compute other bits: its digest says so.
     const bool digest_moved = trace && gu[i].contains("digest") && fu[i].contains("digest") &&
                               gu[i]["digest"] != fu[i]["digest"];
-    if (digest_moved) lane.moves.push_back({0, "results differ bit for bit (digest)"});
+    if (digest_moved) lane.moves.push_back({0, "results differ bit for bit (digest)", 0});
     if (!lane.moves.empty()) lanes.push_back(std::move(lane));
   }
   std::stable_sort(lanes.begin(), lanes.end(), [](const LaneMoves& a, const LaneMoves& b) {

@@ -20,7 +20,7 @@ namespace glint {
 std::vector<std::string> lane_labels(const nlohmann::json& report);
 
 // One line per hardware field that differs between the golden's report and the fresh one
-// ("lut: spec bits=6 -> bits=7", "chip: slot capacity 42 -> 64"); empty when none does.
+// ("lut: spec bits=6 -> bits=7", "slot capacity 42 -> 64"); empty when none does.
 std::vector<std::string> hardware_changes(GoldenKind kind, const nlohmann::json& golden,
                                           const nlohmann::json& fresh);
 
