@@ -44,6 +44,7 @@ constexpr HardwareField kSimRunHardware[] = {{"/chip", "chip"},
 constexpr HardwareField kRenderLaneHardware[] = {
     {"/spec", "spec"},
     {"/chip", "chip"},
+    {"/description/chip", "chip"},
     {"/description/timing/latency", "latency"},
     {"/description/timing/ii", "initiation interval"},
     {"/description/timing/buffer_depth", "merge buffer depth"},
