@@ -1,17 +1,20 @@
-// glint regress: re-runs `glint sim` on the shipped traces and compares with traces/golden/.
+// glint regress: re-runs `glint sim` on the shipped traces and `glint render` on the scenes that
+// have goldens, and compares with traces/golden/ (and traces/golden/scenes/).
 //
-// Each golden (traces/golden/NAME.json) records the trace, the unit specs and the sink settings it
-// was made with, and the report. Every run happens in a child `glint sim` process: SystemC allows
-// one elaboration per process, and the child is exactly what a user runs.
+// Each golden records its input, the unit specs and the settings it was made with (sink, slots),
+// and the report, budgets (conditions per lane, in size's grammar), or both. Every run happens in
+// a child process: SystemC allows one elaboration per process, and the child is exactly what a
+// user runs. A failure says first what changed in the hardware, then the figures that moved most,
+// then every difference (eval/golden_diff.h).
 //
-// --update keeps each golden's recorded specs unless --unit gives new ones; it writes the goldens
-// only after every child has succeeded, so a failing trace leaves all of them as they were.
+// Every golden is read and checked, budgets included, before the first child runs. --update keeps
+// each golden's recorded specs unless --unit gives new ones; it writes the goldens only after
+// every child has succeeded and every budget held, so a failing input leaves all of them as they
+// were.
 #include <fmt/format.h>
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -19,70 +22,64 @@
 #include <vector>
 
 #include "cli/cli.h"
+#include "cli/regress_inputs.h"
 #include "eval/golden.h"
+#include "eval/golden_diff.h"
 #include "eval/sim_report.h"
 #include "io/input_error.h"
 #include "io/output_set.h"
+#include "sweep/golden_budgets.h"
 
 namespace glint::cli {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct RegressOptions {
-  std::string traces = "traces";
-  std::vector<std::string> units;  // with --update: the specs every updated golden records
-  bool update = false;
-  double tolerance = 1e-9;
-  bool json = false;
+// What one check found, in the order a colleague reads it.
+struct Finding {
+  std::vector<std::string> hardware, budgets, largest, differences;
+  bool failed() const { return !budgets.empty() || !differences.empty(); }
 };
 
-// The goldens made by --update for a trace that has none: every unit, the iterative divider,
-// a full-domain Öztürk fit, and a starved merge buffer under sink backpressure.
-const std::vector<std::string>& default_specs() {
-  static const std::vector<std::string> specs = {
-      "pow",
-      "schlick",
-      "schlick:divider=iterative",
-      "hast",
-      "horner",
-      "horner:degree=6,method=ls,domain=full,constrain=off",
-      "lut",
-      "lut:bits=4,buffer=2"};
-  return specs;
+Finding compare(const RegressCheck& c, const nlohmann::json& fresh, double tolerance) {
+  Finding f;
+  f.budgets = broken_budgets(c.golden, c.budgets, fresh);
+  if (c.golden.budgets_only) return f;
+  const GoldenKind kind = c.golden.kind;
+  // A golden that lacks a field, has one this build does not write, or a value of another type
+  // is refused (exit 2) before its values are compared: it cannot pass by saying less.
+  check_report_shape(c.golden.report, fresh, c.golden_path.string());
+  f.differences = kind == GoldenKind::kTrace
+                      ? diff_sim_reports(c.golden.report, fresh, tolerance)
+                      : diff_render_reports(c.golden.report, fresh, tolerance);
+  if (f.differences.empty()) return f;
+  f.hardware = hardware_changes(kind, c.golden.report, fresh);
+  f.largest = largest_changes(kind, c.golden.report, fresh, tolerance);
+  return f;
 }
 
-std::string shell_quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-nlohmann::json run_child(const std::string& trace, const Golden& setup) {
-  std::string cmd = shell_quote(fs::read_symlink("/proc/self/exe").string()) + " sim " +
-                    shell_quote(trace) + " --json";
-  for (const auto& u : setup.units) cmd += " --unit " + shell_quote(u);
-  cmd += fmt::format(" --sink-ready {:.17g}", setup.sink_ready);
-  // An always-ready sink has no pattern to seed (sim refuses --seed then; the golden records 1).
-  if (setup.sink_ready < 1) cmd += fmt::format(" --seed {}", setup.seed);
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) throw std::runtime_error("cannot run " + cmd);
-  std::string out;
-  char buf[65536];
-  for (std::size_t n; (n = fread(buf, 1, sizeof buf, p)) > 0;) out.append(buf, n);
-  const bool read_error = std::ferror(p) != 0;
-  const int st = pclose(p);
-  if (st != 0)
-    throw std::invalid_argument(fmt::format("{}: `glint sim` failed (status {})", trace, st));
-  // The child checks its standard output (exit 2 on a failed write), so a report that does not
-  // parse here is lost on the way: glint's own failure.
-  try {
-    if (read_error) throw std::runtime_error("read error on its pipe");
-    return nlohmann::json::parse(out);
-  } catch (const std::exception& e) {
-    throw std::runtime_error(
-        fmt::format("{}: the report of `glint sim --json` is incomplete: {}", trace, e.what()));
+void print_finding(const RegressCheck& c, const Finding& f) {
+  if (!f.failed()) {
+    std::cout << fmt::format("ok    {}\n", c.name);
+    return;
   }
+  std::string counts;
+  if (!f.differences.empty())
+    counts =
+        fmt::format("{} difference{}", f.differences.size(), f.differences.size() == 1 ? "" : "s");
+  if (!f.budgets.empty())
+    counts += fmt::format("{}{} budget condition{} not met", counts.empty() ? "" : ", ",
+                          f.budgets.size(), f.budgets.size() == 1 ? "" : "s");
+  std::cout << fmt::format("FAIL  {} ({})\n", c.name, counts);
+  const auto section = [](const char* title, const std::vector<std::string>& lines) {
+    if (lines.empty()) return;
+    std::cout << "      " << title << '\n';
+    for (const auto& l : lines) std::cout << "        " << l << '\n';
+  };
+  section("what changed in the hardware:", f.hardware);
+  section("budgets not met:", f.budgets);
+  section("largest differences:", f.largest);
+  section("every difference:", f.differences);
 }
 
 int run_regress(const RegressOptions& o) {
@@ -96,87 +93,94 @@ int run_regress(const RegressOptions& o) {
   if (options_only()) return kExitOk;
   if (!fs::is_directory(dir))
     throw std::invalid_argument(fmt::format("--traces {}: not a directory", o.traces));
-  std::vector<fs::path> traces;
-  for (const auto& e : fs::directory_iterator(dir))
-    if (e.path().extension() == ".vec") traces.push_back(e.path());
-  std::sort(traces.begin(), traces.end());
+  std::vector<RegressCheck> checks = trace_checks(o, dir, golden_dir);
+  const std::size_t trace_count = checks.size();
+  for (RegressCheck& c : scene_checks(o, dir, golden_dir)) checks.push_back(std::move(c));
   // Nothing checked must not read as "nothing failed".
-  if (traces.empty())
-    throw std::invalid_argument(fmt::format("--traces {}: no *.vec trace in it", o.traces));
-  // Nor may a golden go unchecked because its trace is gone.
-  if (fs::is_directory(golden_dir)) {
-    for (const auto& e : fs::directory_iterator(golden_dir)) {
-      if (e.path().extension() != ".json" || !e.is_regular_file()) continue;
-      if (!fs::exists(dir / (e.path().stem().string() + ".vec")))
-        throw InputError(e.path().string(), 0, "trace",
-                         fmt::format("no trace {}.vec in {} for this golden",
-                                     e.path().stem().string(), o.traces));
+  if (checks.empty())
+    throw std::invalid_argument(fmt::format(
+        "--traces {}: no *.vec trace in it, and no scene golden in golden/scenes/", o.traces));
+  // Every golden and its budgets are checked before the first child runs.
+  for (RegressCheck& c : checks) {
+    // A golden of budgets only is a contract --update leaves as it is, lanes included.
+    if (o.update && !o.units.empty() && !c.golden.budgets_only) {
+      c.golden.units = o.units;
+      check_budget_lanes(c);
     }
+    c.budgets = parse_golden_budgets(c.golden, c.golden_path.string());
   }
-  int failed = 0, checked = 0;
-  nlohmann::json summary = nlohmann::json::array();
+  int failed = 0, checked = 0, scenes_checked = 0;
+  nlohmann::json traces_summary = nlohmann::json::array(), scenes_summary = traces_summary;
   std::vector<std::pair<fs::path, nlohmann::json>> updates;  // written once every run succeeded
-  for (const auto& trace : traces) {
-    const fs::path golden_path = golden_dir / (trace.stem().string() + ".json");
-    Golden golden;
-    if (fs::exists(golden_path)) {
-      golden =
-          read_golden(golden_path.string(), o.update ? GoldenUse::kUpdate : GoldenUse::kCompare);
-      if (golden.trace != trace.filename().string())
-        throw InputError(golden_path.string(), 0, "trace",
-                         fmt::format("{}, but the golden's file is named for {}",
-                                     quote_input(golden.trace), trace.filename().string()));
-    } else if (o.update) {
-      golden.trace = trace.filename().string();
-      golden.units = o.units.empty() ? default_specs() : o.units;
-      golden.sink_ready = trace.stem() == "pixels" ? 0.7 : 1.0;
-      golden.seed =
-          golden.sink_ready < 1 ? 7 : 1;  // 1: sim's default, all an always-ready sink has
-    } else {
-      std::cerr << fmt::format("{}: no golden ({}); run `glint regress --update`\n", trace.string(),
-                               golden_path.string());
+  for (std::size_t i = 0; i < checks.size(); ++i) {
+    const RegressCheck& c = checks[i];
+    const bool trace = i < trace_count;
+    nlohmann::json& summary = trace ? traces_summary : scenes_summary;
+    if (c.make && !o.update) {
+      std::cerr << fmt::format("{}: no golden ({}); run `glint regress --update`\n",
+                               c.input.string(), c.golden_path.string());
       ++failed;
       continue;
     }
-    if (o.update && !o.units.empty()) golden.units = o.units;
-    const nlohmann::json fresh = run_child(trace.string(), golden);
+    const nlohmann::json fresh =
+        trace ? run_sim(c.input.string(), c.golden) : run_render(c.input.string(), c.golden);
     ++checked;
+    if (!trace) ++scenes_checked;
+    const nlohmann::json key = {{trace ? "trace" : "scene", c.name}};
     if (o.update) {
-      golden.report = fresh;
-      updates.emplace_back(golden_path, golden.to_json());
-      summary.push_back({{"trace", trace.filename().string()}, {"updated", true}});
+      // The budgets are the designer's: figures that break them are not recorded.
+      const auto broken = broken_budgets(c.golden, c.budgets, fresh);
+      nlohmann::json entry = key;
+      entry["budgets"] = broken;
+      if (!broken.empty()) {
+        ++failed;
+        if (!o.json) print_finding(c, Finding{{}, broken, {}, {}});
+      } else if (!c.golden.budgets_only) {
+        Golden g = c.golden;
+        g.report = fresh;
+        updates.emplace_back(c.golden_path, g.to_json());
+        entry["updated"] = true;
+      }
+      summary.push_back(entry);
       continue;
     }
-    // A golden that lacks a field, has one this build does not write, or a value of another type
-    // is refused (exit 2) before its values are compared: it cannot pass by saying less.
-    check_report_shape(golden.report, fresh, golden_path.string());
-    const auto diffs = diff_sim_reports(golden.report, fresh, o.tolerance);
-    summary.push_back({{"trace", trace.filename().string()}, {"differences", diffs}});
-    if (diffs.empty()) {
-      if (!o.json) std::cout << fmt::format("ok    {}\n", trace.filename().string());
-    } else {
-      ++failed;
-      if (!o.json) {
-        std::cout << fmt::format("FAIL  {} ({} differences)\n", trace.filename().string(),
-                                 diffs.size());
-        for (const auto& d : diffs) std::cout << "      " << d << '\n';
-      }
-    }
+    const Finding f = compare(c, fresh, o.tolerance);
+    nlohmann::json entry = key;
+    entry["hardware"] = f.hardware;
+    entry["budgets"] = f.budgets;
+    entry["largest"] = f.largest;
+    entry["differences"] = f.differences;
+    summary.push_back(entry);
+    if (f.failed()) ++failed;
+    if (!o.json) print_finding(c, f);
   }
   // Every golden is written to its temporary file, then all are committed together (output_set.h):
-  // all are updated or none.
+  // all are updated or none, and none when a budget broke.
   OutputSet goldens;
-  if (!updates.empty()) goldens.make_folder("--update", golden_dir.string());
-  for (const auto& [path, golden] : updates)
+  if (failed > 0) updates.clear();
+  for (const auto& [path, golden] : updates) {
+    goldens.make_folder("--update", path.parent_path().string());
     goldens.add("--update", path.string()).stream() << golden.dump(2) << '\n';
+  }
   goldens.commit();
   for (const auto& update : updates)
     std::cerr << fmt::format("updated {}\n", update.first.string());
   if (o.json) {
-    print_json({{"checked", checked}, {"failed", failed}, {"traces", summary}});
-  } else {
+    print_json({{"checked", checked},
+                {"failed", failed},
+                {"traces", traces_summary},
+                {"scenes", scenes_summary}});
+  } else if (checks.size() == trace_count) {
     std::cout << fmt::format("{} traces checked, {} failed\n", checked, failed);
+  } else {
+    const int traces_checked = checked - scenes_checked;
+    std::cout << fmt::format("{} trace{} and {} scene{} checked, {} failed\n", traces_checked,
+                             traces_checked == 1 ? "" : "s", scenes_checked,
+                             scenes_checked == 1 ? "" : "s", failed);
   }
+  if (o.update && failed > 0)
+    std::cerr << "no golden updated: a budget is not met (the figures break the contract the "
+                 "golden states)\n";
   return failed ? 1 : kExitOk;
 }
 
@@ -185,8 +189,11 @@ int run_regress(const RegressOptions& o) {
 void add_regress_command(CLI::App& app, int& status) {
   auto o = std::make_shared<RegressOptions>();
   CLI::App* sub = app.add_subcommand(
-      "regress", "Accuracy regression: re-run the shipped traces against traces/golden/");
-  sub->add_option("--traces", o->traces, "Folder of *.vec traces with golden/ inside")
+      "regress",
+      "Accuracy regression: re-run the shipped traces and scenes against traces/golden/");
+  sub->add_option("--traces", o->traces,
+                  "Folder of *.vec traces and scenes/, with their goldens in golden/ and "
+                  "golden/scenes/")
       ->capture_default_str();
   CLI::Option* update =
       sub->add_flag("--update", o->update, "Rewrite the goldens from this build (deliberately)");

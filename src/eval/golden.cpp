@@ -13,6 +13,7 @@
 #include "io/json_text.h"
 #include "timing/timing.h"
 #include "units/catalogue.h"
+#include "units/slot_plan.h"
 
 namespace glint {
 
@@ -72,6 +73,7 @@ bool has_kind(const nlohmann::json& v, Kind k) {
 struct Field {
   const char* key;
   Kind kind;
+  bool optional = false;
 };
 
 // The sim report's fixed part (src/eval/sim_report.md, version 3): its top level and each
@@ -104,11 +106,44 @@ constexpr Field kStallFields[] = {{"merge_buffer_full", Kind::kUnsigned},
                                   {"unit_busy", Kind::kUnsigned}};
 constexpr Field kAreaFields[] = {{"ge", Kind::kNumber}, {"inventory", Kind::kArray}};
 constexpr Field kCriticalPathFields[] = {{"delay", Kind::kNumber}, {"stage", Kind::kString}};
-constexpr Field kGoldenFields[] = {{"trace", Kind::kString},
-                                   {"units", Kind::kArray},
-                                   {"sink_ready", Kind::kNumber},
-                                   {"seed", Kind::kUnsigned},
-                                   {"report", Kind::kObject}};
+// The render report's fixed part (src/render/render_report.md, version 2).
+constexpr Field kRenderReportFields[] = {{"glint_render_report", Kind::kUnsigned},
+                                         {"scene", Kind::kString},
+                                         {"resolution", Kind::kArray},
+                                         {"requests", Kind::kUnsigned},
+                                         {"lobes", Kind::kArray},
+                                         {"t_inputs", Kind::kArray},
+                                         {"lights", Kind::kArray},
+                                         {"materials", Kind::kArray},
+                                         {"chip", Kind::kObject},
+                                         {"slots", Kind::kArray},
+                                         {"skip", Kind::kObject},
+                                         {"skip_only_image_error", Kind::kObject},
+                                         {"units", Kind::kArray},
+                                         {"files", Kind::kArray}};
+constexpr Field kRenderUnitFields[] = {{"unit", Kind::kString},
+                                       {"spec", Kind::kString},
+                                       {"image_error", Kind::kObject},
+                                       {"heatmap_scale_lsb", Kind::kNumber},
+                                       {"requests", Kind::kUnsigned},
+                                       {"skipped", Kind::kUnsigned},
+                                       {"skipped_beyond_t_le_0", Kind::kUnsigned},
+                                       {"operations", Kind::kObject},
+                                       {"operations_saved", Kind::kObject},
+                                       {"area_ge", Kind::kNumber},
+                                       {"critical_path", Kind::kNumber},
+                                       {"errors", Kind::kObject},
+                                       {"description", Kind::kObject}};
+// The report is kAny here: an object, or null for a golden of budgets only (checked below).
+constexpr Field kGoldenFields[] = {
+    {"trace", Kind::kString},  {"units", Kind::kArray},          {"sink_ready", Kind::kNumber},
+    {"seed", Kind::kUnsigned}, {"chip", Kind::kString, true}, {"budgets", Kind::kObject, true},
+    {"report", Kind::kAny}};
+constexpr Field kSceneGoldenFields[] = {{"scene", Kind::kString},
+                                        {"units", Kind::kArray},
+                                        {"chip", Kind::kString, true},
+                                        {"budgets", Kind::kObject, true},
+                                        {"report", Kind::kAny}};
 
 class Checker {
  public:
@@ -125,6 +160,7 @@ class Checker {
     for (const Field& f : fields) {
       const std::string at = join(path, f.key);
       const auto it = v.find(f.key);
+      if (it == v.end() && f.optional) continue;
       if (it == v.end()) fail(at, "missing");
       if (!has_kind(*it, f.kind))
         fail(at, fmt::format("must be {}, not {}", kind_text(f.kind), describe(*it)));
@@ -193,6 +229,16 @@ void check_report(const Checker& c, const Golden& g, const nlohmann::json& r) {
   }
 }
 
+void check_render_report(const Checker& c, const Golden& g, const nlohmann::json& r) {
+  c.object(r, "report", kRenderReportFields);
+  const auto& units = r.at("units");
+  if (units.size() != g.units.size())
+    c.fail("report.units", fmt::format("{} entries, but the golden records {} unit specs",
+                                       units.size(), g.units.size()));
+  for (std::size_t i = 0; i < units.size(); ++i)
+    c.object(units[i], fmt::format("report.units[{}]", i), kRenderUnitFields);
+}
+
 // Walks golden and fresh side by side, collecting the paths where their shapes differ.
 void shape_differences(const nlohmann::json& g, const nlohmann::json& f, const std::string& path,
                        std::vector<std::pair<std::string, std::string>>& out) {
@@ -228,29 +274,73 @@ void shape_differences(const nlohmann::json& g, const nlohmann::json& f, const s
 }  // namespace
 
 nlohmann::json Golden::to_json() const {
-  return {{"trace", trace},
-          {"units", units},
-          {"sink_ready", sink_ready},
-          {"seed", seed},
-          {"report", report}};
+  nlohmann::json j = {{"units", units}, {"report", report}};
+  if (kind == GoldenKind::kTrace) {
+    j["trace"] = trace;
+    j["sink_ready"] = sink_ready;
+    j["seed"] = seed;
+  } else {
+    j["scene"] = scene;
+  }
+  // Absent on the default chip, so that goldens made before the key read the same.
+  if (!chip.empty()) j["chip"] = chip;
+  if (!budgets.empty()) {
+    nlohmann::json b = nlohmann::json::object();
+    for (const auto& [spec, conditions] : budgets) b[spec] = conditions;
+    j["budgets"] = b;
+  }
+  return j;
 }
 
+namespace {
+
+// The input's file name: NAME.vec for a trace, NAME.json for a scene, without a folder.
+std::string checked_input_name(const Checker& c, const nlohmann::json& doc, const char* key,
+                               const char* suffix) {
+  const std::string name = doc.at(key).get<std::string>();
+  const std::string want(suffix);
+  if (name.empty() || name.find('/') != std::string::npos || name.size() <= want.size() ||
+      name.compare(name.size() - want.size(), want.size(), want) != 0)
+    c.fail(key, fmt::format("must be the {}'s file name, NAME{}", key, suffix));
+  return name;
+}
+
+void parse_budgets_shape(const Checker& c, const nlohmann::json& budgets, Golden& g) {
+  if (budgets.empty()) c.fail("budgets", "empty (leave it out, or give a lane its conditions)");
+  for (auto it = budgets.begin(); it != budgets.end(); ++it) {
+    const std::string at = "budgets." + it.key();
+    if (std::find(g.units.begin(), g.units.end(), it.key()) == g.units.end())
+      c.fail(at, "no lane has this spec: a key must be one of `units`, as written there");
+    if (!it->is_string())
+      c.fail(at,
+             "must be a string of conditions, as glint size's --budget takes them "
+             "('image.max_lsb<=1,area_ge<=12000')");
+    g.budgets.emplace_back(it.key(), it->get<std::string>());
+  }
+}
+
+}  // namespace
+
 Golden parse_golden(const std::string& text, const std::string& file, GoldenUse use) {
-  const nlohmann::json doc = parse_json_text(text, file, kGoldenMaxJsonDepth);
+  nlohmann::json doc = parse_json_text(text, file, kGoldenMaxJsonDepth);
   const Checker c(file);
   Golden g;
-  if (use == GoldenUse::kUpdate && doc.is_object() && !doc.contains("report")) {
-    // --update may complete a golden that records only its settings.
-    nlohmann::json settings = doc;
-    settings["report"] = nlohmann::json::object();
-    c.object(settings, "", kGoldenFields);
-  } else {
+  g.kind = doc.is_object() && doc.contains("scene") && !doc.contains("trace") ? GoldenKind::kScene
+                                                                              : GoldenKind::kTrace;
+  // --update may complete a golden that records only its settings.
+  const bool completing = use == GoldenUse::kUpdate && doc.is_object() && !doc.contains("report");
+  if (completing) doc["report"] = nlohmann::json::object();
+  if (use == GoldenUse::kCompare && doc.is_object() && !doc.contains("report"))
+    c.fail("report",
+           "missing: `glint regress --update` records it (or write null for a golden of budgets "
+           "only)");
+  if (g.kind == GoldenKind::kTrace) {
     c.object(doc, "", kGoldenFields);
+    g.trace = checked_input_name(c, doc, "trace", ".vec");
+  } else {
+    c.object(doc, "", kSceneGoldenFields);
+    g.scene = checked_input_name(c, doc, "scene", ".json");
   }
-  g.trace = doc.at("trace").get<std::string>();
-  if (g.trace.empty() || g.trace.find('/') != std::string::npos || g.trace.size() < 5 ||
-      g.trace.compare(g.trace.size() - 4, 4, ".vec") != 0)
-    c.fail("trace", "must be the trace's file name, NAME.vec");
   const auto& units = doc.at("units");
   if (units.empty() || units.size() > kGoldenMaxUnits)
     c.fail("units", fmt::format("must list 1..{} unit specs", kGoldenMaxUnits));
@@ -264,18 +354,43 @@ Golden parse_golden(const std::string& text, const std::string& file, GoldenUse 
     }
     g.units.push_back(units[i].get<std::string>());
   }
-  g.sink_ready = doc.at("sink_ready").get<double>();
-  if (!(g.sink_ready >= kMinSinkReady && g.sink_ready <= 1))
-    c.fail("sink_ready", fmt::format("must be in [{}, 1] (as sim's --sink-ready)", kMinSinkReady));
-  g.seed = doc.at("seed").get<std::uint64_t>();
-  // sim refuses --seed with an always-ready sink, so such a run reports sim's default seed.
-  if (g.sink_ready >= 1 && g.seed != 1)
-    c.fail("seed",
-           "must be 1 (sim's default) when sink_ready is 1: an always-ready sink has no "
-           "pattern to seed");
+  if (g.kind == GoldenKind::kTrace) {
+    g.sink_ready = doc.at("sink_ready").get<double>();
+    if (!(g.sink_ready >= kMinSinkReady && g.sink_ready <= 1))
+      c.fail("sink_ready",
+             fmt::format("must be in [{}, 1] (as sim's --sink-ready)", kMinSinkReady));
+    g.seed = doc.at("seed").get<std::uint64_t>();
+    // sim refuses --seed with an always-ready sink, so such a run reports sim's default seed.
+    if (g.sink_ready >= 1 && g.seed != 1)
+      c.fail("seed",
+             "must be 1 (sim's default) when sink_ready is 1: an always-ready sink has no "
+             "pattern to seed");
+  }
+  if (doc.contains("chip")) {
+    g.chip = doc.at("chip").get<std::string>();
+    try {
+      parse_chip(g.chip);
+    } catch (const std::invalid_argument& e) {
+      c.fail("chip", fmt::format("'{}' is not a --chip value: {}", g.chip, e.what()));
+    }
+  }
+  if (doc.contains("budgets")) parse_budgets_shape(c, doc.at("budgets"), g);
+  const auto& report = doc.at("report");
+  if (report.is_null()) {
+    // Nothing to compare but the budgets: a golden of neither would pass anything.
+    if (g.budgets.empty())
+      c.fail("report", "null, but the golden holds no budgets: it would check nothing");
+    g.budgets_only = true;
+    return g;
+  }
+  if (!report.is_object()) c.fail("report", "must be an object, or null for budgets only");
   if (use == GoldenUse::kCompare) {
-    check_report(c, g, doc.at("report"));
-    g.report = doc.at("report");
+    if (g.kind == GoldenKind::kTrace) {
+      check_report(c, g, report);
+    } else {
+      check_render_report(c, g, report);
+    }
+    g.report = report;
   }
   return g;
 }
@@ -286,6 +401,14 @@ Golden read_golden(const std::string& path, GoldenUse use) {
 
 void check_report_shape(const nlohmann::json& golden_report, const nlohmann::json& fresh,
                         const std::string& file) {
+  // The render report's version is known above this layer: compared with this build's here.
+  for (const char* key : {"glint_sim_report", "glint_render_report"}) {
+    if (golden_report.contains(key) && fresh.contains(key) && golden_report[key] != fresh[key])
+      throw InputError(file, 0, std::string("report.") + key,
+                       fmt::format("schema version {}, this build writes version {}: regenerate "
+                                   "the golden (glint regress --update)",
+                                   golden_report[key].dump(), fresh[key].dump()));
+  }
   std::vector<std::pair<std::string, std::string>> diffs;
   shape_differences(golden_report, fresh, "report", diffs);
   if (diffs.empty()) return;

@@ -168,11 +168,11 @@ bool is_error_measure(const MeasureRef& m) {
   return error && !excluded;
 }
 
-std::vector<Budget> parse_budgets(std::string_view text, bool scene) {
+std::vector<Budget> parse_budgets(std::string_view text, bool scene, const std::string& option) {
   std::vector<Budget> out;
   const std::string whole(text);
   const auto bad = [&](std::string_view item, const std::string& why) {
-    return std::invalid_argument(fmt::format("--budget '{}': '{}': {}", whole, item, why));
+    return std::invalid_argument(fmt::format("{} '{}': '{}': {}", option, whole, item, why));
   };
   if (text.empty()) throw bad(text, "empty (expected MEASURE<=VALUE[,...])");
   for (;;) {
@@ -192,7 +192,7 @@ std::vector<Budget> parse_budgets(std::string_view text, bool scene) {
     b.limit = value.empty() ? 0 : std::strtod(value.c_str(), &end);
     if (value.empty() || end != value.c_str() + value.size() || !std::isfinite(b.limit))
       throw bad(item, fmt::format("'{}' is not a finite number", value));
-    b.measure = measure_or_throw(name, scene, fmt::format("--budget '{}'", whole));
+    b.measure = measure_or_throw(name, scene, fmt::format("{} '{}'", option, whole));
     out.push_back(std::move(b));
     if (comma == std::string_view::npos) break;
     text.remove_prefix(comma + 1);

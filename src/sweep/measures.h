@@ -53,14 +53,16 @@ std::optional<double> measure_value(const nlohmann::json& row, const MeasureRef&
 bool is_error_measure(const MeasureRef& m);
 
 // A comma-separated list of conditions MEASURE OP VALUE (OP one of <=, <, >=, >), all of which
-// must hold: "max_lsb8<=1,mismatch_fraction<0.01".
+// must hold: "max_lsb8<=1,mismatch_fraction<0.01". Errors name `option` (a golden's budgets name
+// their field instead: glint regress).
 struct Budget {
   std::string text;  // one condition, as written
   MeasureRef measure;
   std::string op;
   double limit = 0;
 };
-std::vector<Budget> parse_budgets(std::string_view text, bool scene);
+std::vector<Budget> parse_budgets(std::string_view text, bool scene,
+                                  const std::string& option = "--budget");
 // Whether a row meets one condition (an absent value never does).
 bool meets(const nlohmann::json& row, const Budget& b);
 

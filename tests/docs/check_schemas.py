@@ -55,7 +55,8 @@ VERSION = re.compile(r"`(glint_[a-z_]+)` version (\d+)")
 FENCE = re.compile(r"^(```|~~~)")
 # The sections a real output is checked against as a whole; keys of other sections are named
 # with their section in messages (errors.max_abs).
-ROOT_SECTIONS = {"glint_eval_report", "glint_sim_report", "golden", "glint_render_report",
+ROOT_SECTIONS = {"glint_eval_report", "glint_sim_report", "golden", "scene_golden",
+                 "glint_render_report",
                  "glint_sweep_report", "glint_size_report", "glint_synth_report"}
 
 
@@ -388,6 +389,20 @@ class Runner:
         for path in sorted(glob.glob(self.src("traces/golden/*.json"))):
             self.json_file("src/eval/golden.md", "golden", path,
                            "traces/golden/" + os.path.basename(path))
+        for path in sorted(glob.glob(self.src("traces/golden/scenes/*.json"))):
+            self.json_file("src/eval/golden.md", "scene_golden", path,
+                           "traces/golden/scenes/" + os.path.basename(path))
+        # A trace's golden with the optional keys, as glint regress --update writes it from the
+        # settings alone.
+        regress = os.path.join(self.work, "regress")
+        os.makedirs(os.path.join(regress, "golden"))
+        shutil.copy(self.src("traces/phong_basic.vec"), regress)
+        made = os.path.join(regress, "golden", "phong_basic.json")
+        with open(made, "w", encoding="utf-8") as f:
+            json.dump({"trace": "phong_basic.vec", "units": ["lut", "hast"], "sink_ready": 1,
+                       "seed": 1, "chip": "ram:materials=4,slots=4", "budgets": {"lut": "lsb8<=1,area_ge<=100000"}}, f)
+        if self.run(["regress", "--traces", regress, "--update"]) is not None:
+            self.json_file("src/eval/golden.md", "golden", made, "glint regress --update")
         scene_golden = self.src("traces/golden/scenes/small/report.json")
         if os.path.exists(scene_golden):
             self.json_file(render_doc, "glint_render_report", scene_golden,

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "eval/golden.h"
+#include "eval/golden_diff.h"
 #include "eval/sim_report.h"
 #include "io/input_error.h"
 #include "test_support.h"
@@ -58,6 +59,109 @@ TEST(Golden, EveryShippedGoldenPasses) {
     ++n;
   }
   EXPECT_GE(n, 8);
+}
+
+// The scene goldens: a report, and budgets alone on a chip of 8 slots.
+TEST(Golden, EveryShippedSceneGoldenPasses) {
+  int reports = 0, budgets_only = 0;
+  for (const auto& e : fs::directory_iterator(kGoldenDir + "/scenes")) {
+    if (e.path().extension() != ".json") continue;
+    SCOPED_TRACE(e.path().string());
+    const glint::Golden g = glint::read_golden(e.path().string());
+    EXPECT_EQ(g.kind, glint::GoldenKind::kScene);
+    EXPECT_TRUE(fs::exists(GLINT_SOURCE_DIR "/traces/scenes/" + g.scene)) << g.scene;
+    if (g.budgets_only) {
+      ++budgets_only;
+      EXPECT_FALSE(g.budgets.empty());
+    } else {
+      ++reports;
+      EXPECT_EQ(g.report.at("units").size(), g.units.size());
+    }
+    EXPECT_EQ(glint::parse_golden(g.to_json().dump(), "again.json").to_json(), g.to_json());
+  }
+  EXPECT_GE(reports, 1);
+  EXPECT_GE(budgets_only, 1);
+}
+
+TEST(Golden, BudgetsAndChipAreChecked) {
+  json g = shipped("phong_basic");
+  g["budgets"] = {{"lut", "lsb8<=1"}};
+  g["chip"] = "ram:materials=4,slots=4";
+  EXPECT_EQ(refused_json(g), "");
+  const glint::Golden parsed = glint::parse_golden(g.dump(), "g.json");
+  EXPECT_EQ(parsed.chip, "ram:materials=4,slots=4");
+  ASSERT_EQ(parsed.budgets.size(), 1u);
+  EXPECT_EQ(parsed.budgets[0].second, "lsb8<=1");
+  g["chip"] = "ram:slots=0";
+  EXPECT_EQ(refused_json(g), "chip");
+  g["chip"] = 4;
+  EXPECT_EQ(refused_json(g), "chip");
+  g["chip"] = "ram:materials=4,slots=4";
+  g["budgets"] = {{"lut:bits=9", "lsb8<=1"}};
+  EXPECT_EQ(refused_json(g), "budgets.lut:bits=9");
+  g["budgets"] = {{"lut", json::array({"lsb8<=1"})}};
+  EXPECT_EQ(refused_json(g), "budgets.lut");
+  // Budgets only: the report null, which needs budgets.
+  g["budgets"] = {{"lut", "lsb8<=1"}};
+  g["report"] = nullptr;
+  EXPECT_EQ(refused_json(g), "");
+  EXPECT_TRUE(glint::parse_golden(g.dump(), "g.json").budgets_only);
+  g.erase("budgets");
+  EXPECT_EQ(refused_json(g), "report");
+  // A scene's golden has no sink; a trace's key in it is unknown.
+  json s = {{"scene", "small.json"},
+            {"units", {"lut"}},
+            {"budgets", {{"lut", "area_ge<=1"}}},
+            {"report", nullptr}};
+  EXPECT_EQ(refused_json(s), "");
+  s["seed"] = 1;
+  EXPECT_EQ(refused_json(s), "seed");
+  s.erase("seed");
+  s["scene"] = "scenes/small.json";
+  EXPECT_EQ(refused_json(s), "scene");
+}
+
+// What changed in the hardware, run first (the chip), then lane by lane.
+TEST(Golden, HardwareChangesNameTheChipAndTheLanes) {
+  const json report = shipped("eight_lights").at("report");
+  EXPECT_TRUE(glint::hardware_changes(glint::GoldenKind::kTrace, report, report).empty());
+  json golden = report, fresh = report;
+  fresh["chip"]["spec"] = "ram:materials=16";
+  const std::string spec = report["units"][6]["spec"];
+  ASSERT_NE(spec.find("bits=6"), std::string::npos) << spec;
+  fresh["units"][6]["spec"] =
+      spec.substr(0, spec.find("bits=6")) + "bits=7" + spec.substr(spec.find("bits=6") + 6);
+  fresh["units"][6]["timing"]["latency"] = 3;
+  const auto lines = glint::hardware_changes(glint::GoldenKind::kTrace, golden, fresh);
+  const std::vector<std::string> want = {"chip rom -> ram:materials=16",
+                                         "lut.1: spec bits=6 -> bits=7", "lut.1: latency 2 -> 3"};
+  EXPECT_EQ(lines, want);
+}
+
+// The example: the lane that moved most first, errors in LSB, area in grouped GE.
+TEST(Golden, LargestChangesInWords) {
+  const json report = shipped("phong_basic").at("report");
+  EXPECT_TRUE(glint::largest_changes(glint::GoldenKind::kTrace, report, report, 1e-9).empty());
+  json golden = report, fresh = report;
+  // Lane 3 is hast, lane 0 pow (default_specs in cmd_regress.cpp).
+  ASSERT_EQ(report["units"][3]["unit"], "hast");
+  golden["units"][3]["errors"]["max_lsb"] = 0.31;
+  fresh["units"][3]["errors"]["max_lsb"] = 0.52;
+  golden["units"][3]["area"]["ge"] = 6301.0;
+  fresh["units"][3]["area"]["ge"] = 6762.0;
+  golden["units"][0]["area"]["ge"] = 1000.0;
+  fresh["units"][0]["area"]["ge"] = 990.0;
+  fresh["units"][0]["digest"] = "0000000000000000";
+  const auto lines = glint::largest_changes(glint::GoldenKind::kTrace, golden, fresh, 1e-9);
+  const std::vector<std::string> want = {
+      "hast: max error rose 0.31 LSB -> 0.52 LSB (+68 %); area 6 301 -> 6 762 GE (+7.3 %)",
+      "pow: area 1 000 -> 990 GE (-1.0 %); results differ bit for bit (digest)"};
+  EXPECT_EQ(lines, want);
+  // Within a tolerance of 10 %, only the error moved; the digest is exact whatever it is.
+  const auto loose = glint::largest_changes(glint::GoldenKind::kTrace, golden, fresh, 0.1);
+  ASSERT_EQ(loose.size(), 2u);
+  EXPECT_EQ(loose[0], "hast: max error rose 0.31 LSB -> 0.52 LSB (+68 %)");
+  EXPECT_EQ(loose[1], "pow: results differ bit for bit (digest)");
 }
 
 TEST(Golden, MissingOrExtraTopLevelFieldsAreNamed) {
