@@ -69,7 +69,8 @@ TEST(CostModel, DelayFormulas) {
   EXPECT_DOUBLE_EQ(multiplier_delay(16, 18), multiplier_delay(18, 16));
   EXPECT_GT(multiplier_delay(18, 16), adder_delay(34));  // the tree before the final adder
   EXPECT_GT(multiplier_delay(33, 33), multiplier_delay(33, 17));
-  EXPECT_EQ(divider_row_delay(33), adder_delay(34) + 1);
+  // A row: the subtractor of the D + 1-bit remainder and its borrow, then the restore mux.
+  EXPECT_EQ(divider_row_delay(33), adder_delay(35) + 1);
   EXPECT_EQ(table_delay(1), 0);  // a one-entry ROM is a constant
   EXPECT_GT(table_delay(257), table_delay(65));
   EXPECT_EQ(mux_delay(2), 1);  // one $_MUX_
@@ -314,7 +315,7 @@ TEST(CostModel, IterativeDividerIsSmallerWithSameSteps) {
   const double div_pipe = area_where(pipe, "divider");
   const double div_iter = area_where(iter, "divider");
   EXPECT_LT(div_iter, 0.2 * div_pipe);  // two rows + their state vs 17 rows + 17 register stages
-  EXPECT_LT(iter.area_ge, 0.5 * pipe.area_ge);
+  EXPECT_LT(iter.area_ge, 0.55 * pipe.area_ge);  // rows of one subtractor each: 0.53
   EXPECT_EQ(find(pipe, "divider")[0]->width_a, 17);
   EXPECT_EQ(find(iter, "divider")[0]->width_a, 2);
   // 17 rows pipelined; iterative, the first bit's row and the loop's (schlick's RTL).
