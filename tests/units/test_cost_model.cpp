@@ -195,6 +195,43 @@ TEST(CostModel, AreaGrowsWithHornerDegree) {
   EXPECT_EQ(full.ops_per_computed.at("mul"), 4);
 }
 
+// With the scene's coefficients in ROMs, the first multiply-add multiplies u by the register
+// that holds c_p, whose constant bits Yosys removes: a product of u and the bits some c_p sets,
+// unsigned when every c_p is non-negative, narrower than the loaded chip's signed product of the
+// coefficient's width. A c_k that is 0 in every group (c_0 of a fit held to 0 at u = 0) is added
+// by no adder. A loaded chip (tables=ram) builds both.
+TEST(CostModel, HornerFirstProductAndZeroCoefficientFollowTheRom) {
+  const std::vector<double> shin = {10, 20, 50};
+  const auto rom = build("horner:degree=3", shin), ram = build("horner:degree=3,tables=ram", shin);
+  const nlohmann::json d = rom->describe();
+  int cw = 0;
+  std::int64_t cp_any = 0;
+  bool c0_zero = true, cp_non_negative = true;
+  for (const auto& slot : d["slots"]) {
+    const auto raw = slot["coefficients_raw"].get<std::vector<std::int64_t>>();
+    ASSERT_EQ(raw.size(), 4u);
+    c0_zero = c0_zero && raw[0] == 0;
+    cp_non_negative = cp_non_negative && raw[3] >= 0;
+    cp_any |= raw[3];
+    const std::string f = slot["coefficient_format"].get<std::string>();
+    cw = std::max(cw,
+                  std::stoi(f.substr(2, f.find('.') - 2)) + std::stoi(f.substr(f.find('.') + 1)));
+  }
+  ASSERT_TRUE(c0_zero);  // constrain=on (the default) holds p(0) = 0
+  ASSERT_TRUE(cp_non_negative);
+  const UnitCost cr = unit_cost(*rom), cm = unit_cost(*ram);
+  const auto mr = find(cr, "multiplier", "stage 2: acc u");
+  const auto mm = find(cm, "multiplier", "stage 2: acc u");
+  ASSERT_EQ(mr.size(), 1u);
+  ASSERT_EQ(mm.size(), 1u);
+  EXPECT_EQ(mr[0]->width_b, __builtin_popcountll(static_cast<unsigned long long>(cp_any)));
+  EXPECT_EQ(mm[0]->width_a, cw);  // the coefficient's width, not the accumulator's
+  EXPECT_LT(mr[0]->ge, mm[0]->ge);
+  EXPECT_TRUE(find(cr, "adder", "+ c_0").empty());
+  EXPECT_EQ(find(cm, "adder", "+ c_0").size(), 1u);
+  EXPECT_EQ(find(cr, "adder", "+ c_1").size(), 1u);
+}
+
 TEST(CostModel, LutTableDoublesWithBits) {
   const UnitCost b6 = cost("lut:bits=6");
   const UnitCost b7 = cost("lut:bits=7");
