@@ -87,10 +87,9 @@ class CostBuilder {
   }
   // rows: quotient rows built in hardware (all quotient bits pipelined, 1 iterative).
   Seg divider(int rows, int divisor, const std::string& where) {
-    // A row as the RTL writes it: the quotient bit from a comparator, the subtraction beside it
-    // (Yosys shares no logic between them) and the restore mux.
-    add({"divider", rows, divisor, 1,
-         rows * (divisor + 1) * (k_.add_bit_ge + k_.cmp_bit_ge + k_.mux2_ge), where});
+    // A row as the RTL writes it: one subtractor of the partial remainder's D + 1 bits whose
+    // borrow is the quotient bit, and the restore mux.
+    add({"divider", rows, divisor, 1, rows * (divisor + 1) * (k_.add_bit_ge + k_.mux2_ge), where});
     return {fmt::format("div row {}", divisor + 1), divider_row_delay(divisor)};
   }
   Seg comparator(int w, const std::string& where) {

@@ -43,7 +43,7 @@ double multiplier_ge(int width_a, int width_b, bool is_signed) {
 }
 
 double divider_row_delay(int divisor_bits) {
-  return std::max(comparator_delay(divisor_bits + 1), adder_delay(divisor_bits + 1)) + 1;
+  return adder_delay(divisor_bits + 2) + 1;  // the subtractor's borrow, then the restore mux
 }
 
 double table_delay(int entries) {

@@ -15,9 +15,9 @@
 //                                  by a constant k (a one-entry table): the multiplier of k's
 //                                  significant bits x 0.85 ones / bits; by a table of several
 //                                  values: one partial-product row per bit any value sets
-//   divider, R rows x D bits       R (D + 1) (add_bit_ge + cmp_bit_ge + mux2_ge): restoring array,
-//                                  a row per quotient bit built in hardware (the RTL's row is a
-//                                  comparator, a subtractor beside it and the restore mux):
+//   divider, R rows x D bits       R (D + 1) (add_bit_ge + mux2_ge): restoring array, a row per
+//                                  quotient bit built in hardware (the RTL's row is a subtractor
+//                                  whose borrow is the quotient bit, and the restore mux):
 //                                  R = all quotient bits when pipelined, R = 2 when iterative
 //                                  (the first quotient bit's row and the row the loop reuses)
 //   comparator, W bits             W cmp_bit_ge
@@ -49,7 +49,7 @@
 //   comparator, W bits             cmp_depth0 + cmp_depth_log log2 W
 //   multiplier, A x B              mul_depth0 + mul_depth_min log2 min(A, B) + mul_depth_sum
 //                                  log2(A + B)
-//   divider row (D-bit divisor)    max(comparator, adder)(D + 1) + 1 (the restore mux)
+//   divider row (D-bit divisor)    adder(D + 2) + 1 (the subtractor's borrow, the restore mux)
 //   table read, E entries          ROM: rom_depth0 + rom_depth_log log2 E; RAM: the read mux
 //   mux, K inputs                  1 for K = 2, else mux_depth0 + mux_depth_log ceil(log2 K)
 //   barrel shifter, S levels       S;  leading-one detector, W bits: W - 2 (a priority chain)

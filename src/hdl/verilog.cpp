@@ -77,8 +77,8 @@ std::string comment(const std::string& text, int indent) {
 
 namespace {
 
-// The comment, the declaration line(s) `head` and the case statement on `selector` shared by both
-// ROM forms; `tail` closes the block.
+// The comment, the declaration line(s) `head` and the case statement on `selector`; `tail`
+// closes the block.
 std::string rom_text(const Rom& r, const std::string& head, const std::string& selector,
                      const std::string& tail) {
   if (r.words.size() > (std::uint64_t{1} << r.addr_bits) || r.words.empty())
@@ -105,14 +105,6 @@ std::string rom(const Rom& r) {
                   fmt::format("  reg {}{} {};\n  always @* begin\n", r.is_signed ? "signed " : "",
                               range(r.data_bits), r.name),
                   r.addr, "  end\n");
-}
-
-std::string rom_function(const Rom& r) {
-  return rom_text(
-      r,
-      fmt::format("  function {}{} {};\n    input {} a;\n", r.is_signed ? "signed " : "",
-                  range(r.data_bits), r.name, range(r.addr_bits)),
-      "a", "  endfunction\n");
 }
 
 std::string group_table(const std::string& name, const std::string& addr, int addr_bits, int width,

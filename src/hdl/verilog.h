@@ -51,10 +51,6 @@ struct Rom {
 };
 std::string rom(const Rom& r);
 
-// The same contents as a function `name(addr)`, for a table read at several addresses in one stage
-// (two reads: two ROMs of the same contents).
-std::string rom_function(const Rom& r);
-
 // A value per datapath group, read at `addr` (addr_bits wide): a constant wire when every group
 // has the same value (nothing to look up), else a case ROM.
 std::string group_table(const std::string& name, const std::string& addr, int addr_bits, int width,

@@ -5,8 +5,8 @@ constants (src/cost/cost_model.h) are fitted on.
     python3 tests/calibration/primitives.py -o tests/calibration/primitives.csv
 
 Each primitive is a combinational module from inputs to outputs (depth: gates from an input),
-except registers and register arrays (depth into the flip-flops). Adders, subtractors and
-comparators of 4-41 bits; unsigned and signed rectangular multipliers of 8-41 bits; a multiplier by
+except registers and register arrays (depth into the flip-flops). Adders, subtractors,
+comparators and restoring-divider rows of 4-41 bits; unsigned and signed rectangular multipliers of 8-41 bits; a multiplier by
 a constant (what a one-entry table feeding a multiplier becomes); muxes; barrel shifters;
 leading-one detectors; registers with and without enable; storage arrays of 1-257 entries as a case
 ROM (random contents and smooth, monotone t^n-like contents: Yosys folds a constant table into
@@ -43,6 +43,14 @@ def subtractor(w):
 
 def comparator(w):
     return comb([f"input [{w-1}:0] a", f"input [{w-1}:0] b", "output y"], "assign y = a > b;")
+
+
+def divider_row(w):
+    # A restoring divider's row as schlick's RTL writes it: the w-bit partial remainder X minus the
+    # (w - 1)-bit divisor in one subtractor whose borrow is the quotient bit, then the restore mux.
+    return comb([f"input [{w-1}:0] x", f"input [{w-2}:0] d", "output q", f"output [{w-1}:0] r"],
+                f"wire [{w}:0] df = {{1'b0, x}} - {{2'b0, d}};\nassign q = ~df[{w}];\n"
+                f"assign r = q ? df[{w-1}:0] : x;")
 
 
 def multiplier(a, b, signed):
@@ -111,6 +119,7 @@ def jobs(rng):
         yield "adder", w, 0, "", adder(w)
         yield "subtractor", w, 0, "", subtractor(w)
         yield "comparator", w, 0, "", comparator(w)
+        yield "divider_row", w, 0, "", divider_row(w)
     for a, b in MULS:
         yield "multiplier", a, b, "unsigned", multiplier(a, b, False)
         yield "multiplier", a, b, "signed", multiplier(a, b, True)

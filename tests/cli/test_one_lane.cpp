@@ -90,7 +90,8 @@ TEST(OneLane, SynthesisOfTheRtlIsWithinTheProxyTolerance) {
   if (std::system("command -v yosys > /dev/null 2>&1") != 0) GTEST_SKIP() << "yosys not on PATH";
   test::TempDir dir;
   const std::string vec = shell_quote(kSrc + "/traces/blinn_colored.vec");
-  for (const std::string spec : {"lut:bits=4,in=uq1.12", "pow:in=uq1.12,out=uq1.10"}) {
+  for (const std::string spec :
+       {"lut:bits=4,in=uq1.12", "pow:in=uq1.12,out=uq1.10", "schlick:in=uq1.12,out=uq1.10"}) {
     SCOPED_TRACE(spec);
     const std::string args = spec + " --vectors " + vec + " --chip ram:materials=8,slots=8";
     const json synth = run_json(dir, "synth " + args + " --json");

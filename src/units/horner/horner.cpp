@@ -28,6 +28,29 @@ struct HornerSetup {
   bool tau_domain = true;
 };
 
+// c_k of every datapath group.
+std::vector<std::int64_t> coefficients(const std::vector<HornerUnit>& units, int k) {
+  std::vector<std::int64_t> v;
+  for (const HornerUnit& u : units) v.push_back(u.coeff_raw()[static_cast<std::size_t>(k)]);
+  return v;
+}
+
+// The first multiply-add's acc is the stage-1 register that holds c_p (cw bits, as the RTL's
+// first product takes it, not the accumulator's width). When the scene fixes the coefficients,
+// that register is loaded from a ROM: Yosys removes its flip-flops whose input is a constant
+// (merging those of equal inputs), so a bit that is 0 in every group's c_p builds no partial
+// products, and with every c_p non-negative the sign extension is zeros: an unsigned product of
+// the bits some c_p sets (one c_p is a multiplier by a constant).
+Seg first_multiply(CostBuilder& b, const std::vector<std::int64_t>& cp, bool known, int wu, int cw,
+                   const std::string& what) {
+  const bool non_negative =
+      std::all_of(cp.begin(), cp.end(), [](std::int64_t v) { return v >= 0; });
+  if (known && std::all_of(cp.begin(), cp.end(), [&](std::int64_t v) { return v == cp[0]; }))
+    return b.const_multiplier(wu, cp.front(), what, true);
+  if (known && non_negative) return b.table_multiplier(wu, cp, what);
+  return b.multiplier(cw, wu, what, 1, true);
+}
+
 struct Horner : UnitKindDefaults {
   using Config = HornerSetup;
   using Datapath = HornerUnit;
@@ -126,15 +149,11 @@ struct Horner : UnitKindDefaults {
                                   known ? &words : nullptr);
     b.op("table_read", p + 1);
     // Stage 1: the u scaler (tau domain; on the full domain u = t is wiring), c_p read beside it.
-    // k from a ROM of known contents (u_scaler_cost.h). c_p the same in every group (one
-    // material, or fits that agree): the first multiply-add multiplies u by a constant.
+    // k from a ROM of known contents (u_scaler_cost.h); c_p's register feeds the first
+    // multiply-add (first_multiply).
     std::vector<std::int64_t> ks;
     for (const HornerUnit& u : units) ks.push_back(u.scaler().k_raw());
-    const bool cp_const =
-        known && std::all_of(units.begin(), units.end(), [&](const HornerUnit& u) {
-          return u.coeff_raw()[static_cast<std::size_t>(p)] ==
-                 units.front().coeff_raw()[static_cast<std::size_t>(p)];
-        });
+    const std::vector<std::int64_t> cp = coefficients(units, p);
     const Seg first =
         tau_domain ? parallel(coef, series(u_scaler_cost(b, L, wk, fh, known ? &ks : nullptr)))
                    : coef;
@@ -142,21 +161,27 @@ struct Horner : UnitKindDefaults {
     b.stage("stage 1", {first});
     for (int s = 2; s <= p + 1; ++s) {
       const bool last = s == p + 1;
+      const int k = p + 1 - s;  // the coefficient this stage adds
       const std::string what = fmt::format("stage {}: acc u", s);
       // On the full domain u = t: below the input's fraction bits its bits are zeros, and Yosys
       // builds no partial products for them.
       const int wu = tau_domain ? fh + 1 : std::min(fh + 1, L.in.frac_bits + 1);
-      const Seg mul = cp_const && s == 2
-                          ? b.const_multiplier(wu, units.front().coeff_raw()[p], what, true)
-                          : b.multiplier(wacc, wu, what, 1, true);
-      // The + c_k adder's carries run while the product's high bits settle: on the calibration
-      // set's stages it adds about half an adder's depth to the multiplier's (horner's full
-      // domain: 44-46 gates against 36 for the product alone).
-      Seg add = b.adder(wacc, fmt::format("stage {}: + c_{}", s, p + 1 - s));
-      add.delay /= 2;
+      const Seg mul = s == 2 ? first_multiply(b, cp, known, wu, cw, what)
+                             : b.multiplier(wacc, wu, what, 1, true);
       b.op("mul");
-      b.op("add");
-      std::vector<Seg> sp{parallel(mul, coef), add};
+      std::vector<Seg> sp{parallel(mul, coef)};
+      // c_k = 0 in every group (c_0 of a fit held to 0 at u = 0): the RTL adds a constant zero
+      // and Yosys builds no adder.
+      const std::vector<std::int64_t> ck = coefficients(units, k);
+      if (!known || std::any_of(ck.begin(), ck.end(), [](std::int64_t v) { return v != 0; })) {
+        // The + c_k adder's carries run while the product's high bits settle: on the calibration
+        // set's stages it adds about half an adder's depth to the multiplier's (horner's full
+        // domain: 44-46 gates against 36 for the product alone).
+        Seg add = b.adder(wacc, fmt::format("stage {}: + c_{}", s, k));
+        add.delay /= 2;
+        sp.push_back(add);
+        b.op("add");
+      }
       if (last) {
         sp.push_back(b.mux(wo, 3, fmt::format("stage {}: clamp to [0, 1]", s)));
         b.reg(wo, fmt::format("stage {}: result", s));

@@ -3,9 +3,9 @@
 //
 // Hardware (L = 2, II 1): stage 1 the span table (per datapath group: a material's slots share
 // their table, units/slot_plan.h), the subtractor t - t0, the index shifter (the span is per
-// group) and the t^n table per group (2^bits + 1) x (table_frac + 1) read at both segment ends;
-// stage 2 the node difference, the interpolation multiplier (table_frac + 2) x (Fi - span - bits,
-// widest group), the adder and the clamp.
+// group) and the t^n table per group (2^bits + 1) x (table_frac + 1), in an even and an odd bank
+// each read once at one of the segment's ends; stage 2 the node difference, the interpolation
+// multiplier (table_frac + 2) x (Fi - span - bits, widest group), the adder and the clamp.
 #include "units/lut/lut.h"
 
 #include <fmt/format.h>
@@ -102,28 +102,42 @@ struct Lut : UnitKindDefaults {
             : b.slot_table(L.groups, sbits, 1, true, "stage 1: span table (per datapath group)");
     const Seg sub = b.adder(wi, "stage 1: t - t0");
     const Seg sh = b.shifter(wi, sbits, "stage 1: index shifter");
-    // The t^n tables' real contents (the RTL's case ROM: {group, j}, 2^bits + 2 entries a group
-    // padded to a power of two), read at two addresses: two ROMs of the same contents.
-    std::vector<std::int64_t> words;
-    const std::size_t stride = std::size_t{1} << clog2(entries + 1);
-    for (const LutUnit& u : units) {
-      for (int j = 0; j <= entries; ++j) words.push_back(u.entry(j));
-      words.resize(words.size() + stride - static_cast<std::size_t>(entries + 1), 0);
-    }
+    // The t^n tables in an even and an odd bank (units/lut/rtl.cpp), each read once: the nodes j
+    // and j + 1 of a request are one even and one odd. As ROMs, their real contents (a case ROM
+    // a bank, {group, j / 2}, 2^(bits-1) + 1 entries a group padded to a power of two); as
+    // registers, the two arrays with their read muxes are priced as one table of every entry.
+    // Then the two 2:1 muxes that put the banks' words in node order.
     const bool known = !L.tables_ram && L.groups == static_cast<int>(units.size());
-    // As registers, each group holds the padding entry too (the even and odd banks of the RTL).
-    const Seg tab =
-        b.slot_table(L.tables_ram ? entries + 1 : entries, tw, L.groups, true,
-                     "stage 1: t^n table (per datapath group)", known ? &words : nullptr);
-    // A ROM read at two addresses is two ROMs; registers are banked odd/even (one array).
-    if (!L.tables_ram)
-      b.slot_table(entries, tw, L.groups, true, "stage 1: t^n table, second read",
-                   known ? &words : nullptr);
+    Seg tab;
+    if (L.tables_ram) {
+      tab = b.slot_table(entries + 1, tw, L.groups, true,
+                         "stage 1: t^n table, even and odd banks (per datapath group)");
+    } else {
+      const int half = (1 << (bits - 1)) + 1;
+      const std::size_t stride = std::size_t{1} << bits;
+      std::vector<std::int64_t> even, odd;
+      for (const LutUnit& u : units) {
+        for (int h = 0; h < half; ++h) {
+          even.push_back(u.entry(2 * h));
+          odd.push_back(u.entry(2 * h + 1));
+        }
+        even.resize(even.size() + stride - static_cast<std::size_t>(half), 0);
+        odd.resize(even.size(), 0);
+      }
+      const Seg te = b.slot_table(half, tw, L.groups, true,
+                                  "stage 1: t^n table, even bank (per datapath group)",
+                                  known ? &even : nullptr);
+      const Seg to =
+          b.slot_table(half, tw, L.groups, true,
+                       "stage 1: t^n table, odd bank (per datapath group)", known ? &odd : nullptr);
+      tab = parallel(te, to);
+    }
+    const Seg order = b.mux(2 * tw, 2, "stage 1: t^n nodes in order (bank swap)");
     b.op("table_read", 3);
     b.op("add");
     b.op("shift");
     b.reg(2 * tw + r_max, "stage 1: nodes, remainder");
-    b.stage("stage 1", {sp, sub, sh, tab});
+    b.stage("stage 1", {sp, sub, sh, tab, order});
 
     // Stage 2: interpolation (rounding folded into the adder), clamp.
     std::vector<Seg> p2;

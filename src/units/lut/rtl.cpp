@@ -12,40 +12,71 @@
 namespace glint {
 namespace {
 
-// tables=ram: the t^n tables as two register arrays, the even nodes and the odd ones, each group's
-// 2^bits + 2 entries (j = 0..2^bits + 1) at group (2^(bits-1) + 1) + j / 2. The two nodes j and
-// j + 1 a request reads are one even and one odd, so each bank has one read port and the two read
-// muxes together are no larger than one over the whole table (the cost model's ram table).
-std::string lut_ram_tables(hdl::RamTables& ram, const std::vector<LutUnit>& groups, int bits,
-                           int tw, int wg, int iw, const std::string& what) {
+// The t^n tables as two banks, the even nodes and the odd ones, each group's 2^bits + 2 entries
+// (j = 0..2^bits + 1) at group (2^(bits-1) + 1) + j / 2 (registers, tables=ram) or at {group,
+// j / 2} (a case ROM a bank). The two nodes j and j + 1 a request reads are one even and one odd,
+// so each bank is read once: as ROMs, two half tables in place of the whole one read at two
+// addresses; as registers, the two read muxes together are no larger than one over the whole
+// table (the cost model's tables).
+std::string lut_banked_tables(const hdl::DatapathPorts& p, const std::vector<LutUnit>& groups,
+                              int bits, int tw, int iw, const std::string& what) {
   using hdl::ext;
   using hdl::range;
+  const int wg = p.group_bits;
   const int half = (1 << (bits - 1)) + 1;  // entries a group in each bank
-  hdl::RamTable even, odd;
-  even.name = "tn_even";
-  odd.name = "tn_odd";
-  even.width = odd.width = tw;
-  for (const LutUnit& u : groups)
-    for (int h = 0; h < half; ++h) {
-      even.words.push_back(u.entry(2 * h));
-      odd.words.push_back(u.entry(2 * h + 1));
+  const std::size_t stride = std::size_t{1} << (iw - 1);
+  std::vector<std::int64_t> even, odd;
+  for (const LutUnit& u : groups) {
+    if (p.ram == nullptr) {  // {group, h}: each group's bank padded to a power of two
+      even.resize(even.size() == 0 ? 0 : (even.size() + stride - 1) / stride * stride, 0);
+      odd.resize(even.size(), 0);
     }
-  even.what = what + "\nthe even entries j = 2h, at group (2^(bits-1) + 1) + h";
-  odd.what = what + "\nthe odd entries j = 2h + 1, at group (2^(bits-1) + 1) + h";
-  const int ab = hdl::index_bits(even.words.size());
-  std::string s = hdl::ram_array(ram, std::move(even));
-  s += hdl::ram_array(ram, std::move(odd));
+    for (int h = 0; h < half; ++h) {
+      even.push_back(u.entry(2 * h));
+      odd.push_back(u.entry(2 * h + 1));
+    }
+  }
+  const std::string even_what = what + "\nthe even entries j = 2h";
+  const std::string odd_what = what + "\nthe odd entries j = 2h + 1";
   // node j = i in one bank, j = i + 1 in the other: the even bank is read at (i + 1) / 2, the
   // odd one at i / 2, and i's low bit says which holds node_lo.
-  const auto addr = [&](const std::string& h) {
-    const std::string hi = ext(h, iw - 1, ab);
-    if (groups.size() == 1) return hi;
-    return fmt::format("{} * {} + {}", ext("in_group", wg, ab), hdl::lit(ab, half), hi);
-  };
+  std::string s;
   s += fmt::format("  wire {} lookup_ih = lookup_i[{}:1];\n", range(iw - 1), iw - 1);
   s += fmt::format("  wire {} lookup_i1h = lookup_i1[{}:1];\n", range(iw - 1), iw - 1);
-  s += fmt::format("  wire {} lookup_even = tn_even_mem[{}];\n", range(tw), addr("lookup_i1h"));
-  s += fmt::format("  wire {} lookup_odd = tn_odd_mem[{}];\n", range(tw), addr("lookup_ih"));
+  if (p.ram != nullptr) {
+    hdl::RamTable e{}, o{};
+    e.name = "tn_even";
+    o.name = "tn_odd";
+    e.width = o.width = tw;
+    e.words = std::move(even);
+    o.words = std::move(odd);
+    e.what = even_what + ", at group (2^(bits-1) + 1) + h";
+    o.what = odd_what + ", at group (2^(bits-1) + 1) + h";
+    const int ab = hdl::index_bits(e.words.size());
+    s += hdl::ram_array(*p.ram, std::move(e));
+    s += hdl::ram_array(*p.ram, std::move(o));
+    const auto addr = [&](const std::string& h) {
+      const std::string hi = ext(h, iw - 1, ab);
+      if (groups.size() == 1) return hi;
+      return fmt::format("{} * {} + {}", ext("in_group", wg, ab), hdl::lit(ab, half), hi);
+    };
+    s += fmt::format("  wire {} lookup_even = tn_even_mem[{}];\n", range(tw), addr("lookup_i1h"));
+    s += fmt::format("  wire {} lookup_odd = tn_odd_mem[{}];\n", range(tw), addr("lookup_ih"));
+  } else {
+    hdl::Rom e, o;
+    e.name = "lookup_even";
+    o.name = "lookup_odd";
+    e.addr = "{in_group, lookup_i1h}";
+    o.addr = "{in_group, lookup_ih}";
+    e.addr_bits = o.addr_bits = wg + iw - 1;
+    e.data_bits = o.data_bits = tw;
+    e.words = std::move(even);
+    o.words = std::move(odd);
+    e.comment = even_what + ", at {group, h}";
+    o.comment = odd_what + ", at {group, h}";
+    s += hdl::rom(e);
+    s += hdl::rom(o);
+  }
   s += fmt::format("  wire {} lookup_lo = lookup_i[0] ? lookup_odd : lookup_even;\n", range(tw));
   s += fmt::format("  wire {} lookup_hi = lookup_i[0] ? lookup_even : lookup_odd;\n", range(tw));
   s += "  wire unused_i1 = lookup_i1[0];  // (i + 1)'s bank is the other one\n";
@@ -122,34 +153,15 @@ std::string lut_rtl(const hdl::DatapathPorts& p, const LutConfig& c,
   s += fmt::format("  wire {} lookup_rem = lookup_v & ~({{{}{{1'b1}}}} << rbits);  // v mod 2^r\n",
                    range(wi), wi);
   if (wi > fw) s += fmt::format("  wire unused_rem = ^lookup_rem[{}:{}];\n", wi - 1, fw);
-  // The t^n table of every group, addressed {group, index}: entries 0..2^bits and the padding
-  // entry 2^bits + 1 (the last node again, read as node_hi at t = 1).
-  const std::int64_t stride = std::int64_t{1} << iw;
-  hdl::Rom tab;
-  tab.name = "tn_table";
-  tab.addr_bits = wg + iw;
-  tab.data_bits = tw;
-  for (std::size_t g = 0; g < groups.size(); ++g) {
-    tab.words.resize(g * static_cast<std::size_t>(stride), 0);
-    for (std::int64_t j = 0; j <= (std::int64_t{1} << bits) + 1; ++j)
-      tab.words.push_back(groups[g].entry(j));
-  }
-  tab.comment = fmt::format(
-      "t^n at the nodes t0 + j (1 - t0) 2^-{} of each group, rounded to {} fraction bits "
-      "(LutUnit::entry);\n"
-      "address {{group, j}}, j = 0..2^{} + 1 (the last entry repeats 1.0 for node_hi at t = 1)",
-      bits, tf, bits);
-  std::string node_lo = "tn_table({in_group, lookup_i})",
-              node_hi = "tn_table({in_group, lookup_i1})";
-  if (p.ram == nullptr) {
-    s += hdl::rom_function(tab);
-  } else {
-    // (the ROM's first line: its addressing is the banks')
-    s += lut_ram_tables(*p.ram, groups, bits, tw, wg, iw,
-                        tab.comment.substr(0, tab.comment.find('\n')));
-    node_lo = "lookup_lo";
-    node_hi = "lookup_hi";
-  }
+  // The t^n table of every group: entries 0..2^bits and the padding entry 2^bits + 1 (the last
+  // node again, read as node_hi at t = 1), in an even and an odd bank.
+  s += lut_banked_tables(
+      p, groups, bits, tw, iw,
+      fmt::format("t^n at the nodes t0 + j (1 - t0) 2^-{} of each group, rounded to {} fraction "
+                  "bits (LutUnit::entry), j = 0..2^{} + 1 (the last entry repeats 1.0 for node_hi "
+                  "at t = 1)",
+                  bits, tf, bits));
+  const std::string node_lo = "lookup_lo", node_hi = "lookup_hi";
   s += "  always @(posedge clk) begin\n";
   s += "    lookup_short <= in_t <= t0;\n";
   if (align_varies) s += "    lookup_group <= in_group;\n";

@@ -2,10 +2,11 @@
 // baseline exp2(n log2 t).
 //
 // Hardware (L = 5, II 1): stage 1 a leading-one detector Wi, the normalisation shifter and the log2
-// ROM (2^log_bits + 1) x (log_frac + 1) read at both segment ends; stage 2 the node difference and
+// ROM (2^log_bits + 1) x (log_frac + 1), an even and an odd bank each read once at one of the
+// segment's ends; stage 2 the node difference and
 // interpolation multiplier, with the n table read beside; stage 3 the multiplier Wn x log2 t; stage
-// 4 the exp2 ROM (2^exp_bits + 1) x (exp_frac + 2); stage 5 the exp2 interpolation, the output
-// shifter, rounding and clamp.
+// 4 the exp2 ROM (2^exp_bits + 1) x (exp_frac + 2), banked the same way; stage 5 the exp2
+// interpolation, the output shifter, rounding and clamp.
 #include "units/pow/pow.h"
 
 #include <fmt/format.h>
@@ -19,6 +20,19 @@
 
 namespace glint {
 namespace {
+
+// A fixed-function table read at i and i + 1 (units/pow/rtl.cpp, banked_table): a ROM of its
+// even entries and one of its odd entries, each read once, then two 2:1 muxes of the word width
+// that put the two words in node order.
+Seg banked_rom(CostBuilder& b, const std::vector<std::int64_t>& words, int w,
+               const std::string& where) {
+  std::vector<std::int64_t> even, odd;
+  for (std::size_t j = 0; j < words.size(); ++j) (j % 2 == 0 ? even : odd).push_back(words[j]);
+  const Seg e = b.rom(even, w, where + " (ROM, even bank)");
+  const Seg o = b.rom(odd, w, where + " (ROM, odd bank)");
+  const Seg order = b.mux(2 * w, 2, where + ": nodes in order (bank swap)");
+  return series({parallel(e, o), order});
+}
 
 struct Pow : UnitKindDefaults {
   using Config = PowConfig;
@@ -131,10 +145,11 @@ struct Pow : UnitKindDefaults {
     // Stage 1: normalise t, read log2 at the segment's two ends.
     const Seg z = b.lzd(wi, "stage 1: leading-one detector");
     const Seg sh = b.shifter(wi, ebits, "stage 1: normalisation shifter");
-    // The log2 and exp2 tables are the same for every material; each is read at two addresses
-    // (the segment's ends): two ROMs of its contents, as the RTL writes them.
+    // The log2 and exp2 tables are the same for every material; each is read at the segment's
+    // two ends, one even and one odd entry: an even and an odd ROM bank, each read once, and the
+    // muxes that put their words in order (banked_rom, as units/pow/rtl.cpp writes them).
     const PowTables& tabs = *units.front().tables();
-    const Seg lt = b.rom(tabs.log_table, lw, "stage 1: log2 table (ROM, two reads)", 2);
+    const Seg lt = banked_rom(b, tabs.log_table, lw, "stage 1: log2 table");
     b.op("lzd");
     b.op("shift");
     b.op("table_read", 2);
@@ -174,7 +189,7 @@ struct Pow : UnitKindDefaults {
     b.stage("stage 3", {my});
 
     // Stage 4: exp2 nodes of the fraction of y.
-    const Seg et = b.rom(tabs.exp_table, xw, "stage 4: exp2 table (ROM, two reads)", 2);
+    const Seg et = banked_rom(b, tabs.exp_table, xw, "stage 4: exp2 table");
     b.op("table_read", 2);
     b.reg(2 * xw + exp_r + yint, "stage 4: exp2 nodes, remainder, integer part of y");
     b.stage("stage 4", {et});

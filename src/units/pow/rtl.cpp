@@ -12,16 +12,31 @@
 namespace glint {
 namespace {
 
-// A table of 2^bits + 2 entries (the last repeats 2^bits) read at two addresses: one ROM function.
-std::string table_rom(const std::string& name, const std::vector<std::int64_t>& words, int bits,
-                      int width, const std::string& what) {
-  hdl::Rom r;
-  r.name = name;
-  r.addr_bits = bits + 1;
-  r.data_bits = width;
-  r.words = words;
-  r.comment = what;
-  return hdl::rom_function(r);
+// A table of 2^bits + 2 entries (the last repeats 2^bits) read at the two ends of a segment, i
+// and i + 1 (`bits` + 1-bit wires `i`, `i1`): one is even and the other odd, so the table is two
+// case ROMs, the even entries j = 2h and the odd ones j = 2h + 1, each read once at h (the even
+// bank at (i + 1) / 2, the odd at i / 2), and i's low bit puts their words in order as the wires
+// `lo` and `hi`. Half the ROM of one table read at two addresses.
+std::string banked_table(const std::string& name, const std::vector<std::int64_t>& words, int bits,
+                         int width, const std::string& what, const std::string& i,
+                         const std::string& i1, const std::string& lo, const std::string& hi) {
+  using hdl::range;
+  hdl::Rom even, odd;
+  even.name = name + "_even";
+  odd.name = name + "_odd";
+  even.addr = fmt::format("{}[{}:1]", i1, bits);
+  odd.addr = fmt::format("{}[{}:1]", i, bits);
+  even.addr_bits = odd.addr_bits = bits;
+  even.data_bits = odd.data_bits = width;
+  for (std::size_t j = 0; j < words.size(); ++j)
+    (j % 2 == 0 ? even : odd).words.push_back(words[j]);
+  even.comment = what + "\nthe even entries j = 2h, at h";
+  odd.comment = what + "\nthe odd entries j = 2h + 1, at h";
+  std::string s = hdl::rom(even) + hdl::rom(odd);
+  s += fmt::format("  wire {} {} = {}[0] ? {} : {};\n", range(width), lo, i, odd.name, even.name);
+  s += fmt::format("  wire {} {} = {}[0] ? {} : {};\n", range(width), hi, i, even.name, odd.name);
+  s += fmt::format("  wire unused_{} = {}[0];  // (i + 1)'s bank is the other one\n", name, i1);
+  return s;
 }
 
 // (a + round(diff r 2^-rbits)): one table interpolation of PowUnit::run, as wires prefixed `p`.
@@ -118,16 +133,17 @@ std::string pow_rtl(const hdl::DatapathPorts& p, const std::vector<PowUnit>& gro
                                       : fmt::format("{{1'b0, lt_m[{}:{}]}}", fi - 1, log_r);
   s += fmt::format("  wire {} lt_i = {};  // (m - 1) >> r << pad\n", range(ab), idx);
   s += fmt::format("  wire {} lt_i1 = lt_i + {};\n", range(ab), lit(ab, 1));
-  s += table_rom("log2_table", tab.log_table, c.log_bits, lw,
-                 fmt::format("log2(1 + j 2^-{}) rounded to {} fraction bits, j = 0..2^{} + 1 "
-                             "(PowTables::log_table; the last repeats 1.0)",
-                             c.log_bits, c.log_frac, c.log_bits));
+  s += banked_table("log2_table", tab.log_table, c.log_bits, lw,
+                    fmt::format("log2(1 + j 2^-{}) rounded to {} fraction bits, j = 0..2^{} + 1 "
+                                "(PowTables::log_table; the last repeats 1.0)",
+                                c.log_bits, c.log_frac, c.log_bits),
+                    "lt_i", "lt_i1", "lt_lo", "lt_hi");
   s += "  always @(posedge clk) begin\n";
   s += "    z1 <= in_t == " + lit(wi, 0) + ";\n";
   s += "    g1 <= in_group;\n";
   s += fmt::format("    {} <= lt_shift;\n", rtl_reg(s1, 0));
-  s += fmt::format("    {} <= log2_table(lt_i);\n", rtl_reg(s1, 1));
-  s += fmt::format("    {} <= log2_table(lt_i1);\n", rtl_reg(s1, 2));
+  s += fmt::format("    {} <= lt_lo;\n", rtl_reg(s1, 1));
+  s += fmt::format("    {} <= lt_hi;\n", rtl_reg(s1, 2));
   s += fmt::format("    {} <= {};\n", rtl_reg(s1, 3),
                    log_r > 0 ? fmt::format("lt_m[{}:0]", log_r - 1) : lit(lrw, 0));
   s += "  end\n";
@@ -172,17 +188,18 @@ std::string pow_rtl(const hdl::DatapathPorts& p, const std::vector<PowUnit>& gro
                                        : fmt::format("{{1'b0, et_yf[{}:{}]}}", c.y_frac - 1, exp_r);
   s += fmt::format("  wire {} et_i = {};\n", range(eab), eidx);
   s += fmt::format("  wire {} et_i1 = et_i + {};\n", range(eab), lit(eab, 1));
-  s += table_rom("exp2_table", tab.exp_table, c.exp_bits, xw,
-                 fmt::format("exp2(j 2^-{}) rounded to {} fraction bits, j = 0..2^{} + 1 "
-                             "(PowTables::exp_table; the last repeats 2.0)",
-                             c.exp_bits, c.exp_frac, c.exp_bits));
+  s += banked_table("exp2_table", tab.exp_table, c.exp_bits, xw,
+                    fmt::format("exp2(j 2^-{}) rounded to {} fraction bits, j = 0..2^{} + 1 "
+                                "(PowTables::exp_table; the last repeats 2.0)",
+                                c.exp_bits, c.exp_frac, c.exp_bits),
+                    "et_i", "et_i1", "et_lo", "et_hi");
   s += fmt::format("  wire signed {} et_y = {};\n", range(yw), y);
   s += fmt::format("  wire signed {} et_yi = et_y >>> {};  // floor(y)\n", range(yw), c.y_frac);
   if (yw > yiw) s += fmt::format("  wire unused_et = ^et_yi[{}:{}];\n", yw - 1, yiw);
   s += "  always @(posedge clk) begin\n    z4 <= z3;\n";
   s += fmt::format("    {} <= {};\n", rtl_reg(s4, 0), ext("et_yi", yw, yiw));
-  s += fmt::format("    {} <= exp2_table(et_i);\n", rtl_reg(s4, 1));
-  s += fmt::format("    {} <= exp2_table(et_i1);\n", rtl_reg(s4, 2));
+  s += fmt::format("    {} <= et_lo;\n", rtl_reg(s4, 1));
+  s += fmt::format("    {} <= et_hi;\n", rtl_reg(s4, 2));
   s += fmt::format("    {} <= {};\n", rtl_reg(s4, 3),
                    exp_r > 0 ? fmt::format("et_yf[{}:0]", exp_r - 1) : lit(erw, 0));
   s += "  end\n";

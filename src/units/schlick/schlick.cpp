@@ -126,7 +126,9 @@ struct Schlick : UnitKindDefaults {
     const QFormat nf = n_register(c, units, L.fixed)->built;
     const int wi = L.in.width(), fi = L.in.frac_bits, wo = L.out.width();
     const int wn = nf.width();
-    const int wd = denominator_format(nf, L.in).width();
+    // D's width follows n's: the scene's bits in a ROM (Yosys drops D's constant-zero top bits),
+    // the key's whole format when the chip loads n (every bit of D and the divider rows live).
+    const int wd = denominator_format(L.tables_ram ? c.datapath.n_format : nf, L.in).width();
     const int q = L.out.frac_bits + 2;
 
     // Stage 1: D = n (1 - t) + t. 1 - t is the complement of t plus one: the +n correction is one
