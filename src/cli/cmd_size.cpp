@@ -27,6 +27,8 @@ struct SizeOptions {
   std::size_t top = 1;
   bool no_image = false;
   bool json = false;
+  WidenLimits widen;
+  bool no_widen = false;
 };
 
 int run_size_command(const SizeOptions& o) {
@@ -58,7 +60,10 @@ int run_size_command(const SizeOptions& o) {
     progress = [](const std::string& line) { std::fprintf(stderr, "\r%s", line.c_str()); };
   SizeRun run;
   try {
-    run = run_size(inputs, grids, budgets, objective, settings, !o.no_image, o.top, progress);
+    WidenLimits widen = o.widen;
+    widen.widen = !o.no_widen;
+    run =
+        run_size(inputs, grids, budgets, objective, settings, !o.no_image, widen, o.top, progress);
   } catch (const SlotCapacityError& e) {
     refuse_slots(o.slots, e);
   }
@@ -98,6 +103,19 @@ void add_size_command(CLI::App& app, int& status) {
       ->check(CLI::Range(1, 256));
   sub->add_option("--top", o->top,
                   "List the K cheapest configurations meeting the budget (over every family)")
+      ->check(CLI::Range(std::size_t{1}, kMaxSweepConfigurations))
+      ->capture_default_str();
+  sub->add_flag("--no-widen", o->no_widen,
+                "Keep the grids as given: by default a grid whose answer sits at an end of an "
+                "ordered key (in, out, bits, d, degree, ...) where it improves outward takes one "
+                "more value beyond that end, round by round, within the key's range "
+                "(src/cli/guide/size.md)");
+  sub->add_option("--widen-rounds", o->widen.rounds, "Widening rounds per grid, at most")
+      ->check(CLI::Range(std::size_t{0}, std::size_t{64}))
+      ->capture_default_str();
+  sub->add_option("--widen-configurations", o->widen.configurations,
+                  "Configurations over all grids, at most, when widening (the grids as given "
+                  "are swept whatever their size)")
       ->check(CLI::Range(std::size_t{1}, kMaxSweepConfigurations))
       ->capture_default_str();
   sub->add_flag("--no-image", o->no_image,
