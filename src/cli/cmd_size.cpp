@@ -88,10 +88,12 @@ void add_size_command(CLI::App& app, int& status) {
   sub->add_option("--scene", o->scenes, "Scene files (repeatable; every one must meet the budget)")
       ->allow_extra_args(false);
   sub->add_option("--budget", o->budget,
-                  "MEASURE OP VALUE[,...], all must hold, e.g. 'lsb8<=1', "
-                  "'bound_lsb<=0.5,mismatch_fraction<0.01', 'image.max_lsb<=1'")
+                  "MEASURE OP VALUE[,...], all must hold, e.g. 'max_lsb8<=1', "
+                  "'bound_lsb<=0.5,mismatch_fraction<0.01', 'image.max_lsb<=1'; a MEASURE is "
+                  "named as in the tables, the CSV and the JSON (aliases: src/cli/guide/size.md)")
       ->required();
-  sub->add_option("--objective", o->objective, "area | throughput | area*latency")
+  sub->add_option("--objective", o->objective,
+                  "area | throughput | area*latency (or the measure: area_ge, area_latency)")
       ->capture_default_str();
   sub->add_option("--grid", o->grids,
                   "Grids to choose from (as glint sweep; repeatable); default: a grid per unit "

@@ -15,11 +15,26 @@
 namespace glint {
 
 SizeObjective parse_size_objective(const std::string& text) {
-  if (text == "area") return SizeObjective::kArea;
+  // The objective's words, or the measure each minimises or maximises.
+  if (text == "area" || text == "area_ge") return SizeObjective::kArea;
   if (text == "throughput") return SizeObjective::kThroughput;
   if (text == "area*latency" || text == "area_latency") return SizeObjective::kAreaLatency;
-  throw std::invalid_argument(
-      fmt::format("--objective '{}': expected area, throughput or area*latency", text));
+  throw std::invalid_argument(fmt::format(
+      "--objective '{}': expected area, throughput or area*latency (or the measure: area_ge, "
+      "throughput, area_latency)",
+      text));
+}
+
+const char* objective_measure(SizeObjective o) {
+  switch (o) {
+    case SizeObjective::kArea:
+      return "area_ge";
+    case SizeObjective::kThroughput:
+      return "throughput";
+    case SizeObjective::kAreaLatency:
+      return "area_latency";
+  }
+  return "?";
 }
 
 const char* to_string(SizeObjective o) {
@@ -51,10 +66,7 @@ const std::vector<std::string>& default_size_grids() {
 namespace {
 
 double objective_of(const nlohmann::json& row, SizeObjective o) {
-  const char* key = o == SizeObjective::kArea         ? "area_ge"
-                    : o == SizeObjective::kThroughput ? "throughput"
-                                                      : "area_latency";
-  const auto v = row.find(key);  // a refused configuration has none
+  const auto v = row.find(objective_measure(o));  // a refused configuration has none
   return v != row.end() && v->is_number() ? v->get<double>() : NAN;
 }
 
@@ -329,13 +341,15 @@ std::string format_size(const SizeRun& run) {
   for (const auto& c : d.at("budget")) conditions.push_back(c.get<std::string>());
   for (const auto& i : d.at("inputs")) paths.push_back(i.at("path").get<std::string>());
   const std::string objective = d.at("objective").get<std::string>();
+  // Values are headed by the measure's name (area_ge, ...), as in every table and budget.
+  const std::string measure = objective_measure(parse_size_objective(objective));
   std::string out = fmt::format(
       "budget {} on every input ({}); objective: {}{}\n"
       "{} configurations, {} meet the budget on every input\n",
       fmt::join(conditions, ","), fmt::join(paths, ", "), objective,
       paths.size() > 1 ? " (worst over the inputs)" : "", d.at("configurations").get<std::size_t>(),
       d.at("meeting").get<std::size_t>());
-  out += fmt::format("{:<8} {:>14}  {}\n", "family", objective, "cheapest spec meeting the budget");
+  out += fmt::format("{:<8} {:>14}  {}\n", "family", measure, "cheapest spec meeting the budget");
   std::string why;
   for (const nlohmann::json& f : d.at("families")) {
     const std::string unit = f.at("unit").get<std::string>();
@@ -352,14 +366,14 @@ std::string format_size(const SizeRun& run) {
   out += format_search(d);
   const nlohmann::json& top = d.at("top");
   if (top.size() > 1) {
-    out += fmt::format("the {} cheapest meeting the budget:\n", top.size());
+    out += fmt::format("the {} cheapest meeting the budget ({}):\n", top.size(), measure);
     for (const nlohmann::json& c : top)
       out += fmt::format("  {:>14.6g}  {}\n", c.at("value").get<double>(),
                          c.at("spec").get<std::string>());
   }
   if (d.at("best").is_null()) return out + "no configuration meets the budget\n";
   const nlohmann::json& b = d.at("best");
-  return out + fmt::format("cheapest overall ({} {:.6g}; canonical {}):\n{}\n", objective,
+  return out + fmt::format("cheapest overall ({} {:.6g}; canonical {}):\n{}\n", measure,
                            b.at("value").get<double>(), b.at("canonical_spec").get<std::string>(),
                            b.at("spec").get<std::string>());
 }

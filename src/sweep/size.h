@@ -19,9 +19,13 @@ namespace glint {
 // area (a chip that serves every input holds every input's slots), the least throughput, the
 // largest area x latency.
 enum class SizeObjective { kArea, kThroughput, kAreaLatency };
-// "area", "throughput" or "area*latency"; throws std::invalid_argument naming --objective.
+// "area", "throughput" or "area*latency" (or the measure's name, objective_measure); throws
+// std::invalid_argument naming --objective.
 SizeObjective parse_size_objective(const std::string& text);
 const char* to_string(SizeObjective o);
+// The measure an objective minimises (maximises, for throughput): "area_ge", "throughput",
+// "area_latency".
+const char* objective_measure(SizeObjective o);
 
 // The grids `glint size` sweeps without --grid: a few per unit family (src/cli/guide/size.md lists
 // them).

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <limits>
 #include <set>
 #include <string>
@@ -246,6 +247,48 @@ TEST(SweepMeasures, NamesSuffixesAndBudgets) {
       std::string::npos);
   EXPECT_NE(error_of([] { glint::parse_budgets("image.max_lsb<=1", false); }).find("--scene"),
             std::string::npos);
+}
+
+// Every alias names the measure it stands for, with a depth suffix where the measure is in LSBs,
+// and the size guide's table lists exactly the aliases there are.
+TEST(SweepMeasures, AliasesNameTheirMeasures) {
+  std::set<std::string> listed;
+  {
+    std::ifstream guide(GLINT_SOURCE_DIR "/src/cli/guide/size.md");
+    ASSERT_TRUE(guide) << "src/cli/guide/size.md";
+    bool in_table = false;
+    for (std::string line; std::getline(guide, line);) {
+      if (line == "| alias | measure | from |") in_table = true;
+      if (!in_table) continue;
+      if (line.empty()) break;
+      const auto a = line.find("| `"), b = line.find("` |");
+      if (a == 0 && b != std::string::npos) listed.insert(line.substr(3, b - 3));
+    }
+  }
+  std::set<std::string> aliases;
+  for (const glint::MeasureAlias& a : glint::measure_aliases()) {
+    aliases.insert(a.alias);
+    const auto alias = glint::find_measure(a.alias, true);
+    const auto measure = glint::find_measure(a.measure, true);
+    ASSERT_TRUE(alias) << a.alias;
+    ASSERT_TRUE(measure) << a.measure;
+    EXPECT_EQ(alias->pointer, measure->pointer) << a.alias;
+    EXPECT_EQ(alias->bits, measure->bits) << a.alias;
+    EXPECT_EQ(alias->name, a.alias);  // reports name it as written
+    EXPECT_FALSE(glint::find_measure(std::string(a.alias) + "x", true)) << a.alias << "x";
+    if (std::string(a.measure).find("lsb") != std::string::npos) {
+      const auto deep = glint::find_measure(std::string(a.alias) + "10", false);
+      ASSERT_TRUE(deep) << a.alias << "10";
+      EXPECT_EQ(deep->bits, 10);
+      EXPECT_EQ(deep->pointer, glint::find_measure(std::string(a.measure) + "10", false)->pointer);
+    }
+  }
+  EXPECT_EQ(listed, aliases);
+  // The headings eval's table used to print parse as the measures they headed.
+  const json row = {{"errors", {{"max_abs", 2.0 / 255}, {"weighted", {{"max_abs", 1.0 / 255}}}}}};
+  EXPECT_NEAR(*glint::measure_value(row, *glint::find_measure("wlsb8", false)), 1.0, 1e-12);
+  EXPECT_NEAR(*glint::measure_value(row, *glint::find_measure("lsb8", false)), 2.0, 1e-12);
+  EXPECT_FALSE(glint::find_measure("wlsb17", false));
 }
 
 // The engine on one file: each configuration's errors equal a plain Evaluator's over the same
