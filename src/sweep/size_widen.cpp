@@ -127,8 +127,9 @@ WidenDecision decide_widening(const Grid& grid, std::size_t grid_index,
   }
   const SweepConfig& config = configs[*at];
   // Per key at an end of its grid: outward improves when the configuration one value inwards is
-  // worse.
+  // worse. Its gain: by how much (the margin's difference, or the relative cost).
   std::vector<GridStep> wanted;
+  std::vector<double> gain;
   double closing = 0;  // how much of the miss the wanted keys' last values closed, together
   for (std::size_t k = 0; k < grid.axes.size(); ++k) {
     const GridAxis& axis = grid.axes[k];
@@ -154,6 +155,7 @@ WidenDecision decide_widening(const Grid& grid, std::size_t grid_index,
     if (!better) continue;
     if (!met) closing += margin[*n] - margin[*at];
     wanted.push_back({k, axis.key, *given, mine == *hi});
+    gain.push_back(met ? (cost[*n] - cost[*at]) / std::abs(cost[*at]) : margin[*n] - margin[*at]);
   }
   const std::string spec = config.spec;
   if (wanted.empty()) {
@@ -184,15 +186,23 @@ WidenDecision decide_widening(const Grid& grid, std::size_t grid_index,
         margin[*at], spec, steps_text(wanted), closing, rounds_left, rounds_left == 1 ? "" : "s");
     return d;
   }
+  // One key a round, the one that gained most (keys in the grid's order on a tie): a round's
+  // new configurations are that key's new value with every value of the others, so widening
+  // every improving key at once would sweep their cross product, mostly far from the answer.
+  std::vector<std::size_t> by_gain(wanted.size());
+  for (std::size_t k = 0; k < by_gain.size(); ++k) by_gain[k] = k;
+  std::stable_sort(by_gain.begin(), by_gain.end(),
+                   [&](std::size_t a, std::size_t b) { return gain[a] > gain[b]; });
   std::vector<std::string> refused;
-  for (GridStep& s : wanted) {
+  for (std::size_t k : by_gain) {
+    GridStep s = wanted[k];
     std::string why;
     if (const auto next = probe_step(grid, s.axis, s.largest, &why)) {
       s.value = *next;
       d.steps.push_back(s);
-    } else {
-      refused.push_back(fmt::format("{} beyond {} ({})", s.key, s.value, why));
+      break;
     }
+    refused.push_back(fmt::format("{} beyond {} ({})", s.key, s.value, why));
   }
   if (d.steps.empty()) {
     d.stop = WidenStop::kRangeEnd;

@@ -1,8 +1,9 @@
 // How `glint size` widens a grid on its own (src/cli/guide/size.md, "How the grids widen"): from
 // the configuration that decides the family (the cheapest meeting the budget, else the one that
-// misses it by the least), every ordered key sitting at an end of its grid where things improve
-// outward takes one more value beyond that end, as far as the unit's key table allows, until the
-// decision sits at no such end, or a cap is reached.
+// misses it by the least), of the ordered keys sitting at an end of its grid where things improve
+// outward, the one that improves most takes one more value beyond that end, as far as the unit's
+// key table allows, round after round until the decision sits at no such end, or a cap is
+// reached.
 #pragma once
 
 #include <cstddef>
@@ -42,7 +43,7 @@ enum class WidenStop {
 };
 const char* to_string(WidenStop s);
 
-// What to do with one grid after a round: the steps to take, or why it stops.
+// What to do with one grid after a round: the step to take (one), or why it stops.
 struct WidenDecision {
   std::vector<GridStep> steps;
   std::optional<WidenStop> stop;

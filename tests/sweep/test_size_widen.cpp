@@ -60,11 +60,14 @@ TEST(SizeWiden, MetBudgetWidensTowardsTheCheaperEnd) {
 TEST(SizeWiden, MissedBudgetWidensWhereTheMissShrinks) {
   const Fixture f;
   const std::vector<bool> none(6, false);
-  // Closest: out=uq1.10,bits=6 (margin 1); bits=5 and out=uq1.12 inwards miss by more.
+  // Closest: out=uq1.10,bits=6 (margin 1); bits=5 (by 1) and out=uq1.12 (by 0.5) inwards miss by
+  // more: bits, the steeper, widens first.
   const std::vector<double> margin = {3, 2, 1, 3.5, 2.5, 1.5};
   const auto d = f.decide(none, margin);
   EXPECT_FALSE(d.stop) << d.why;
-  EXPECT_EQ(steps(d), (V{"out=uq1.9 (smallest)", "bits=7 (largest)"}));
+  EXPECT_EQ(steps(d), (V{"bits=7 (largest)"}));
+  // out, when it is the steeper.
+  EXPECT_EQ(steps(f.decide(none, {3, 2, 1, 3.5, 2.5, 2.5})), (V{"out=uq1.9 (smallest)"}));
 
   // The same with no round left: the round cap.
   EXPECT_EQ(f.decide(none, margin, 0).stop, WidenStop::kRoundCap);
@@ -92,6 +95,14 @@ TEST(SizeWiden, KeyTableEndsTheRange) {
   const auto d = decide_widening(grid, 0, configs, {100, 200}, {false, false}, {2, 1}, 8);
   EXPECT_EQ(d.stop, WidenStop::kRangeEnd);
   EXPECT_NE(d.why.find("1..16"), std::string::npos) << d.why;  // the key table's range
+  // A steeper key at its range's end leaves the step to the next one.
+  const glint::Grid two = parse_grid("lut:out=uq1.10|uq1.12,bits=15..16");
+  const auto both = decide_widening(two, 0, glint::expand_grids({two}), {100, 200, 120, 240},
+                                    {false, false, false, false}, {3, 1, 3.5, 1.5}, 8);
+  ASSERT_FALSE(both.stop) << both.why;
+  ASSERT_EQ(both.steps.size(), 1u);
+  EXPECT_EQ(both.steps[0].key, "out");
+  EXPECT_EQ(both.steps[0].value, "uq1.9");
   // Formats step by one fraction bit either way.
   const glint::Grid out = parse_grid("lut:out=uq1.10|uq1.12");
   EXPECT_EQ(glint::probe_step(out, 0, false), "uq1.9");
