@@ -75,6 +75,26 @@ double cost_of(double value, SizeObjective o) {
   return o == SizeObjective::kThroughput ? -value : value;
 }
 
+// The report one sweep of `grids` would write, from the rows of several sweeps by spec and the
+// first sweep's report without its rows.
+nlohmann::json sweep_report_of(const nlohmann::json& shell,
+                               const std::map<std::string, nlohmann::json>& rows,
+                               const std::vector<Grid>& grids,
+                               const std::vector<SweepConfig>& configs) {
+  nlohmann::json report = shell, texts = nlohmann::json::array(), results = nlohmann::json::array();
+  for (const Grid& g : grids) texts.push_back(g.text);
+  for (const SweepConfig& c : configs) {
+    nlohmann::json row = rows.at(c.spec);
+    row["index"] = c.index;
+    results.push_back(std::move(row));
+  }
+  report["grids"] = std::move(texts);
+  report["configurations"] = configs.size();
+  report["results"] = std::move(results);
+  mark_pareto(report);
+  return report;
+}
+
 nlohmann::json choice_json(const SizeRun& run, std::size_t i, const std::vector<Budget>& budgets) {
   const nlohmann::json& row = run.reports.front().at("results").at(i);
   nlohmann::json measures = nlohmann::json::object();
@@ -185,23 +205,9 @@ SizeRun run_size(const std::vector<SweepInput>& inputs, const std::vector<Grid>&
     std::vector<Grid> now;
     for (const GridSearch& s : searches) now.push_back(s.grid);
     configs = expand_grids(now);
-    nlohmann::json texts = nlohmann::json::array();
-    for (const Grid& g : now) texts.push_back(g.text);
     run.reports.clear();
-    for (std::size_t k = 0; k < inputs.size(); ++k) {
-      nlohmann::json report = shells[k];
-      nlohmann::json results = nlohmann::json::array();
-      for (const SweepConfig& c : configs) {
-        nlohmann::json row = rows[k].at(c.spec);
-        row["index"] = c.index;
-        results.push_back(std::move(row));
-      }
-      report["grids"] = texts;
-      report["configurations"] = configs.size();
-      report["results"] = std::move(results);
-      mark_pareto(report);
-      run.reports.push_back(std::move(report));
-    }
+    for (std::size_t k = 0; k < inputs.size(); ++k)
+      run.reports.push_back(sweep_report_of(shells[k], rows[k], now, configs));
     run.pick = pick_cheapest(run.reports, budgets, objective);
     std::vector<double> cost(configs.size()), margin(configs.size());
     for (std::size_t i = 0; i < configs.size(); ++i) {
