@@ -29,6 +29,7 @@ struct SizeOptions {
   bool json = false;
   WidenLimits widen;
   bool no_widen = false;
+  bool widen_limit_given = false;  // --widen-rounds or --widen-configurations
 };
 
 int run_size_command(const SizeOptions& o) {
@@ -39,6 +40,10 @@ int run_size_command(const SizeOptions& o) {
   if (o.no_image && o.scenes.empty())
     throw std::invalid_argument(
         "--no-image leaves out the image-level error of --scene: it needs --scene");
+  // The caps bound the widening: with --no-widen they would be ignored in silence.
+  if (o.no_widen && o.widen_limit_given)
+    throw std::invalid_argument(
+        "--widen-rounds and --widen-configurations bound the widening: --no-widen has none");
   const SizeObjective objective = parse_size_objective(o.objective);
   // Image-level measures only when every input is a scene rendered with them.
   const bool image = !o.no_image && o.vectors.empty();
@@ -123,7 +128,11 @@ void add_size_command(CLI::App& app, int& status) {
   sub->add_flag("--no-image", o->no_image,
                 "With --scene: leave out the image-level error (request-level errors only)");
   sub->add_flag("--json", o->json, "Print the choice as one JSON document on stdout");
-  sub->callback([o, &status] { status = guarded([&] { return run_size_command(*o); }); });
+  sub->callback([o, sub, &status] {
+    o->widen_limit_given =
+        sub->count("--widen-rounds") > 0 || sub->count("--widen-configurations") > 0;
+    status = guarded([&] { return run_size_command(*o); });
+  });
 }
 
 }  // namespace glint::cli

@@ -318,9 +318,16 @@ std::string format_explanation(const nlohmann::json& e) {
   for (const nlohmann::json& g : c.at("grid_edges"))
     edges.push_back(fmt::format("{}={} ({} in the grid)", g.at("key").get<std::string>(),
                                 g.at("value").get<std::string>(), g.at("end").get<std::string>()));
+  // After a search (size_widen.h) the edges are the searched grid's, where it stopped.
+  std::vector<std::string> stops;
+  if (const auto search = e.find("search"); search != e.end())
+    for (const nlohmann::json& g : *search)
+      if (g.at("stopped") != "fixed") stops.push_back(g.at("stopped").get<std::string>());
   if (!edges.empty())
-    out += fmt::format("    at its grid's edge: {}: a wider --grid may help\n",
-                       fmt::join(edges, ", "));
+    out += fmt::format("    at its grid's edge: {}: {}\n", fmt::join(edges, ", "),
+                       stops.empty() ? std::string("a wider --grid may help")
+                                     : fmt::format("the search stopped there ({}, below)",
+                                                   fmt::join(stops, ", ")));
   return out;
 }
 

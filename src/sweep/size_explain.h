@@ -53,7 +53,8 @@ nlohmann::json explain_family(const std::string& unit, const std::vector<nlohman
                               const std::vector<double>& cost, bool meets_budget);
 
 // The lines `glint size` prints for one family's explanation (none when the family meets the
-// budget and nothing else is worth saying).
+// budget and nothing else is worth saying). A family with a `search` (size_widen.h) that widened
+// is said to have stopped at its edges, not to need a wider --grid.
 std::string format_explanation(const nlohmann::json& explanation);
 
 }  // namespace glint

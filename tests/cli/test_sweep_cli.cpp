@@ -231,6 +231,8 @@ TEST_F(SweepCli, BadInputExitsTwoAndWritesNothing) {
       {"size --budget 'frobs<=1' " + vec, "unknown measure 'frobs'"},
       {"size --budget 'lsb8<=1' --objective speed " + vec, "--objective"},
       {"size --budget 'lsb8<=1'", "VECTORS"},
+      {"size --budget 'lsb8<=1' --no-widen --widen-rounds 2 " + vec, "--no-widen"},
+      {"size --budget 'lsb8<=1' --widen-rounds 65 " + vec, "--widen-rounds"},
       {"merge -o out.json", "SHARD"},
   };
   for (const auto& b : bad) {

@@ -484,7 +484,15 @@ TEST(SweepSize, ExplainsWhatBlocksAFamily) {
   const std::string text = glint::format_explanation(e);
   EXPECT_NE(text.find("closest: lut:bits=6 misses lsb8<=1 by a factor 2.04"), std::string::npos)
       << text;
-  EXPECT_NE(text.find("bits=6 (largest in the grid)"), std::string::npos) << text;
+  EXPECT_NE(text.find("bits=6 (largest in the grid): a wider --grid may help"), std::string::npos)
+      << text;
+  // After a search that stopped, the edges are where it stopped, and why is said below.
+  json searched = e;
+  searched["search"] = json::array({{{"stopped", "too_slow"}}});
+  const std::string after = glint::format_explanation(searched);
+  EXPECT_NE(after.find("bits=6 (largest in the grid): the search stopped there (too_slow, below)"),
+            std::string::npos)
+      << after;
 
   // An end the error does not improve towards is no hint: bits=5 as good as bits=6.
   const std::vector<json> flat = {hand_report(
