@@ -5,7 +5,6 @@
 #include <stdexcept>
 
 #include "io/output_set.h"
-#include "rtl_model/colour_multiply.h"
 #include "rtl_model/compute_pipeline.h"
 #include "rtl_model/result_merge.h"
 #include "rtl_model/rtl_common.h"
@@ -15,18 +14,13 @@
 #include "rtl_model/tau_comparator.h"
 #include "rtl_model/vcd_trace.h"
 #include "rtl_model/vector_source.h"
-#include "units/lane_cost.h"
 
 namespace glint {
-
-UnitTiming clocked_timing(const SpecularUnit& unit, bool colour_stage) {
-  return lane_timing(unit, colour_stage);
-}
 
 namespace rtl {
 namespace {
 
-// One lane: source, comparator, compute unit (+ colour stage), merge buffer, sink.
+// One lane: source, comparator, compute unit, merge buffer, sink.
 class Lane : public sc_core::sc_module {
  public:
   Lane(sc_core::sc_module_name name, std::size_t index, const SpecularUnit& unit,
@@ -43,9 +37,6 @@ class Lane : public sc_core::sc_module {
     comparator_ = std::make_unique<TauComparator>("comparator", unit, unit.timing().buffer_depth,
                                                   tracing, CombMode::kSettledByClock);
     compute_ = std::make_unique<ComputePipeline>("compute", unit, tracing);
-    if (options.colour_stage)
-      colour_ = std::make_unique<ColourMultiply>("colour", out.width(), out.is_signed, tracing,
-                                                 out.frac_bits);
     merge_ = std::make_unique<ResultMerge>("merge", unit.timing().buffer_depth, out.width(),
                                            out.is_signed, tracing, out.frac_bits,
                                            CombMode::kSettledByClock);
@@ -65,11 +56,8 @@ class Lane : public sc_core::sc_module {
     comparator_->credit_return(merge_->credit_return);
     compute_->in_valid(comparator_->compute_valid);
     compute_->in_request(source_->request);
-    if (colour_) {
-      colour_->in(compute_->out);
-    }
     merge_->bypass_in(comparator_->bypass);
-    merge_->compute_in(colour_ ? colour_->out : compute_->out);
+    merge_->compute_in(compute_->out);
     merge_->sink_ready(sink_->ready);
     sink_->head_valid(merge_->head_valid);
     sink_->head(merge_->head);
@@ -77,9 +65,8 @@ class Lane : public sc_core::sc_module {
 
   // The lane's register stages, ticked at every rising edge.
   void stages(std::vector<ClockedStage*>& out) const {
-    out.insert(out.end(), {source_.get(), comparator_.get(), compute_.get()});
-    if (colour_) out.push_back(colour_.get());
-    out.insert(out.end(), {merge_.get(), sink_.get()});
+    out.insert(out.end(),
+               {source_.get(), comparator_.get(), compute_.get(), merge_.get(), sink_.get()});
   }
   // Its combinational parts, settled after the ticks (they read registers only, so in any order).
   void combinational(std::vector<Combinational*>& out) const {
@@ -101,7 +88,6 @@ class Lane : public sc_core::sc_module {
     source_->add_traces(vcd, prefix);
     comparator_->add_traces(vcd, prefix);
     compute_->add_traces(vcd, prefix);
-    if (colour_) colour_->add_traces(vcd, prefix);
     merge_->add_traces(vcd, prefix);
     sink_->add_traces(vcd, prefix);
   }
@@ -114,7 +100,6 @@ class Lane : public sc_core::sc_module {
   std::unique_ptr<VectorSource> source_;
   std::unique_ptr<TauComparator> comparator_;
   std::unique_ptr<ComputePipeline> compute_;
-  std::unique_ptr<ColourMultiply> colour_;
   std::unique_ptr<ResultMerge> merge_;
   std::unique_ptr<Scoreboard> sink_;
 };

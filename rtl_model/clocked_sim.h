@@ -3,12 +3,12 @@
 //
 //   VectorSource -> TauComparator --+--> bypass register --------------------+--> ResultMerge
 //                                   |                                        |    (B entries)
-//                                   +--> compute unit [-> ColourMultiply] ---+         |
+//                                   +--> compute unit -----------------------+         |
 //                                                                                  Scoreboard
 //
 // Cycle 0 is the first rising edge after the start of simulation (rtl_common.h); with it the
 // clocked model's issue, done and retire cycles, and every TimingStats field, equal TimingEngine's
-// for the same skip sequence, UnitTiming (clocked_timing) and SinkReady.
+// for the same skip sequence, the unit's UnitTiming and SinkReady.
 #pragma once
 
 #include <cstddef>
@@ -68,9 +68,6 @@ struct ClockedOptions {
   // vector vcd_first and stops one cycle after every lane retired vector vcd_last (or its last).
   std::uint64_t vcd_first = 0, vcd_last = std::numeric_limits<std::uint64_t>::max();
   SinkReady sink;
-  // Builds ColourMultiply (one more register on the computed path, latency + 1); the caller sets it
-  // when the stream's lights or materials are coloured (stream_is_coloured).
-  bool colour_stage = false;
 };
 
 struct LaneOutput {
@@ -93,11 +90,6 @@ struct ClockedRunInfo {
   std::uint64_t vcd_start_ns = 0;          // simulation time of the first VCD dump
   std::vector<std::string> traced;         // hierarchical names of the traced signals
 };
-
-// The timing the clocked lane realises for `unit`: its own, plus one stage with the colour stage
-// (lane_timing, units/lane_cost.h). Whether a stream needs the colour stage: stream_is_coloured
-// (eval/evaluate.h).
-UnitTiming clocked_timing(const SpecularUnit& unit, bool colour_stage);
 
 // Elaborates one lane per unit (only the given units), runs until every lane's stream is drained
 // and retired, then returns per-lane TimingStats (filled as TimingEngine fills them). `on_result`

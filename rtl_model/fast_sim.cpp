@@ -24,8 +24,7 @@ class FastLanes : public sc_core::sc_module {
         options_(options),
         accumulators_(accumulators),
         on_result_(on_result) {
-    for (const SpecularUnit* u : units)
-      engines_.emplace_back(clocked_timing(*u, options.colour_stage), options.sink);
+    for (const SpecularUnit* u : units) engines_.emplace_back(u->timing(), options.sink);
     SC_HAS_PROCESS(FastLanes);
     SC_THREAD(run);
   }

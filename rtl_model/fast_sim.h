@@ -29,7 +29,6 @@ struct FastOptions {
   std::size_t batch = 4096;
   int threads = 1;  // the engine's threads (results do not depend on it)
   double clock_period_ns = 1.0;
-  bool colour_stage = false;  // per-channel i*m stage on the computed path (+1 latency)
 };
 
 struct FastResult {

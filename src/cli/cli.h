@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "units/catalogue.h"
+#include "units/chip.h"
 
 namespace glint {
 class OutputSet;
@@ -57,10 +58,13 @@ void add_threads_option(CLI::App* sub, int& threads);
 void add_seed_option(CLI::App* sub, std::uint64_t& seed, bool& given);
 void require_backpressure_for_seed(bool seed_given, double sink_ready);
 
-// --slots N: a chip of fixed capacity N (1..kMaxSlotCapacity); 0 (absent): sized to the stream.
-void add_slots_option(CLI::App* sub, std::size_t& slots);
-// make_slots' refusal of a stream that needs more slots than --slots N, rethrown naming the option.
-[[noreturn]] void refuse_slots(std::size_t slots, const std::exception& e);
+// --chip CHIP (units/chip.h): rom (the default), ram, ram:materials=M,slots=S.
+void add_chip_option(CLI::App* sub, Chip& chip);
+// make_slots' refusal of a stream beyond the chip's capacity, or specs_on_chip's of a unit whose
+// tables key contradicts the chip, rethrown naming the option.
+[[noreturn]] void refuse_chip(const Chip& chip, const std::exception& e);
+// specs_on_chip, its refusal named by refuse_chip: called before any output is made.
+std::vector<UnitSpec> specs_for_chip(std::vector<UnitSpec> specs, const Chip& chip);
 
 // Throws std::invalid_argument naming the option unless v is finite and > 0 (NaN is refused).
 void require_finite_positive(double v, const std::string& option);

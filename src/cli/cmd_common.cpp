@@ -70,26 +70,37 @@ void require_backpressure_for_seed(bool seed_given, double sink_ready) {
         "1");
 }
 
-void add_slots_option(CLI::App* sub, std::size_t& slots) {
+void add_chip_option(CLI::App* sub, Chip& chip) {
   sub->add_option_function<std::string>(
-         "--slots",
-         [&slots](const std::string& text) {
-           std::size_t v = 0;
-           const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-           if (text.empty() || ec != std::errc() || end != text.data() + text.size() || v < 1 ||
-               v > kMaxSlotCapacity)
-             throw CLI::ValidationError("--slots", fmt::format("'{}' is not a slot count in 1..{}",
-                                                               text, kMaxSlotCapacity));
-           slots = v;
+         "--chip",
+         [&chip](const std::string& text) {
+           try {
+             chip = parse_chip(text);
+           } catch (const std::invalid_argument& e) {
+             throw CLI::ValidationError("--chip", fmt::format("'{}': {}", text, e.what()));
+           }
          },
-         fmt::format("A chip of fixed capacity: N comparator thresholds and N per-material "
-                     "entries (1..{}; default: sized to the stream)",
-                     kMaxSlotCapacity))
-      ->type_name("N");
+         fmt::format(
+             "The chip the lanes are built on (stated in every report). rom (default): every "
+             "per-material table (thresholds, n, spans, coefficients, t^n, log2/exp2) is a ROM of "
+             "the input's materials, fixed at synthesis. ram: registers with a write port that "
+             "the driver loads with each material, as a GPU does; ram:materials=M,slots=S gives "
+             "them M material entries and S comparator thresholds (1..{} each; default: what the "
+             "input uses). A unit's own tables= key must agree with a chip given here",
+             kMaxSlotCapacity))
+      ->type_name("CHIP");
 }
 
-void refuse_slots(std::size_t slots, const std::exception& e) {
-  throw std::invalid_argument(fmt::format("--slots {}: {}", slots, e.what()));
+void refuse_chip(const Chip& chip, const std::exception& e) {
+  throw std::invalid_argument(fmt::format("--chip {}: {}", chip.spec(), e.what()));
+}
+
+std::vector<UnitSpec> specs_for_chip(std::vector<UnitSpec> specs, const Chip& chip) {
+  try {
+    return specs_on_chip(std::move(specs), chip);
+  } catch (const std::invalid_argument& e) {
+    refuse_chip(chip, e);
+  }
 }
 
 void refuse_size(const std::string& file, const std::exception& e) {

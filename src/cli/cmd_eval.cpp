@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "cli/cli.h"
+#include "eval/chip_report.h"
 #include "eval/evaluate.h"
 #include "eval/parallel.h"
 #include "io/input_error.h"
@@ -23,13 +24,13 @@ struct EvalOptions {
   std::vector<std::string> units;
   std::string dump;
   int display_bits = 8;
-  std::size_t slots = 0;  // --slots N; 0: sized to the stream
-  int threads = 0;        // --threads N; 0: every core
+  Chip chip;        // --chip
+  int threads = 0;  // --threads N; 0: every core
   bool json = false;
 };
 
 int run_eval(const EvalOptions& o) {
-  const std::vector<UnitSpec> specs = parse_unit_options(o.units);
+  const std::vector<UnitSpec> specs = specs_for_chip(parse_unit_options(o.units), o.chip);
   if (options_only()) return kExitOk;
   // Outputs first, before any work: checked, their temporaries made (output_set.h).
   OutputSet outputs;
@@ -39,9 +40,9 @@ int run_eval(const EvalOptions& o) {
   VectorReader reader(o.vectors);
   std::unique_ptr<Evaluator> evaluator;
   try {
-    evaluator = std::make_unique<Evaluator>(reader.header(), specs, o.display_bits, o.slots);
+    evaluator = std::make_unique<Evaluator>(reader.header(), specs, o.display_bits, o.chip);
   } catch (const SlotCapacityError& e) {
-    refuse_slots(o.slots, e);  // the stream needs more than the chip holds
+    refuse_chip(o.chip, e);  // the stream needs more than the chip holds
   } catch (const ResourceLimitError& e) {
     refuse_size(o.vectors, e);  // more slots or contract work than a run may take
   }
@@ -109,14 +110,12 @@ int run_eval(const EvalOptions& o) {
     // With an output on standard output ("-"), the summary goes to stderr.
     std::ostream& out = outputs.writes_stdout() ? std::cerr : std::cout;
     const SlotMap& slots = ev.slots();
-    out << fmt::format("{}: {} vectors, {} slots{}, {} datapath groups{}\n", o.vectors,
+    out << fmt::format("{}: {} vectors, {} slots{}, {} datapath groups\n", o.vectors,
                        reader.rows_read(), slots.params.size(),
                        slots.per_light ? " (lights change some materials' tau)" : "",
-                       slots.groups.size(),
-                       slots.capacity > 0 ? fmt::format(", a chip of {} slots", slots.capacity)
-                                          : std::string())
-        << format_eval_table(ev.stats()) << format_parts_table(ev.stats())
-        << "elaboration (what the scene built):\n"
+                       slots.groups.size())
+        << chip_line(chip_json(ev.chip(), slots)) << format_eval_table(ev.stats())
+        << format_parts_table(ev.stats()) << "elaboration (what the scene built):\n"
         << format_elaboration(ev.stats());
     for (const auto& s : ev.stats()) out << fmt::format("  {}: {}\n", s.name, s.spec);
   }
@@ -141,7 +140,7 @@ void add_eval_command(CLI::App& app, int& status) {
                   "stderr)");
   add_threads_option(sub, o->threads);
   add_display_bits_option(sub, o->display_bits);
-  add_slots_option(sub, o->slots);
+  add_chip_option(sub, o->chip);
   sub->add_flag("--json", o->json, "Print one JSON document on stdout");
   sub->callback([o, &status] { status = guarded([&] { return run_eval(*o); }); });
 }

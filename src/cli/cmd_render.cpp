@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "cli/cli.h"
+#include "eval/chip_report.h"
 #include "eval/parallel.h"
 #include "image/image.h"
 #include "io/output_set.h"
@@ -23,7 +24,7 @@ struct RenderCommandOptions {
   std::string out_dir;
   std::string vectors;
   int threads = 0;
-  std::size_t slots = 0;
+  Chip chip;
   bool json = false;
 };
 
@@ -34,8 +35,9 @@ std::string lsb_text(double v) {
 int run_render(const RenderCommandOptions& o) {
   RenderOptions options;
   if (!o.units.empty()) options.units = parse_unit_options(o.units);  // empty: every unit
+  options.units = specs_for_chip(options.units, o.chip);
   options.threads = o.threads > 0 ? o.threads : default_threads();
-  options.slot_capacity = o.slots;
+  options.chip = o.chip;
   options.progress = isatty(STDERR_FILENO);
   if (options_only()) return kExitOk;
   load_text_font();  // a bad GLINT_FONT is refused before any work (the sheet has labels)
@@ -61,7 +63,7 @@ int run_render(const RenderCommandOptions& o) {
   try {
     r = render_scene(scene, options);
   } catch (const SlotCapacityError& e) {
-    refuse_slots(o.slots, e);  // the scene needs more than the chip holds
+    refuse_chip(o.chip, e);  // the scene needs more than the chip holds
   } catch (const ResourceLimitError& e) {
     refuse_size(o.scene, e);  // more slots or contract work than a run may take
   }
@@ -84,6 +86,7 @@ int run_render(const RenderCommandOptions& o) {
       r.scene_name, r.width, r.height, r.lights.size(), r.requests,
       pct(total.facing_away + total.zero + total.tau, total.total()),
       pct(total.facing_away + total.zero, total.total()), lsb_text(r.skip_only_error.max_lsb));
+  out << chip_line(r.chip);
   // highlight / core: the extent at 10 % and 50 % of the material's peak, against the reference.
   out << fmt::format("{:<9} {:>8} {:>9} {:>8} {:>7} {:>10} {:>7} {:>7} {:>9} {:<}\n", "unit",
                      "max_lsb", "mean_lsb", "psnr_dB", "diff%", "highlight", "core", "skip%",
@@ -116,7 +119,7 @@ void add_render_command(CLI::App& app, int& status) {
                   "Also write the scene's shading requests as a vector file (for eval, sim, "
                   "regress; - for stdout, then the summary goes to stderr)");
   add_threads_option(sub, o->threads);
-  add_slots_option(sub, o->slots);
+  add_chip_option(sub, o->chip);
   sub->add_flag("--json", o->json, "Print the report on stdout instead of the summary");
   sub->callback([o, &status] { status = guarded([&] { return run_render(*o); }); });
 }

@@ -94,7 +94,8 @@ int run_rtl(const RtlOptions& o) {
   OutputFile& tb = out.add("-o", base + "_tb.v");
   OutputFile& vec = out.add("-o", base + "_tb.vec");
   // tables=ram: the table writes the testbench loads through the write port.
-  const RtlDesign d = make_rtl_design(spec, rtl_header(o.input), rtl_input_name(o.input));
+  const RtlDesign d =
+      make_rtl_design(spec, rtl_header(o.input), rtl_input_name(o.input), o.input.chip);
   OutputFile* cfg = d.lane.tables_ram ? &out.add("-o", base + "_tb.cfg") : nullptr;
 
   const std::vector<hdl::TbVector> v = tb_vectors(d, o);

@@ -17,6 +17,7 @@
 #include <string_view>
 
 #include "cli/cli.h"
+#include "eval/chip_report.h"
 #include "eval/parallel.h"
 #include "eval/sim_report.h"
 #include "io/input_source.h"
@@ -39,7 +40,7 @@ struct SimOptions {
   bool batch_given = false;
   int threads = 0;  // --threads N; 0: every core
   int display_bits = 8;
-  std::size_t slots = 0;  // --slots N; 0: sized to the stream
+  Chip chip;  // --chip
   bool json = false;
 };
 
@@ -52,7 +53,7 @@ struct SimPlan {
 
   std::vector<UnitSpec> specs;
   bool clocked = false;
-  ClockedOptions clocked_options;  // VCD outputs and window; sink and colour stage come later
+  ClockedOptions clocked_options;  // VCD outputs and window; sink comes later
   OutputSet outputs;               // committed together at the end, or none
   OutputFile* report = nullptr;
   OutputFile* dump = nullptr;
@@ -88,7 +89,7 @@ void parse_vcd_window(const std::string& text, ClockedOptions& co) {
 // checked (not a link, device or folder; its folder exists), none the input or another output, at
 // most one of them (or --json) on standard output. Options only (the fuzzer): no output declared.
 void check_sim_options(const SimOptions& o, SimPlan& plan) {
-  plan.specs = parse_unit_options(o.units);
+  plan.specs = specs_for_chip(parse_unit_options(o.units), o.chip);
   if (!(o.sink_ready >= kMinSinkReady && o.sink_ready <= 1))
     throw std::invalid_argument(fmt::format(
         "--sink-ready must be in [{}, 1] (a run takes ~vectors / p cycles)", kMinSinkReady));
@@ -125,21 +126,19 @@ void check_sim_options(const SimOptions& o, SimPlan& plan) {
 // The lanes of one run: a unit per spec, built for the stream's slots, and its accumulator.
 struct SimLanes {
   SlotMap slots;
-  bool colour = false;  // the stream is coloured: every lane builds the i*m stage
   std::vector<std::unique_ptr<SpecularUnit>> owned;
   std::vector<const SpecularUnit*> units;
   std::vector<LaneAccumulator> acc;  // refers to *owned: built once, never moved out of
 };
 
 void make_lanes(const VectorHeader& header, const std::vector<UnitSpec>& specs, int display_bits,
-                std::size_t slot_capacity, SimLanes& lanes) {
+                const Chip& chip, SimLanes& lanes) {
   try {
-    lanes.slots = make_slots(header, slot_capacity);
+    lanes.slots = make_slots(header, chip);
   } catch (const SlotCapacityError& e) {
-    refuse_slots(slot_capacity, e);  // the stream needs more than the chip holds
+    refuse_chip(chip, e);  // the stream needs more than the chip holds
   }
   check_lane_slots(specs.size(), lanes.slots);
-  lanes.colour = stream_is_coloured(header);
   for (const auto& s : specs) {
     lanes.owned.push_back(make_unit(s, lanes.slots));
     lanes.units.push_back(lanes.owned.back().get());
@@ -188,7 +187,6 @@ struct SimRun {
 // the caller's reader only supplied the header.
 SimRun run_clocked_mode(const SimOptions& o, ClockedOptions co, const RereadableInput& input,
                         SimLanes& lanes, SimDump* dump) {
-  co.colour_stage = lanes.colour;
   co.sink = SinkReady{o.sink_ready, o.seed};
   auto open = [&]() -> std::unique_ptr<RowStream> {
     return std::make_unique<VectorReaderStream>(input.open());
@@ -230,7 +228,6 @@ SimRun run_fast_mode(const SimOptions& o, VectorReader& reader, SimLanes& lanes,
   fo.sink = SinkReady{o.sink_ready, o.seed};
   fo.batch = o.batch;
   fo.threads = threads;
-  fo.colour_stage = lanes.colour;
   SimRun run;
   run.timing = run_fast_blocks(lanes.units, lanes.slots, next, fo, &lanes.acc, on_result);
   run.rows = reader.rows_read();
@@ -249,13 +246,11 @@ nlohmann::json build_report(const SimOptions& o, bool clocked, const SimLanes& l
                            {"slots", lanes.slots.params.size()},
                            {"per_light_slots", lanes.slots.per_light},
                            {"datapath_groups", lanes.slots.groups.size()},
-                           {"slot_capacity", lanes.slots.capacity > 0 ? lanes.slots.capacity
-                                                                      : lanes.slots.params.size()}};
+                           {"chip", chip_json(o.chip, lanes.slots)}};
   nlohmann::json list = nlohmann::json::array();
   for (std::size_t i = 0; i < lanes.units.size(); ++i) {
     list.push_back(unit_sim_report(*lanes.units[i], run.timing[i], lanes.acc[i].stats(),
-                                   lanes.acc[i].digest(), lanes.colour,
-                                   static_cast<int>(lanes.slots.colour_entries())));
+                                   lanes.acc[i].digest()));
   }
   report["units"] = list;
   return report;
@@ -276,7 +271,7 @@ void write_outputs(const SimOptions& o, SimPlan& plan, std::uint64_t rows,
   out << fmt::format("{}: {} vectors, {} mode, sink ready {}{}\n", o.vectors, rows,
                      clocked ? "clocked" : "fast", o.sink_ready,
                      o.vcd.empty() ? "" : ", VCD " + o.vcd)
-      << format_sim_table(report);
+      << chip_line(report.at("chip")) << format_sim_table(report);
   for (const auto& u : report["units"])
     out << fmt::format("  {}: {}\n", u["unit"].get<std::string>(), u["spec"].get<std::string>());
 }
@@ -297,7 +292,7 @@ int run_sim(const SimOptions& o) {
   }
   SimLanes lanes;
   try {
-    make_lanes(reader->header(), plan.specs, o.display_bits, o.slots, lanes);
+    make_lanes(reader->header(), plan.specs, o.display_bits, o.chip, lanes);
   } catch (const ResourceLimitError& e) {
     refuse_size(o.vectors, e);  // more slots or contract work than a run may take
   }
@@ -347,7 +342,7 @@ void add_sim_command(CLI::App& app, int& status) {
       ->capture_default_str();
   add_threads_option(sub, o->threads);
   add_display_bits_option(sub, o->display_bits);
-  add_slots_option(sub, o->slots);
+  add_chip_option(sub, o->chip);
   sub->add_flag("--json", o->json, "Print the report as one JSON document on stdout");
   sub->callback([sub, o, &status] {
     o->batch_given = sub->count("--batch") > 0;

@@ -22,7 +22,7 @@ struct SizeOptions {
   std::vector<std::string> vectors, scenes, grids;
   std::string budget, objective = "area";
   int display_bits = 8;
-  std::size_t slots = 0;
+  Chip chip;
   int jobs = 0;
   std::size_t top = 1;
   bool no_image = false;
@@ -58,7 +58,7 @@ int run_size_command(const SizeOptions& o) {
   if (!o.scenes.empty()) load_text_font();
   SweepSettings settings;
   settings.display_bits = o.display_bits;
-  settings.slot_capacity = o.slots;
+  settings.chip = o.chip;
   settings.jobs = o.jobs > 0 ? o.jobs : default_threads();
   std::function<void(const std::string&)> progress;
   if (isatty(STDERR_FILENO))
@@ -70,7 +70,7 @@ int run_size_command(const SizeOptions& o) {
     run =
         run_size(inputs, grids, budgets, objective, settings, !o.no_image, widen, o.top, progress);
   } catch (const SlotCapacityError& e) {
-    refuse_slots(o.slots, e);
+    refuse_chip(o.chip, e);
   }
   if (progress) std::fprintf(stderr, "\n");
   if (o.json) {
@@ -105,7 +105,7 @@ void add_size_command(CLI::App& app, int& status) {
                   "family (src/cli/guide/size.md)")
       ->allow_extra_args(false);
   add_display_bits_option(sub, o->display_bits);
-  add_slots_option(sub, o->slots);
+  add_chip_option(sub, o->chip);
   sub->add_option("--jobs", o->jobs, "Threads (default: every core); results do not depend on it")
       ->check(CLI::Range(1, 256));
   sub->add_option("--top", o->top,

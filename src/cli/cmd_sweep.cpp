@@ -23,7 +23,7 @@ struct SweepCommandOptions {
   std::string out, csv, plot, shard;
   std::string error_measure = "max_lsb";
   int display_bits = 8;
-  std::size_t slots = 0;
+  Chip chip;
   int jobs = 0;
   bool no_image = false;
   double sink_ready = 1.0;
@@ -49,7 +49,7 @@ int run_sweep_command(const SweepCommandOptions& o) {
   for (const std::string& g : o.grids) job.grids.push_back(parse_grid(g));
   if (!o.shard.empty()) std::tie(job.shard, job.shards) = parse_shard(o.shard);
   job.settings.display_bits = o.display_bits;
-  job.settings.slot_capacity = o.slots;
+  job.settings.chip = o.chip;
   job.settings.jobs = o.jobs > 0 ? o.jobs : default_threads();
   job.settings.sink = SinkReady{o.sink_ready, o.seed};
   job.error_measure = o.error_measure;
@@ -70,7 +70,7 @@ int run_sweep_command(const SweepCommandOptions& o) {
   try {
     report = run_sweep(job);
   } catch (const SlotCapacityError& e) {
-    refuse_slots(o.slots, e);  // the input needs more slots than the chip holds
+    refuse_chip(o.chip, e);  // the input needs more slots than the chip holds
   }
   if (job.progress) std::fprintf(stderr, "\n");
   return emit_sweep_report(report, files, set, o.json);
@@ -106,7 +106,7 @@ void add_sweep_command(CLI::App& app, int& status) {
       ->required()
       ->allow_extra_args(false);  // one grid per --grid: a word after it is VECTORS
   sub->add_option("-o,--out", o->out,
-                  "Write the report: FILE.json (schema glint_sweep_report 1) or FILE.csv");
+                  "Write the report: FILE.json (schema glint_sweep_report 2) or FILE.csv");
   sub->add_option("--csv", o->csv, "Also write the CSV table here");
   sub->add_option("--plot", o->plot,
                   "Write error_vs_area and error_vs_throughput as .svg and .png into this folder");
@@ -115,7 +115,7 @@ void add_sweep_command(CLI::App& app, int& status) {
                   "mismatch_fraction, max_abs, weighted.max_lsb, image.max_lsb, ...")
       ->capture_default_str();
   add_display_bits_option(sub, o->display_bits);
-  add_slots_option(sub, o->slots);
+  add_chip_option(sub, o->chip);
   sub->add_option("--jobs", o->jobs,
                   "Threads over configurations (default: every core); results do not depend on "
                   "it")

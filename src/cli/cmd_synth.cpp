@@ -380,7 +380,8 @@ int run_synth(const SynthOptions& o) {
   OutputFile* report = o.report.empty() ? nullptr : &out.add("--report", o.report);
   const bool progress = isatty(STDERR_FILENO);
 
-  const RtlDesign d = make_rtl_design(spec, rtl_header(o.input), rtl_input_name(o.input));
+  const RtlDesign d =
+      make_rtl_design(spec, rtl_header(o.input), rtl_input_name(o.input), o.input.chip);
   const std::string top = "glint_" + d.unit->name() + "_lane";
   WorkFolder work;
   const std::string lane = work.file(top + ".v");

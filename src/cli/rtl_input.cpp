@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <sstream>
 
 #include "cli/cli.h"
@@ -21,6 +22,7 @@ void add_rtl_input_options(CLI::App* sub, RtlInputOptions& o) {
                   "'gold shininess=64 lobe=blinn specular=1,0.77,0.34' (repeatable; specular "
                   "defaults to 1,1,1, lobe to phong)");
   sub->add_option("--eps", o.eps, "Perceptibility threshold eps of --material (default 1e-3)");
+  add_chip_option(sub, o.chip);
 }
 
 void check_rtl_input(const RtlInputOptions& o) {
@@ -58,14 +60,16 @@ std::string rtl_input_name(const RtlInputOptions& o) {
 }
 
 RtlDesign make_rtl_design(const UnitSpec& spec, const VectorHeader& header,
-                          const std::string& input) {
+                          const std::string& input, const Chip& chip) {
   RtlDesign d;
   try {
-    d.slots = make_slots(header);
+    d.slots = make_slots(header, chip);
+  } catch (const SlotCapacityError& e) {
+    refuse_chip(chip, e);  // the input needs more than the chip holds
   } catch (const ResourceLimitError& e) {
     refuse_size(input, e);  // more slots or light x material pairs than a stream may have
   }
-  d.unit = make_unit(spec, d.slots);
+  d.unit = make_unit(specs_for_chip({spec}, chip).front(), d.slots);
   const SpecularUnit& u = *d.unit;
   hdl::LaneParams& p = d.lane;
   p.unit = u.name();
@@ -77,11 +81,18 @@ RtlDesign make_rtl_design(const UnitSpec& spec, const VectorHeader& header,
   p.ii = u.timing().ii;
   p.buffer = u.timing().buffer_depth;
   p.comparator = u.comparator_enabled();
-  p.groups = u.datapath_groups();
+  p.groups = std::max(u.datapath_groups(), u.group_capacity());
   for (std::size_t s = 0; s < u.slots(); ++s) {
     p.threshold.push_back(u.tau_raw(s));
     p.group.push_back(static_cast<std::uint32_t>(u.datapath_of(s)));
     p.slot_names.push_back(s < d.slots.params.size() ? d.slots.params[s].name : "");
+  }
+  // A chip of given capacity: the slots the input leaves free never skip and read group 0 until
+  // the driver loads them (tables=ram: every entry has the write port).
+  for (std::size_t s = u.slots(); s < u.slot_capacity(); ++s) {
+    p.threshold.push_back(-1);
+    p.group.push_back(0);
+    p.slot_names.push_back("free (loaded at run time)");
   }
   hdl::DatapathPorts ports;
   ports.module = fmt::format("glint_{}_datapath", p.unit);

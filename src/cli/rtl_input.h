@@ -19,9 +19,9 @@ struct RtlInputOptions {
   std::string vectors, scene;
   std::vector<std::string> materials;  // "NAME shininess=N [lobe=...] [specular=r,g,b]"
   double eps = 1e-3;
+  Chip chip;  // --chip: the lane's tables, ROMs of the input's materials or loadable, and capacity
 };
-// --vectors, --scene, --material, --eps. (No --slots: the tables, ROMs or with tables=ram
-// registers with a write port, hold the input's slots and datapath groups.)
+// --vectors, --scene, --material, --eps, --chip.
 void add_rtl_input_options(CLI::App* sub, RtlInputOptions& o);
 // Exactly one input kind; throws std::invalid_argument naming the options otherwise.
 void check_rtl_input(const RtlInputOptions& o);
@@ -37,10 +37,12 @@ struct RtlDesign {
   std::string lane_verilog;      // glint_<unit>_lane
   std::string datapath_verilog;  // glint_<unit>_datapath
 };
-// Builds the unit for the input's slots and writes its Verilog. `input` names the input in a
-// refusal (the file, or --material).
+// Builds the unit for the input's slots on `chip` and writes its Verilog: the lane every other
+// command prices for the same spec, input and chip. A chip of given capacity gets S threshold
+// entries and M entries in every per-material table (the ones the input does not use are free,
+// for the driver to load). `input` names the input in a refusal (the file, or --material).
 RtlDesign make_rtl_design(const UnitSpec& spec, const VectorHeader& header,
-                          const std::string& input);
+                          const std::string& input, const Chip& chip);
 // The input as an error message names it: the vector file, the scene, or --material.
 std::string rtl_input_name(const RtlInputOptions& o);
 

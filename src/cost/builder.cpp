@@ -45,8 +45,8 @@ void comparator_stage(CostBuilder& b, const LaneShape& L, bool carry_root) {
   b.stage("comparator", path);
 }
 
-void merge_buffer(CostBuilder& b, const LaneShape& L, bool colour) {
-  const int w = L.out.width() + (colour ? L.colour_bits : 0);
+void merge_buffer(CostBuilder& b, const LaneShape& L) {
+  const int w = L.out.width();
   const int tag = clog2(L.buffer), count = clog2(L.buffer + 1);
   // Entries: the result and its valid and skipped bits, written from the bypass (a 0) or the
   // datapath: an AND a bit and the entry's write decode (two tag compares).
@@ -65,16 +65,6 @@ void merge_buffer(CostBuilder& b, const LaneShape& L, bool colour) {
   const int counters = 2 * tag + count + (L.ii > 1 ? clog2(L.ii) : 0);
   b.reg(counters, "credit, issue, head (and II) counters", true);
   b.adder(counters, "counter incrementers");
-}
-
-void colour_stage(CostBuilder& b, const LaneShape& L) {
-  const int wo = L.out.width();
-  const Seg tab = b.slot_table(L.colours, 3 * wo, 1, true, "colour: RGB table (per colour)");
-  const Seg mul = b.multiplier(wo, wo, "colour: highlight x R, G, B", 3);
-  b.op("table_read");
-  b.op("mul", 3);
-  b.reg(3 * wo, "colour: RGB result", true);
-  b.stage("colour", {tab, mul});
 }
 
 }  // namespace glint

@@ -2,9 +2,9 @@
 // (gate equivalents), returns its delay as a path segment, and the unit closes each pipeline stage
 // with the segments on its path. Operation counts (the energy proxy) are recorded beside.
 //
-// The lane parts every unit shares (the comparator stage, the merge buffer, the optional colour
-// stage) are here too; a unit's own stages live in its own files (src/units/<unit>/), and
-// units/lane_cost.h puts a whole lane together. Constants and formulas: cost/cost_model.h.
+// The lane parts every unit shares (the comparator stage and the merge buffer) are here too; a
+// unit's own stages live in its own files (src/units/<unit>/), and units/lane_cost.h puts a whole
+// lane together. Constants and formulas: cost/cost_model.h.
 #pragma once
 
 #include <fmt/format.h>
@@ -219,8 +219,6 @@ struct LaneShape {
   bool slot_to_group = false;
   // A chip of fixed capacity (--slots): registers hold what any scene may need.
   bool fixed = false;
-  // RGB entries of the colour stage and the id the merge buffer carries to it.
-  int colours = 1, colour_bits = 0;
   // Per-slot tables as registers with a write port (loaded at material load) rather than case
   // ROMs of the scene's materials: a chip of fixed capacity (cost_model.h, "tables").
   bool tables_ram = false;
@@ -230,13 +228,10 @@ struct LaneShape {
 // Comparator stage: tau per slot (for hast/horner also the root per datapath group), the compare,
 // and the register after it (the datapath's input: t and the group id).
 void comparator_stage(CostBuilder& b, const LaneShape& L, bool carry_root);
-// The in-order merge buffer (its entries carry the colour id when the colour stage follows: the
-// entry is reserved at issue, so the id is written there, not carried through the unit), with the
-// control hdl/lane.cpp writes around it: each entry's valid and skipped bits and its write select
-// (a bypassed result or the datapath's), the tag and valid bit carried beside every position of
-// the unit, the credit, issue and head counters (and the II counter), the read mux at the head.
-void merge_buffer(CostBuilder& b, const LaneShape& L, bool colour);
-// The RGB multiply after the merge buffer (coloured streams).
-void colour_stage(CostBuilder& b, const LaneShape& L);
+// The in-order merge buffer, with the control hdl/lane.cpp writes around it: each entry's valid and
+// skipped bits and its write select (a bypassed result or the datapath's), the tag and valid bit
+// carried beside every position of the unit, the credit, issue and head counters (and the II
+// counter), the read mux at the head.
+void merge_buffer(CostBuilder& b, const LaneShape& L);
 
 }  // namespace glint

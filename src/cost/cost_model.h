@@ -55,8 +55,8 @@
 //   barrel shifter, S levels       S;  leading-one detector, W bits: W - 2 (a priority chain)
 //   register overhead per stage    0 (depth counts gates from a register to a register)
 // A stage's delay is the sum along its path (parallel parts: the slower one); the critical path
-// is the slowest stage (comparator stage, the unit's stages as timing() counts them, the optional
-// colour stage). An iterative divider's stage is its loop: one row + the load mux.
+// is the slowest stage (comparator stage, the unit's stages as timing() counts them). An iterative
+// divider's stage is its loop: one row + the load mux.
 //
 // ---- Energy proxy ------------------------------------------------------------------------------
 // ops_per_computed: operations of one request that reaches the compute unit, by kind: "mul",
@@ -72,10 +72,9 @@
 // beside its datapath, following the Verilog src/units/<unit>/rtl.cpp writes), the merge buffer
 // as hdl/lane.cpp writes it (buffer_depth entries of the output width with valid and skipped bits,
 // their write select and decode, the read mux, a tag and valid bit beside every position of the
-// unit, the bypass tag, the credit, issue, head and II counters), and with colour_multiply an RGB
-// stage after the merge buffer (3 multipliers out x out, a per-slot colour table, 3 x out
-// register; operand-isolated for skipped results). Tables that hold 1.0 (log2 at the last node,
-// t^n at t = 1) or 2.0 (exp2) carry the bit for it. cost/builder.h places the parts;
+// unit, the bypass tag, the credit, issue, head and II counters). No colour stage: the lane
+// returns the scalar highlight, as `glint rtl` writes it. Tables that hold 1.0 (log2 at the last
+// node, t^n at t = 1) or 2.0 (exp2) carry the bit for it. cost/builder.h places the parts;
 // units/lane_cost.h puts a lane together.
 #pragma once
 
@@ -105,7 +104,7 @@ struct Primitive {
 
 // Delay of one pipeline stage and what lies on its path.
 struct StageDelay {
-  std::string stage;  // "comparator", "stage 1", ..., "colour"
+  std::string stage;  // "comparator", "stage 1", ...
   double delay = 0;   // gates of logic depth (glint synth's measure)
   std::string path;   // e.g. "table 2 + mul 18x16 + add 33 + reg"
 };

@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "eval/chip_report.h"
 #include "eval/engine.h"
 
 namespace glint {
@@ -63,12 +64,13 @@ MaterialParams slot_params(const VectorHeader& header, const VectorMaterial& m, 
 
 }  // namespace
 
-SlotMap make_slots(const VectorHeader& header, std::size_t capacity) {
+SlotMap make_slots(const VectorHeader& header, const Chip& chip) {
   SlotMap map;
   const std::size_t materials = header.materials.size();
   const auto lights = static_cast<std::size_t>(header.lights);
   map.materials = materials;
-  map.capacity = capacity;
+  map.slot_capacity = chip.slots;
+  map.group_capacity = chip.materials;
   if (lights * materials > kMaxLightMaterialPairs)
     throw ResourceLimitError(fmt::format(
         "{} lights x {} materials are {} light x material pairs, more than the limit of {} per "
@@ -81,7 +83,6 @@ SlotMap make_slots(const VectorHeader& header, std::size_t capacity) {
   struct MaterialSlots {
     std::vector<double> c_y;          // distinct c_y, one per slot of the material
     std::vector<std::uint32_t> slot;  // their slots
-    std::set<std::array<double, 3>> colours;
   };
   std::vector<MaterialSlots> per_material(materials);
   std::vector<std::uint32_t> slot_of(lights * materials);
@@ -90,7 +91,6 @@ SlotMap make_slots(const VectorHeader& header, std::size_t capacity) {
     for (std::size_t mi = 0; mi < materials; ++mi) {
       const VectorMaterial& m = header.materials[mi];
       MaterialSlots& ms = per_material[mi];
-      ms.colours.insert({i[0] * m.specular[0], i[1] * m.specular[1], i[2] * m.specular[2]});
       // A white light's product is the specular colour itself: its c_y is eq.6's exactly.
       const double cy = c_y(rgb(i), rgb(m.specular));
       const auto it = std::find(ms.c_y.begin(), ms.c_y.end(), cy);
@@ -116,7 +116,6 @@ SlotMap make_slots(const VectorHeader& header, std::size_t capacity) {
       slot_of[l * materials + mi] = slot;
     }
   }
-  for (const MaterialSlots& ms : per_material) map.colours += ms.colours.size();
 
   // Names: a material's only slot is the material; several slots say which lights give each.
   for (std::size_t s = 0; s < map.params.size(); ++s) {
@@ -169,30 +168,20 @@ SlotMap make_slots(const VectorHeader& header, std::size_t capacity) {
   for (std::size_t s = 0; s < map.params.size(); ++s)
     map.group[s] = group_of_material[map.origin[s].material];
 
-  if (capacity > 0) {
-    if (capacity > kMaxSlotCapacity)
-      throw SlotCapacityError(
-          fmt::format("slot capacity {}: at most {}", capacity, kMaxSlotCapacity));
-    if (map.params.size() > capacity)
-      throw SlotCapacityError(fmt::format(
-          "a chip of {} slots cannot hold this stream: it needs {} (one per material and c_y: {} "
-          "materials under {} lights)",
-          capacity, map.params.size(), materials, lights));
-    if (map.colours > capacity)
-      throw SlotCapacityError(
-          fmt::format("a chip of {} slots cannot hold this stream's {} light x specular colours",
-                      capacity, map.colours));
-  }
+  if (chip.slots > kMaxSlotCapacity || chip.materials > kMaxSlotCapacity)
+    throw SlotCapacityError(fmt::format("a chip holds at most {} slots and {} materials",
+                                        kMaxSlotCapacity, kMaxSlotCapacity));
+  if (chip.slots > 0 && map.params.size() > chip.slots)
+    throw SlotCapacityError(fmt::format(
+        "a chip of {} slots cannot hold this stream: it needs {} (one per material and c_y: {} "
+        "materials under {} lights)",
+        chip.slots, map.params.size(), materials, lights));
+  if (chip.materials > 0 && map.groups.size() > chip.materials)
+    throw SlotCapacityError(fmt::format(
+        "a chip of {} materials cannot hold this stream: it needs {} (one per material with its "
+        "own datapath)",
+        chip.materials, map.groups.size()));
   return map;
-}
-
-bool stream_is_coloured(const VectorHeader& header) {
-  auto grey = [](const std::array<double, 3>& c) { return c[0] == c[1] && c[1] == c[2]; };
-  for (int i = 0; i < header.lights; ++i)
-    if (!grey(header.intensity(i))) return true;
-  for (const VectorMaterial& m : header.materials)
-    if (!grey(m.specular)) return true;
-  return false;
 }
 
 void check_lane_slots(std::size_t units, const SlotMap& slots) {
@@ -373,10 +362,10 @@ void check_memo_bytes(const std::vector<const SpecularUnit*>& units) {
 }
 
 Evaluator::Evaluator(const VectorHeader& header, const std::vector<UnitSpec>& specs,
-                     int display_bits, std::size_t slot_capacity)
-    : slots_(make_slots(header, slot_capacity)), display_bits_(display_bits) {
+                     int display_bits, const Chip& chip)
+    : slots_(make_slots(header, chip)), chip_(chip), display_bits_(display_bits) {
   check_lane_slots(specs.size(), slots_);
-  for (const UnitSpec& spec : specs) units_.push_back(make_unit(spec, slots_));
+  for (const UnitSpec& spec : specs_on_chip(specs, chip)) units_.push_back(make_unit(spec, slots_));
   std::vector<const SpecularUnit*> built;
   for (const auto& u : units_) built.push_back(u.get());
   check_contract_codes(built, slots_);
@@ -421,12 +410,9 @@ std::vector<UnitStats> Evaluator::stats() const {
 nlohmann::json Evaluator::to_json() const {
   nlohmann::json units = nlohmann::json::array();
   for (const auto& lane : lanes_) units.push_back(lane.stats().to_json());
-  return {{"glint_eval_report", kEvalReportVersion},
-          {"slots", slots_.params.size()},
-          {"per_light_slots", slots_.per_light},
-          {"datapath_groups", slots_.groups.size()},
-          {"slot_capacity", slots_.capacity > 0 ? slots_.capacity : slots_.params.size()},
-          {"units", units}};
+  return {{"glint_eval_report", kEvalReportVersion}, {"slots", slots_.params.size()},
+          {"per_light_slots", slots_.per_light},     {"datapath_groups", slots_.groups.size()},
+          {"chip", chip_json(chip_, slots_)},        {"units", units}};
 }
 
 namespace {
@@ -476,13 +462,16 @@ std::string format_elaboration(const std::vector<UnitStats>& stats) {
               : fmt::format("quantized: |n_q - n| up to {:.3g} at {}",
                             (*nr)["max_abs_error"].get<double>(), (*nr)["at"].get<std::string>()));
     }
-    const std::string sized = e["sized_to"] == "stream"
-                                  ? std::string("sized to the stream")
-                                  : fmt::format("a chip of {}", e["capacity"].get<std::size_t>());
-    out +=
-        fmt::format("  {}: {} slots ({}), {} datapath groups, {} table entries{}\n", s.name,
-                    e["slots"].get<std::size_t>(), sized, e["datapath_groups"].get<std::size_t>(),
-                    e["table_entries"].get<long long>(), n);
+    const bool sized = e["sized_to"] == "stream";
+    out += fmt::format(
+        "  {}: {} tables, {} slots ({}), {} datapath groups ({}), {} table entries{}\n", s.name,
+        e["storage"].get<std::string>(), e["slots"].get<std::size_t>(),
+        sized ? std::string("sized to the stream")
+              : fmt::format("a chip of {}", e["capacity"].get<std::size_t>()),
+        e["datapath_groups"].get<std::size_t>(),
+        sized ? std::string("sized to the stream")
+              : fmt::format("a chip of {} materials", e["group_capacity"].get<std::size_t>()),
+        e["table_entries"].get<long long>(), n);
   }
   return out;
 }

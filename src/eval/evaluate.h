@@ -19,6 +19,7 @@
 #include "reference/reference.h"
 #include "timing/timing.h"
 #include "units/catalogue.h"
+#include "units/chip.h"
 #include "units/slot_plan.h"
 
 namespace glint {
@@ -34,8 +35,6 @@ struct SlotMap : SlotPlan {
   std::vector<double> c_y;        // luminance behind each slot's tau (its pixel weight)
   bool per_light = false;         // some light changes some material's c_y: it has several slots
   std::size_t materials = 0;
-  // Distinct light x specular colours per material: the colour stage's RGB entries.
-  std::size_t colours = 0;
   // The slot of (light, material) is slot_of[light * light_stride + material]; light_stride is 0
   // when every light gives each material the same slot.
   std::vector<std::uint32_t> slot_of;
@@ -50,11 +49,9 @@ struct SlotMap : SlotPlan {
                              const VectorRow& row) {
     return slot_of[light_stride * static_cast<std::size_t>(row.light) + row.material];
   }
-  // Entries of the colour stage's table: the stream's colours, or a fixed chip's capacity.
-  std::size_t colour_entries() const { return capacity > 0 ? capacity : colours; }
 };
 
-// A stream that needs more slots (or colours) than a chip of fixed capacity holds.
+// A stream that needs more slots or materials than a chip of given capacity holds.
 class SlotCapacityError : public std::invalid_argument {
  public:
   using std::invalid_argument::invalid_argument;
@@ -117,14 +114,11 @@ std::uint64_t memo_bytes(const QFormat& in, std::size_t slots);
 void check_memo_bytes(const std::vector<const SpecularUnit*>& units);
 
 // The slots of a stream (above); eps is divided by the light count (Källberg §2, eps_n = eps/n).
-// capacity > 0: a chip of that many slots (--slots), which must hold the stream's slots and
-// colours (SlotCapacityError otherwise, with the counts); 0: sized to the stream. A stream that
-// needs more than kMaxStreamSlots slots is refused (ResourceLimitError).
-SlotMap make_slots(const VectorHeader& header, std::size_t capacity = 0);
-
-// True when some light intensity or material specular colour is not grey (r, g, b not all equal):
-// every lane then builds the per-channel colour stage (its cost and one stage of latency).
-bool stream_is_coloured(const VectorHeader& header);
+// A chip of given capacity (units/chip.h: --chip ram:materials=M,slots=S) must hold the stream's
+// slots and datapath groups (SlotCapacityError otherwise, with the counts); without one the lanes
+// are sized to the stream. A stream that needs more than kMaxStreamSlots slots is refused
+// (ResourceLimitError).
+SlotMap make_slots(const VectorHeader& header, const Chip& chip = {});
 
 // The float reference the units are judged against: max(0,t)^n for Phong and Blinn (eq.1-2, the
 // scalar lobe; colour is a separate multiply), exp(-(acos t / omega)^2) for Gaussian lobes (eq.7),
@@ -350,8 +344,9 @@ struct EvalRecord {
 // names (error_vs_reference, datapath_error_ulps, top-level mismatch_8bit_fraction and
 // error_bound); 2 nests them in "errors"; 3 decomposes them (errors.parts, bounds per slot, display
 // and weighted errors, contract); 4 adds the scene's elaboration (datapath_groups, slot_capacity,
-// description.elaboration).
-inline constexpr int kEvalReportVersion = 4;
+// description.elaboration); 5 states the chip (chip replaces slot_capacity; elaboration.storage,
+// group_capacity).
+inline constexpr int kEvalReportVersion = 5;
 
 // The results of one batch of rows through every unit of an Evaluator: unit u's result for row i
 // at raw[u * rows + i] (0 when skipped), its skip flag at skipped[u * rows + i], and the float
@@ -367,9 +362,9 @@ class EvalEngine;
 
 class Evaluator {
  public:
-  // slot_capacity: a chip of that many slots (make_slots); 0: sized to the stream.
+  // The units as lanes of `chip` (specs_on_chip, make_slots).
   Evaluator(const VectorHeader& header, const std::vector<UnitSpec>& specs, int display_bits = 8,
-            std::size_t slot_capacity = 0);
+            const Chip& chip = {});
   ~Evaluator();
 
   void add(const VectorRow& row, const std::function<void(const EvalRecord&)>& dump = {});
@@ -390,11 +385,13 @@ class Evaluator {
   LaneAccumulator& lane(std::size_t unit) { return lanes_[unit]; }
   const std::vector<std::unique_ptr<SpecularUnit>>& units() const { return units_; }
   const SlotMap& slots() const { return slots_; }
-  // The report's version, slots and units (the caller adds vectors_file and rows).
+  const Chip& chip() const { return chip_; }
+  // The report's version, slots, chip and units (the caller adds vectors_file and rows).
   nlohmann::json to_json() const;
 
  private:
   SlotMap slots_;
+  Chip chip_;
   std::vector<std::unique_ptr<SpecularUnit>> units_;
   std::vector<LaneAccumulator> lanes_;
   int display_bits_ = 8;

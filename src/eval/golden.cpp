@@ -85,19 +85,19 @@ constexpr Field kReportFields[] = {{"glint_sim_report", Kind::kUnsigned},
                                    {"slots", Kind::kUnsigned},
                                    {"per_light_slots", Kind::kBoolean},
                                    {"datapath_groups", Kind::kUnsigned},
-                                   {"slot_capacity", Kind::kUnsigned},
+                                   {"chip", Kind::kObject},
                                    {"units", Kind::kArray}};
 constexpr Field kUnitFields[] = {
-    {"unit", Kind::kString},           {"spec", Kind::kString},
-    {"config", Kind::kObject},         {"timing", Kind::kObject},
-    {"elaboration", Kind::kObject},    {"colour_multiply", Kind::kBoolean},
-    {"vectors", Kind::kUnsigned},      {"skipped", Kind::kUnsigned},
-    {"computed", Kind::kUnsigned},     {"cycles", Kind::kUnsigned},
-    {"throughput", Kind::kNumber},     {"latency", Kind::kObject},
-    {"stall_cycles", Kind::kUnsigned}, {"stalls", Kind::kObject},
-    {"sink_wait", Kind::kUnsigned},    {"operations", Kind::kObject},
-    {"area", Kind::kObject},           {"critical_path", Kind::kObject},
-    {"errors", Kind::kObject},         {"digest", Kind::kHex16}};
+    {"unit", Kind::kString},          {"spec", Kind::kString},
+    {"config", Kind::kObject},        {"timing", Kind::kObject},
+    {"elaboration", Kind::kObject},   {"vectors", Kind::kUnsigned},
+    {"skipped", Kind::kUnsigned},     {"computed", Kind::kUnsigned},
+    {"cycles", Kind::kUnsigned},      {"throughput", Kind::kNumber},
+    {"latency", Kind::kObject},       {"stall_cycles", Kind::kUnsigned},
+    {"stalls", Kind::kObject},        {"sink_wait", Kind::kUnsigned},
+    {"operations", Kind::kObject},    {"area", Kind::kObject},
+    {"critical_path", Kind::kObject}, {"errors", Kind::kObject},
+    {"digest", Kind::kHex16}};
 constexpr Field kLatencyFields[] = {
     {"min", Kind::kUnsigned}, {"mean", Kind::kNumber}, {"max", Kind::kUnsigned}};
 constexpr Field kStallFields[] = {{"merge_buffer_full", Kind::kUnsigned},

@@ -9,8 +9,8 @@
 namespace glint {
 
 nlohmann::json unit_sim_report(const SpecularUnit& unit, const TimingStats& t, const UnitStats& s,
-                               std::uint64_t digest, bool colour, int colour_entries) {
-  const UnitCost cost = unit_cost(unit, colour, colour_entries);
+                               std::uint64_t digest) {
+  const UnitCost cost = unit_cost(unit);
   nlohmann::json ops = nlohmann::json::object();
   for (const auto& [kind, n] : cost.ops_per_computed)
     ops[kind] = ops.value(kind, 0.0) + n * static_cast<double>(t.computed);
@@ -23,7 +23,6 @@ nlohmann::json unit_sim_report(const SpecularUnit& unit, const TimingStats& t, c
       {"config", description["config"]},
       {"timing", description["timing"]},
       {"elaboration", description["elaboration"]},
-      {"colour_multiply", colour},
       {"vectors", s.vectors},
       {"skipped", s.skipped},
       {"computed", t.computed},

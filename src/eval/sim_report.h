@@ -14,14 +14,14 @@
 namespace glint {
 
 // 2: errors decomposed; 3: the scene's elaboration (datapath_groups, slot_capacity, per unit
-// "elaboration") (src/eval/sim_report.md).
-inline constexpr int kSimReportVersion = 3;
+// "elaboration"); 4: no colour stage in any lane (units[].colour_multiply gone)
+// (src/eval/sim_report.md).
+inline constexpr int kSimReportVersion = 4;
 
 // One unit's report: config, elaboration, counts, timing, operations, area and critical path,
-// errors. colour_entries: the colour stage's RGB entries (SlotMap::colour_entries).
+// errors.
 nlohmann::json unit_sim_report(const SpecularUnit& unit, const TimingStats& timing,
-                               const UnitStats& stats, std::uint64_t digest, bool colour,
-                               int colour_entries = 0);
+                               const UnitStats& stats, std::uint64_t digest);
 
 // The table printed on stdout.
 std::string format_sim_table(const nlohmann::json& report);

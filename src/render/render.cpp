@@ -8,6 +8,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "eval/chip_report.h"
 #include "eval/parallel.h"
 #include "io/input_error.h"
 #include "render/image_error.h"
@@ -75,7 +76,7 @@ class SceneRenderer {
         height_(scene.camera.height),
         lights_(scene.lights.size()),
         header_(scene_request_header(scene, &header_of_)),
-        ev_(header_, unit_specs(options), 8, options.slot_capacity),
+        ev_(header_, unit_specs(options), 8, options.chip),
         units_(ev_.units().size()),
         tracer_(scene) {
     out_.reference = out_.reference_specular = out_.skip_only = out_.skip_mask =
@@ -310,6 +311,7 @@ class SceneRenderer {
       out_.units.push_back(std::move(r));
     }
     const SlotMap& slots = ev_.slots();
+    out_.chip = chip_json(ev_.chip(), slots);
     out_.slots = nlohmann::json::array();
     for (std::size_t s = 0; s < slots.params.size(); ++s) {
       const MaterialParams& p = slots.params[s];

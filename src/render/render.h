@@ -23,7 +23,7 @@ namespace glint {
 class OutputSet;
 class OutputFile;
 
-inline constexpr int kRenderReportVersion = 1;
+inline constexpr int kRenderReportVersion = 2;
 
 // The header of a scene's shading requests: the lights, and only the materials objects use (units
 // are elaborated for what the scene shows, not for what its file defines). header_of, if given,
@@ -34,7 +34,7 @@ VectorHeader scene_request_header(const Scene& scene,
 struct RenderOptions {
   std::vector<UnitSpec> units;  // empty: every unit at its defaults
   int threads = 1;
-  std::size_t slot_capacity = 0;  // --slots N: a chip of N slots (0: sized to the scene)
+  Chip chip;              // --chip (units/chip.h)
   int tile_rows = 16;     // rows ray-cast and evaluated together (memory: one tile's requests)
   bool progress = false;  // a progress line on stderr
   // Receives every tile's requests in raster order (pixel, then light), e.g. for a vector file.
@@ -99,6 +99,7 @@ struct RenderResult {
   std::vector<UnitRender> units;
   std::vector<std::string> lobes;  // lobes present in the scene's visible materials
   nlohmann::json slots;            // the slots the units were elaborated for
+  nlohmann::json chip;             // the chip they are built on (eval/chip_report.h)
   Image8 contact_sheet;
 
   SkipCounts skip_total() const;

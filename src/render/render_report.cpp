@@ -118,6 +118,10 @@ nlohmann::json RenderResult::to_json() const {
       saved[kind] = n * static_cast<double>(beyond);
       executed[kind] = n * static_cast<double>(u.computed);
     }
+    // Every request's own (the comparator, the merge buffer), as `glint sim` counts them
+    // (eval/sim_report.cpp): one lane, one count.
+    for (const auto& [kind, n] : u.cost.ops_per_request)
+      executed[kind] = executed.value(kind, 0.0) + n * static_cast<double>(u.stats.vectors);
     units_json.push_back({{"unit", u.label},
                           {"spec", u.spec},
                           {"image_error", u.error.to_json()},
@@ -140,6 +144,7 @@ nlohmann::json RenderResult::to_json() const {
           {"t_inputs", t_inputs()},
           {"lights", lights},
           {"materials", used_materials},
+          {"chip", chip},
           {"slots", slots},
           {"skip", {{"total", total.to_json()}, {"per_light_material", per_pair}}},
           {"skip_only_image_error", skip_only_error.to_json()},

@@ -27,11 +27,10 @@ SweepEngine::SweepEngine(const VectorHeader& header, std::vector<SweepConfig> co
                          const SweepSettings& settings)
     : configs_(std::move(configs)),
       settings_(settings),
-      slots_(make_slots(header, settings.slot_capacity)),
-      colour_(stream_is_coloured(header)),
+      slots_(make_slots(header, settings.chip)),
       refused_(configs_.size()) {
   check_sweep_memory(configs_,
-                     settings_.slot_capacity > 0 ? settings_.slot_capacity : slots_.params.size());
+                     settings_.chip.slots > 0 ? settings_.chip.slots : slots_.params.size());
   settings_.block = std::max<std::size_t>(1, settings_.block);
   settings_.chunk_rows = std::max<std::size_t>(1, settings_.chunk_rows);
   const std::size_t n_blocks = (configs_.size() + settings_.block - 1) / settings_.block;
@@ -48,8 +47,8 @@ SweepEngine::SweepEngine(const VectorHeader& header, std::vector<SweepConfig> co
       specs.push_back(configs_[k].unit_spec);
     }
     try {
-      block->ev = std::make_unique<Evaluator>(header, specs, settings_.display_bits,
-                                              settings_.slot_capacity);
+      block->ev =
+          std::make_unique<Evaluator>(header, specs, settings_.display_bits, settings_.chip);
     } catch (const std::invalid_argument&) {
       // Some configuration cannot be built for this stream: find which, one by one (the slow
       // path, only on refusal), and build the block without them.
@@ -57,7 +56,7 @@ SweepEngine::SweepEngine(const VectorHeader& header, std::vector<SweepConfig> co
       specs.clear();
       for (std::size_t k = first; k < last; ++k) {
         try {
-          make_unit(configs_[k].unit_spec, slots_);
+          make_unit(specs_on_chip({configs_[k].unit_spec}, settings_.chip).front(), slots_);
         } catch (const std::invalid_argument& e) {
           refused_[k] = e.what();
           continue;
@@ -65,11 +64,11 @@ SweepEngine::SweepEngine(const VectorHeader& header, std::vector<SweepConfig> co
         block->members.push_back(k);
         specs.push_back(configs_[k].unit_spec);
       }
-      block->ev = std::make_unique<Evaluator>(header, specs, settings_.display_bits,
-                                              settings_.slot_capacity);
+      block->ev =
+          std::make_unique<Evaluator>(header, specs, settings_.display_bits, settings_.chip);
     }
     for (const auto& unit : block->ev->units())
-      block->timing.emplace_back(lane_timing(*unit, colour_), settings_.sink);
+      block->timing.emplace_back(unit->timing(), settings_.sink);
     blocks[b] = std::move(block);
   });
   std::vector<LaneAccumulator*> lanes;
@@ -114,10 +113,8 @@ std::vector<nlohmann::json> SweepEngine::results() const {
       const UnitStats& s = stats[u];
       const TimingStats& t = block.timing[u].stats();
       const UnitTiming& timing = block.timing[u].timing();
-      // The cost and operations as `glint sim` reports them (eval/sim_report.cpp): the colour
-      // stage when the stream is coloured, with one RGB entry per light x specular colour.
-      const UnitCost cost =
-          unit_cost(unit, colour_, static_cast<int>(colour_ ? slots_.colour_entries() : 0));
+      // The cost and operations as `glint sim` reports them (eval/sim_report.cpp).
+      const UnitCost cost = unit_cost(unit);
       // Every kind the CSV has, 0 when the unit never executes it.
       nlohmann::json per_computed = nlohmann::json::object(),
                      per_request = nlohmann::json::object(), total = nlohmann::json::object();

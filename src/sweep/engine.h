@@ -24,10 +24,10 @@
 namespace glint {
 
 struct SweepSettings {
-  int display_bits = 8;           // errors in LSBs of this depth (--display-bits)
-  std::size_t slot_capacity = 0;  // --slots N: a chip of N slots; 0: sized to the stream
-  int jobs = 1;                   // threads (results do not depend on it)
-  SinkReady sink;                 // sink backpressure of the timing model (default: always ready)
+  int display_bits = 8;  // errors in LSBs of this depth (--display-bits)
+  Chip chip;             // --chip: the chip every configuration is built on
+  int jobs = 1;          // threads (results do not depend on it)
+  SinkReady sink;        // sink backpressure of the timing model (default: always ready)
   // Configurations per Evaluator (built on the threads by block), and rows per window of the
   // engine (each thread keeps ~16 bytes per row of it).
   std::size_t block = 64;
@@ -36,10 +36,11 @@ struct SweepSettings {
 
 class SweepEngine {
  public:
-  // Builds every configuration for the stream's slots (make_slots; SlotCapacityError when
-  // --slots is too small). A configuration the unit cannot build for this stream (schlick's
-  // matched n' beyond its n register for a material's shininess, ...) is refused: it runs on no
-  // row and its report row says why ("refused"), the rest of the sweep goes on.
+  // Builds every configuration for the stream's slots on the settings' chip (make_slots,
+  // specs_on_chip; SlotCapacityError when the chip is too small). A configuration the unit cannot
+  // build for this stream (schlick's matched n' beyond its n register for a material's shininess,
+  // ...) is refused: it runs on no row and its report row says why ("refused"), the rest of the
+  // sweep goes on.
   SweepEngine(const VectorHeader& header, std::vector<SweepConfig> configs,
               const SweepSettings& settings);
   ~SweepEngine();
@@ -53,7 +54,6 @@ class SweepEngine {
   std::size_t size() const { return configs_.size(); }
   const std::vector<SweepConfig>& configs() const { return configs_; }
   const SlotMap& slots() const { return slots_; }
-  bool colour() const { return colour_; }  // the stream is coloured: lanes build the colour stage
 
   // One report row per configuration, in the engine's order (report.h describes a row): spec,
   // cost, timing, operations, errors and digest, or only the spec and "refused". "image",
@@ -74,7 +74,6 @@ class SweepEngine {
   std::vector<SweepConfig> configs_;
   SweepSettings settings_;
   SlotMap slots_;
-  bool colour_ = false;
   std::vector<std::unique_ptr<Block>> blocks_;
   std::vector<std::string> refused_;  // per configuration: why it was refused, or empty
   std::unique_ptr<EvalEngine> engine_;

@@ -12,7 +12,7 @@
 
 namespace glint {
 
-inline constexpr int kSweepReportVersion = 1;
+inline constexpr int kSweepReportVersion = 2;
 
 // The Pareto objectives each row is flagged for, against the error measure: name, the row's key,
 // and whether it is minimised (else maximised).

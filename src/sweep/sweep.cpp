@@ -7,6 +7,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "eval/chip_report.h"
 #include "eval/evaluate.h"
 #include "io/input_error.h"
 #include "io/vectors.h"
@@ -29,6 +30,7 @@ std::size_t render_group_size(const Scene& scene) {
 
 struct SceneRun {
   nlohmann::json input;
+  nlohmann::json chip;  // eval/chip_report.h
   std::vector<nlohmann::json> rows;
 };
 
@@ -39,8 +41,7 @@ nlohmann::json input_json(const char* kind, const std::string& path, const Sweep
           {"rows", engine.rows()},
           {"slots", engine.slots().params.size()},
           {"datapath_groups", engine.slots().groups.size()},
-          {"per_light_slots", engine.slots().per_light},
-          {"colour_multiply", engine.colour()}};
+          {"per_light_slots", engine.slots().per_light}};
 }
 
 // A scene: the render layer ray-casts it and hands every tile's requests to the engine (the first
@@ -69,7 +70,7 @@ SceneRun sweep_scene(const SweepJob& job, const std::vector<SweepConfig>& all,
   for (std::size_t r = 0; r < renders; ++r) {
     RenderOptions options;
     options.threads = job.settings.jobs;
-    options.slot_capacity = job.settings.slot_capacity;
+    options.chip = job.settings.chip;
     const std::size_t first = r * group;
     const std::size_t last = job.image ? std::min(mine.size(), first + group) : first;
     for (std::size_t k = first; k < last; ++k) options.units.push_back(mine[k].unit_spec);
@@ -86,6 +87,7 @@ SceneRun sweep_scene(const SweepJob& job, const std::vector<SweepConfig>& all,
   for (std::size_t k = 0; k < mine.size(); ++k)
     if (images[k]) run.rows[k]["image"] = images[k]->to_json();
   run.input = input_json("scene", job.input.path, engine);
+  run.chip = chip_json(job.settings.chip, engine.slots());
   run.input["scene"] = scene.name;
   run.input["width"] = scene.camera.width;
   run.input["height"] = scene.camera.height;
@@ -107,6 +109,7 @@ SceneRun sweep_vectors(const SweepJob& job, const std::vector<SweepConfig>& mine
   SceneRun run;
   run.rows = engine.results();
   run.input = input_json("vectors", job.input.path, engine);
+  run.chip = chip_json(job.settings.chip, engine.slots());
   return run;
 }
 
@@ -140,8 +143,7 @@ nlohmann::json run_sweep(const SweepJob& job) {
       {"shard", job.shards > 0 ? nlohmann::json{{"index", job.shard}, {"count", job.shards}}
                                : nlohmann::json(nullptr)},
       {"display_bits", job.settings.display_bits},
-      {"slot_capacity", job.settings.slot_capacity > 0 ? nlohmann::json(job.settings.slot_capacity)
-                                                       : nlohmann::json(nullptr)},
+      {"chip", run.chip},
       {"sink", {{"ready", job.settings.sink.probability}, {"seed", job.settings.sink.seed}}},
       {"image_error", image},
       {"error_measure", job.error_measure},

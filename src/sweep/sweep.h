@@ -35,7 +35,7 @@ struct SweepJob {
 
 // Runs the sweep: every grid's configurations (those of the shard), the input read once.
 // Bad input throws InputError or std::invalid_argument, before any output exists; SlotCapacityError
-// when --slots is too small for the input.
+// when the chip (--chip) is too small for the input.
 nlohmann::json run_sweep(const SweepJob& job);
 
 }  // namespace glint

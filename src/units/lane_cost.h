@@ -1,6 +1,7 @@
 // The cost proxies of one lane built around a unit (cost/cost_model.h has the constants and
-// formulas): the comparator stage, the unit's own stages as its description places them, the merge
-// buffer and, with colour_multiply, the RGB multiply stage after it.
+// formulas): the comparator stage, the unit's own stages as its description places them and the
+// merge buffer: the hardware `glint rtl` writes. The lane returns the scalar highlight; the
+// per-channel colour multiply is outside it (in the shader's ALU), in every command's figures.
 #pragma once
 
 #include "cost/cost_model.h"
@@ -8,13 +9,6 @@
 
 namespace glint {
 
-// colour_entries: RGB entries of the colour stage (the stream's distinct light x specular colours;
-// 0: one per threshold entry).
-UnitCost unit_cost(const SpecularUnit& unit, bool colour_multiply = false, int colour_entries = 0);
-
-// The timing of the same lane: the unit's own (latency, II, merge buffer), plus one stage of
-// latency with the colour stage. Both SystemC modes and `glint sweep` schedule with it
-// (timing/timing.h's TimingEngine), so a sweep's cycles are the cycles `glint sim` reports.
-UnitTiming lane_timing(const SpecularUnit& unit, bool colour_stage);
+UnitCost unit_cost(const SpecularUnit& unit);
 
 }  // namespace glint

@@ -26,14 +26,20 @@ void check_slot_plan(const SlotPlan& plan) {
     // not from a spec: the evaluation layer builds the plan
     throw std::invalid_argument(
         fmt::format("slot plan: {} slots but {} origins", plan.params.size(), plan.origin.size()));
-  if (plan.capacity > kMaxSlotCapacity)
-    // not from a spec: --slots, range-checked and named by the command line
-    throw std::invalid_argument(
-        fmt::format("slot capacity {}: at most {}", plan.capacity, kMaxSlotCapacity));
-  if (plan.capacity > 0 && plan.capacity < plan.params.size())
-    // not from a spec: --slots, whose refusal the command line words (SlotCapacityError)
-    throw std::invalid_argument(fmt::format("slot capacity {}: the stream needs {} slots",
-                                            plan.capacity, plan.params.size()));
+  // --chip's capacities: range-checked and named by the command line, which words the refusal of
+  // a stream beyond the chip (SlotCapacityError) too.
+  const auto check = [](std::size_t capacity, std::size_t used, const char* what) {
+    if (capacity > kMaxSlotCapacity)
+      // not from a spec: --chip
+      throw std::invalid_argument(
+          fmt::format("{} capacity {}: at most {}", what, capacity, kMaxSlotCapacity));
+    if (capacity > 0 && capacity < used)
+      // not from a spec: --chip
+      throw std::invalid_argument(
+          fmt::format("{} capacity {}: the stream needs {}", what, capacity, used));
+  };
+  check(plan.slot_capacity, plan.params.size(), "slot");
+  check(plan.group_capacity, plan.groups.size(), "material");
 }
 
 }  // namespace glint

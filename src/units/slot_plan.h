@@ -36,9 +36,11 @@ struct SlotPlan {
   std::vector<std::uint32_t> group;    // per slot: the datapath group serving it
   std::vector<MaterialParams> groups;  // per group: the params its datapath is built from
   std::vector<SlotOrigin> origin;      // per slot, or empty
-  // Slots of a chip of fixed capacity (`--slots N`): its threshold table and per-material storage
-  // hold this many entries whatever the stream; 0: sized to the stream (params.size()).
-  std::size_t capacity = 0;
+  // A chip of given capacity (units/chip.h, `--chip ram:slots=S,materials=M`): its threshold
+  // table holds slot_capacity entries and every per-material table group_capacity, whatever the
+  // stream; 0: sized to the stream (params.size(), groups.size()).
+  std::size_t slot_capacity = 0;
+  std::size_t group_capacity = 0;
 
   // One datapath group per slot, built from the slot's own params (no sharing).
   static SlotPlan per_slot(std::vector<MaterialParams> slots) {
@@ -52,11 +54,11 @@ struct SlotPlan {
 };
 
 // Checks that a plan is consistent: every slot names an existing group and every group serves a
-// slot; origins, when given, one per slot; a capacity, when given, in 1..kMaxSlotCapacity and
-// holding the slots. Throws std::invalid_argument.
+// slot; origins, when given, one per slot; capacities, when given, in 1..kMaxSlotCapacity and
+// holding the slots and groups. Throws std::invalid_argument.
 void check_slot_plan(const SlotPlan& plan);
 
-// The largest --slots a chip may have: 2^20 thresholds (a 20-bit slot id).
+// The largest capacity a chip may have (slots or materials): 2^20 entries (a 20-bit id).
 inline constexpr std::size_t kMaxSlotCapacity = std::size_t{1} << 20;
 
 }  // namespace glint

@@ -64,10 +64,10 @@ class SpecularUnit {
   virtual QFormat in_format() const = 0;
   virtual QFormat out_format() const = 0;
   virtual std::size_t slots() const = 0;
-  // A chip of fixed capacity (SlotPlan::capacity, --slots N): N entries in the threshold table and
-  // in every per-material table. 0: sized to the stream (slots() thresholds, datapath_groups()
-  // per-material entries).
+  // A chip of given capacity (SlotPlan, units/chip.h): entries of the threshold table and of every
+  // per-material table. 0: sized to the stream (slots() thresholds, datapath_groups() entries).
   virtual std::size_t slot_capacity() const = 0;
+  virtual std::size_t group_capacity() const = 0;
   // The datapath instances (tables, coefficients, n register contents) and which one a slot reads.
   virtual std::size_t datapath_groups() const = 0;
   virtual std::size_t datapath_of(std::size_t slot) const = 0;

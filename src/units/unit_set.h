@@ -36,6 +36,7 @@
 #include <vector>
 
 #include "cost/builder.h"
+#include "hdl/verilog.h"
 #include "units/keys.h"
 #include "units/kind_check.h"
 #include "units/lane_cost.h"
@@ -92,7 +93,8 @@ class UnitSet final : public SpecularUnit {
         params_(plan.params),
         group_params_(plan.groups),
         origin_(plan.origin),
-        capacity_(plan.capacity),
+        slot_capacity_(plan.slot_capacity),
+        group_capacity_(plan.group_capacity),
         config_(std::move(config)),
         timing_(timing),
         layout_(Kind::stages(cfg_, datapaths_, timing_), timing_.ii, out_) {
@@ -111,7 +113,8 @@ class UnitSet final : public SpecularUnit {
   QFormat in_format() const override { return in_; }
   QFormat out_format() const override { return out_; }
   std::size_t slots() const override { return group_.size(); }
-  std::size_t slot_capacity() const override { return capacity_; }
+  std::size_t slot_capacity() const override { return slot_capacity_; }
+  std::size_t group_capacity() const override { return group_capacity_; }
   std::size_t datapath_groups() const override { return datapaths_.size(); }
   std::size_t datapath_of(std::size_t s) const override { return group_[s]; }
   std::int64_t tau_raw(std::size_t s) const override { return thresholds_[s]; }
@@ -144,7 +147,13 @@ class UnitSet final : public SpecularUnit {
     Kind::cost(b, lane, cfg_, datapaths_);
   }
   std::string rtl_datapath(const hdl::DatapathPorts& ports) const override {
-    return Kind::rtl(ports, cfg_, datapaths_, layout_);
+    if (ports.groups <= datapaths_.size()) return Kind::rtl(ports, cfg_, datapaths_, layout_);
+    // A chip of given capacity: the groups the input does not use hold a copy of the last one
+    // until the driver loads a material there (the tables are RAMs: group_capacity() > 0 only on
+    // a ram chip).
+    std::vector<Datapath> all = datapaths_;
+    all.resize(ports.groups, datapaths_.back());
+    return Kind::rtl(ports, cfg_, all, layout_);
   }
   nlohmann::json describe() const override {
     nlohmann::json j;
@@ -170,11 +179,13 @@ class UnitSet final : public SpecularUnit {
   // What the scene made the unit build, and why (src/eval/README.md, "Only the hardware a scene
   // needs").
   nlohmann::json elaboration() const {
-    const bool fixed = capacity_ > 0;
-    nlohmann::json e{{"slots", group_.size()},
-                     {"capacity", fixed ? capacity_ : group_.size()},
+    const bool fixed = slot_capacity_ > 0 || group_capacity_ > 0;
+    nlohmann::json e{{"storage", tables_ram_ || fixed ? "ram" : "rom"},
+                     {"slots", group_.size()},
+                     {"capacity", slot_capacity_ > 0 ? slot_capacity_ : group_.size()},
                      {"sized_to", fixed ? "capacity" : "stream"},
-                     {"datapath_groups", datapaths_.size()}};
+                     {"datapath_groups", datapaths_.size()},
+                     {"group_capacity", group_capacity_ > 0 ? group_capacity_ : datapaths_.size()}};
     std::vector<nlohmann::json> served(datapaths_.size(), nlohmann::json::array());
     nlohmann::json slot_list = nlohmann::json::array();
     for (std::size_t s = 0; s < group_.size(); ++s) {
@@ -239,7 +250,7 @@ class UnitSet final : public SpecularUnit {
   std::vector<MaterialParams> params_;        // per slot: its comparator's parameters
   std::vector<MaterialParams> group_params_;  // per group: what its datapath was built from
   std::vector<SlotOrigin> origin_;
-  std::size_t capacity_ = 0;  // fixed chip capacity (0: sized to the slots)
+  std::size_t slot_capacity_ = 0, group_capacity_ = 0;  // a chip's capacity (0: the stream's)
   nlohmann::json config_;
   UnitTiming timing_;
   StageLayout layout_;

@@ -682,30 +682,34 @@ struct BadRow {
   const char* field;
 };
 
-// --slots N: a chip of fixed capacity. A stream needing more slots is refused naming the option
-// and both counts (multi_light.vec: 3 lights each changing each of 3 materials' c_y, 9 slots);
-// N is checked before any input is read; a larger chip has more area and the same results.
+// --chip ram:materials=N,slots=N: a chip of fixed capacity. A stream needing more slots is refused
+// naming the option and both counts (multi_light.vec: 3 lights each changing each of 3 materials'
+// c_y, 9 slots); N is checked before any input is read; a larger chip has more area and the same
+// results.
 TEST_F(CliTest, SlotsOptionModelsAFixedChip) {
   const std::string vec = quote(kTraces + "/multi_light.vec");
   for (const char* cmd : {"eval", "sim"}) {
     SCOPED_TRACE(cmd);
-    const CliRun small = glint(std::string(cmd) + " " + vec + " --slots 8");
+    const CliRun small = glint(std::string(cmd) + " " + vec + " --chip ram:slots=8");
     EXPECT_EQ(small.status, 2) << small.err;
-    EXPECT_NE(small.err.find("--slots 8"), std::string::npos) << small.err;
+    EXPECT_NE(small.err.find("--chip ram:slots=8"), std::string::npos) << small.err;
     EXPECT_NE(small.err.find("needs 9"), std::string::npos) << small.err;
     EXPECT_TRUE(small.out.empty()) << small.out;
     for (const char* bad : {"0", "1048577", "-1", "x", "2.5"}) {
-      const CliRun r = glint(std::string(cmd) + " " + vec + " --slots " + bad);
+      const CliRun r = glint(std::string(cmd) + " " + vec + " --chip ram:slots=" + bad);
       EXPECT_EQ(r.status, 2) << bad;
-      EXPECT_NE(r.err.find("--slots"), std::string::npos) << bad << ": " << r.err;
+      EXPECT_NE(r.err.find("--chip"), std::string::npos) << bad << ": " << r.err;
     }
   }
   const json fitted = glint_json("sim " + vec + " --json");
-  const json nine = glint_json("sim " + vec + " --json --slots 9");
-  const json big = glint_json("sim " + vec + " --json --slots 64");
-  EXPECT_EQ(fitted.at("slot_capacity"), 9);
+  const json nine = glint_json("sim " + vec + " --json --chip ram:materials=9,slots=9");
+  const json big = glint_json("sim " + vec + " --json --chip ram:materials=64,slots=64");
+  EXPECT_EQ(fitted.at("chip").at("slots"), 9);
+  EXPECT_EQ(fitted.at("chip").at("spec"), "rom");
   EXPECT_EQ(fitted.at("datapath_groups"), 3);
-  EXPECT_EQ(big.at("slot_capacity"), 64);
+  EXPECT_EQ(big.at("chip").at("slots"), 64);
+  EXPECT_EQ(big.at("chip").at("materials"), 64);
+  EXPECT_EQ(big.at("chip").at("spec"), "ram:materials=64,slots=64");
   ASSERT_EQ(big.at("units").size(), kAllUnits.size());
   for (std::size_t i = 0; i < kAllUnits.size(); ++i) {
     SCOPED_TRACE(kAllUnits[i]);
@@ -749,7 +753,8 @@ TEST_F(CliTest, EvalReportsTheElaboration) {
             std::string::npos)
       << text.out;
   for (const auto& name : kAllUnits)
-    EXPECT_NE(text.out.find("  " + name + ": 9 slots (sized to the stream), 3 datapath groups"),
+    EXPECT_NE(text.out.find("  " + name +
+                            ": rom tables, 9 slots (sized to the stream), 3 datapath groups"),
               std::string::npos)
         << name << "\n"
         << text.out;
@@ -998,11 +1003,12 @@ TEST_F(CliTest, ReportsCarrySchemaVersions) {
   const json s = glint_json("sim " + quote(kPhongBasic) + " --json --report r.json");
   ASSERT_TRUE(e.is_object());
   ASSERT_TRUE(s.is_object());
-  // eval 4 / sim 3: the scene's elaboration (src/eval/sim_report.md); eval 3 / sim 2 decomposed the
-  // errors into parts with bounds; eval 2 nested v1's keys.
-  EXPECT_EQ(e.at("glint_eval_report"), 4);
-  EXPECT_EQ(s.at("glint_sim_report"), 3);
-  EXPECT_EQ(json::parse(read_text(dir_ / "r.json")).at("glint_sim_report"), 3);
+  // eval 5 / sim 4: the chip, no colour stage; eval 4 / sim 3: the scene's elaboration
+  // (src/eval/sim_report.md); eval 3 / sim 2 decomposed the errors into parts with bounds; eval 2
+  // nested v1's keys.
+  EXPECT_EQ(e.at("glint_eval_report"), 5);
+  EXPECT_EQ(s.at("glint_sim_report"), 4);
+  EXPECT_EQ(json::parse(read_text(dir_ / "r.json")).at("glint_sim_report"), 4);
   for (const json* report : {&e, &s}) {
     for (const auto& u : report->at("units")) {
       for (const char* old : {"error_vs_reference", "datapath_error_ulps", "model_error",
@@ -1024,7 +1030,7 @@ TEST_F(CliTest, EvalAndSimUseTheSameKeys) {
     const json s = glint_json("sim " + vec + " --json");
     ASSERT_TRUE(e.is_object());
     ASSERT_TRUE(s.is_object());
-    for (const char* k : {"rows", "slots", "per_light_slots", "datapath_groups", "slot_capacity"})
+    for (const char* k : {"rows", "slots", "per_light_slots", "datapath_groups", "chip"})
       EXPECT_EQ(e.at(k), s.at(k)) << k;
     ASSERT_EQ(e.at("units").size(), kAllUnits.size());
     ASSERT_EQ(s.at("units").size(), kAllUnits.size());
@@ -1069,7 +1075,8 @@ TEST_F(CliTest, EvalAndSimTablesShareColumnNames) {
     for (std::string x; in >> x;) w.push_back(x);
     return w;
   };
-  const auto eh = words(lines_of(e.out).at(1)), sh = words(lines_of(s.out).at(1));
+  // Line 0 names the input, line 1 the chip, line 2 heads the table.
+  const auto eh = words(lines_of(e.out).at(2)), sh = words(lines_of(s.out).at(2));
   for (const char* col :
        {"unit", "vectors", "skip%", "max_abs", "max_datapath_ulps", "mismatch_fraction"}) {
     EXPECT_EQ(std::count(eh.begin(), eh.end(), col), 1) << col << " in eval: " << e.out;
@@ -1087,7 +1094,7 @@ TEST_F(CliTest, EvalAndSimTablesShareColumnNames) {
   EXPECT_NE(b.status, 2) << budget << "\n" << b.err;
   // unit, vectors and skip% lead both tables: the same words on every unit row.
   for (std::size_t i = 0; i < kAllUnits.size(); ++i) {
-    const auto er = words(lines_of(e.out).at(2 + i)), sr = words(lines_of(s.out).at(2 + i));
+    const auto er = words(lines_of(e.out).at(3 + i)), sr = words(lines_of(s.out).at(3 + i));
     ASSERT_GE(er.size(), 3u);
     ASSERT_GE(sr.size(), 3u);
     EXPECT_EQ(std::vector<std::string>(er.begin(), er.begin() + 3),

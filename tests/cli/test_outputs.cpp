@@ -494,7 +494,7 @@ TEST_F(CliOutputs, AFailedRunKeepsEveryExistingOutput) {
         std::vector<std::string>{"render", kSmallScene, "-o", "img", "--write-vectors",
                                  "nodir/x.vec"},
         std::vector<std::string>{"sim", kTraces + "/blinn_colored.vec", "--dump", "d.csv", "--vcd",
-                                 "t.vcd", "--slots", "1"}}) {
+                                 "t.vcd", "--chip", "ram:slots=1"}}) {
     const GlintRun r = glint(args);
     EXPECT_TRUE(r.exited(2)) << args[3] << ": " << r.err;
     EXPECT_EQ(snapshot(work_), before) << r.err;

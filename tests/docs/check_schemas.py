@@ -336,9 +336,9 @@ class Runner:
                              ["eval", self.src("traces/" + trace), "--json"], "glint eval " + trace)
         # eval with a chip capacity and units whose config has non-default keys.
         self.json_stdout(eval_doc, "glint_eval_report",
-                         ["eval", self.src("traces/phong_basic.vec"), "--slots", "4", "--unit",
+                         ["eval", self.src("traces/phong_basic.vec"), "--chip", "ram:materials=4,slots=4", "--unit",
                           "hast:match=minimax,tables=ram", "--unit", "hast:root=0.9", "--json"],
-                         "glint eval --slots 4 phong_basic.vec")
+                         "glint eval --chip ram:materials=4,slots=4 phong_basic.vec")
         # sim: fast (JSON on stdout), clocked (--report), and a chip of fixed capacity.
         self.json_stdout(sim_doc, "glint_sim_report",
                          ["sim", self.src("traces/phong_basic.vec"), "--json"],
@@ -348,8 +348,8 @@ class Runner:
             self.json_file(sim_doc, "glint_sim_report", os.path.join(self.work, "sim.json"),
                            "glint sim --mode clocked --report hard_cases.vec")
         self.json_stdout(sim_doc, "glint_sim_report",
-                         ["sim", self.src("traces/multi_light.vec"), "--slots", "16", "--json"],
-                         "glint sim --slots 16 multi_light.vec")
+                         ["sim", self.src("traces/multi_light.vec"), "--chip", "ram:materials=16,slots=16", "--json"],
+                         "glint sim --chip ram:materials=16,slots=16 multi_light.vec")
         # sweep: a vector file with a refused configuration (schlick match=width cannot hold the
         # Gaussian lobe's n'), a scene (image errors), and one shard of a fixed-capacity sweep.
         sweep_doc = "src/sweep/sweep_report.md"
@@ -359,7 +359,7 @@ class Runner:
             ("scene", ["--scene", self.src("traces/scenes/small.json"), "--grid",
                        "lut:bits=4..5", "--grid", "hast"]),
             ("shard", [self.src("traces/phong_basic.vec"), "--grid", "lut:bits=4..7",
-                       "--shard", "1/2", "--slots", "4"]),
+                       "--shard", "1/2", "--chip", "ram:materials=4,slots=4"]),
         ]
         for name, args in runs:
             out_json, out_csv = f"sweep_{name}.json", f"sweep_{name}.csv"

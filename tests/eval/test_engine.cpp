@@ -55,7 +55,7 @@ struct Lanes {
     acc.reserve(units.size());
     for (const auto& u : units) {
       acc.emplace_back(*u, slots, 8);
-      timing.emplace_back(lane_timing(*u, false), SinkReady{0.7, 3});
+      timing.emplace_back(u->timing(), SinkReady{0.7, 3});
     }
   }
   std::string report() const {

@@ -1,8 +1,9 @@
 // Only the hardware a scene needs (issue 8, item 5): slots per (material, c_y), datapaths shared by
 // a material's slots, tables counted once per datapath group, the n register as wide as the
-// scene's shininess values need, and chips of fixed capacity (--slots). Expected values come from
-// the headers themselves (counts of materials, lights and colours), from builds of the same units
-// without sharing (one datapath per slot, as before), and from the cost model's own inventory.
+// scene's shininess values need, and chips of fixed capacity (--chip ram:materials=M,slots=S).
+// Expected values come from the headers themselves (counts of materials, lights and colours), from
+// builds of the same units without sharing (one datapath per slot, as before), and from the cost
+// model's own inventory.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -299,8 +300,7 @@ TEST(SceneArea, WhiteLightsAddNoTable) {
 
 // The default pow and lut on the 8-light coloured trace against the same materials under one light
 // (blinn_colored.vec): every part is the same except the threshold table (one entry per slot, now
-// with its group id), the colour table (one entry per light x specular colour) and the merge
-// buffer entries that carry the colour id. Built as before (a datapath per slot), the per-material
+// with its group id). Built as before (a datapath per slot), the per-material
 // storage grew with the lights.
 TEST(SceneArea, PowAndLutDoNotScaleWithLights) {
   VectorReader r8(kTraces + "/eight_lights.vec");
@@ -312,14 +312,12 @@ TEST(SceneArea, PowAndLutDoNotScaleWithLights) {
   for (const std::string spec : {"pow", "lut"}) {
     SCOPED_TRACE(spec);
     const auto u8 = build(spec, s8), u1 = build(spec, s1);
-    const UnitCost c8 = unit_cost(*u8, true, static_cast<int>(s8.colour_entries()));
-    const UnitCost c1 = unit_cost(*u1, true, static_cast<int>(s1.colour_entries()));
+    const UnitCost c8 = unit_cost(*u8);
+    const UnitCost c1 = unit_cost(*u1);
     std::map<std::string, double> ge1;
     for (const Primitive& p : c1.inventory) ge1[p.where] += p.ge;
     for (const Primitive& p : c8.inventory) {
-      const bool per_slot = is_tau_table(p.where) || p.where.rfind("colour: RGB", 0) == 0 ||
-                            p.where.rfind("merge buffer", 0) == 0;
-      if (per_slot) continue;
+      if (is_tau_table(p.where)) continue;
       ASSERT_EQ(ge1.count(p.where), 1u) << p.where;
       // A ROM is priced from its contents (cost_model.h, rom_ge), and lut's t^n entries follow
       // each group's threshold, which the lights' c_y move: the same storage, not the same GE.
@@ -328,7 +326,7 @@ TEST(SceneArea, PowAndLutDoNotScaleWithLights) {
     }
     const auto t1 = tables(c1);
     for (const auto& [where, p] : tables(c8)) {
-      if (is_tau_table(where) || where.rfind("colour: RGB", 0) == 0) continue;
+      if (is_tau_table(where)) continue;
       ASSERT_EQ(t1.count(where), 1u) << where;
       EXPECT_EQ(p.width_a, t1.at(where).width_a) << where;
       EXPECT_EQ(p.width_b, t1.at(where).width_b) << where;
@@ -337,7 +335,7 @@ TEST(SceneArea, PowAndLutDoNotScaleWithLights) {
     EXPECT_EQ(tables(c8).at("tau table (per slot, with its group id)").width_a, 42);
     // Before: one datapath per slot; its per-material storage scaled with the slots.
     const auto before = make_unit(parse_unit_spec(spec), s8.params);
-    const UnitCost cb = unit_cost(*before, true, static_cast<int>(s8.colour_entries()));
+    const UnitCost cb = unit_cost(*before);
     EXPECT_LT(c8.area_ge, cb.area_ge);
     const auto tables_before = tables(cb);
     for (const auto& [where, p] : tables(c8)) {
@@ -378,18 +376,26 @@ TEST(NRegister, JustWideEnoughForTheScenesShininess) {
 
 // ---- a chip of fixed capacity ------------------------------------------------------------------
 
+// --chip ram:materials=N,slots=N.
+Chip ram_chip(std::size_t n) {
+  Chip c;
+  c.ram = c.given = true;
+  c.materials = c.slots = n;
+  return c;
+}
+
 TEST(SlotCapacity, TooSmallIsRefusedWithTheCounts) {
   VectorReader r(kTraces + "/multi_light.vec");
   try {
-    make_slots(r.header(), 8);
+    make_slots(r.header(), ram_chip(8));
     FAIL() << "a chip of 8 slots took a stream of 9";
   } catch (const SlotCapacityError& e) {
     const std::string what = e.what();
     EXPECT_NE(what.find("8 slots"), std::string::npos) << what;
     EXPECT_NE(what.find("needs 9"), std::string::npos) << what;
   }
-  EXPECT_EQ(make_slots(r.header(), 9).capacity, 9u);
-  EXPECT_THROW(make_slots(r.header(), kMaxSlotCapacity + 1), SlotCapacityError);
+  EXPECT_EQ(make_slots(r.header(), ram_chip(9)).slot_capacity, 9u);
+  EXPECT_THROW(make_slots(r.header(), ram_chip(kMaxSlotCapacity + 1)), SlotCapacityError);
 }
 
 TEST(SlotCapacity, LargerChipsAreLarger) {
@@ -397,8 +403,8 @@ TEST(SlotCapacity, LargerChipsAreLarger) {
   for (const std::string& spec : kUnits) {
     SCOPED_TRACE(spec);
     const auto fitted = build(spec, make_slots(r.header()));
-    const auto exact = build(spec, make_slots(r.header(), 9));
-    const auto big = build(spec, make_slots(r.header(), 64));
+    const auto exact = build(spec, make_slots(r.header(), ram_chip(9)));
+    const auto big = build(spec, make_slots(r.header(), ram_chip(64)));
     // The same results whatever the capacity: it only sizes the tables.
     for (std::size_t slot = 0; slot < 9; ++slot) {
       EXPECT_EQ(fitted->tau_raw(slot), big->tau_raw(slot));
@@ -416,6 +422,47 @@ TEST(SlotCapacity, LargerChipsAreLarger) {
           where.find("per datapath group") != std::string::npos) {
         EXPECT_EQ(p.width_a * p.count % 64, 0) << where;
       }
+  }
+}
+
+// Materials and thresholds are sized apart: multi_light.vec needs 3 datapath groups and 9 slots.
+TEST(SlotCapacity, MaterialsAndSlotsAreIndependent) {
+  VectorReader r(kTraces + "/multi_light.vec");
+  Chip few_materials = ram_chip(64), few_slots = ram_chip(64);
+  few_materials.materials = 3;
+  few_slots.slots = 9;
+  Chip too_few = ram_chip(64);
+  too_few.materials = 2;
+  try {
+    make_slots(r.header(), too_few);
+    FAIL() << "a chip of 2 materials took a stream of 3";
+  } catch (const SlotCapacityError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("2 materials"), std::string::npos) << what;
+    EXPECT_NE(what.find("needs 3"), std::string::npos) << what;
+  }
+  for (const std::string& spec : kUnits) {
+    SCOPED_TRACE(spec);
+    const auto m = build(spec, make_slots(r.header(), few_materials));
+    const auto s = build(spec, make_slots(r.header(), few_slots));
+    EXPECT_EQ(m->describe()["elaboration"]["capacity"], 64);
+    EXPECT_EQ(m->describe()["elaboration"]["group_capacity"], 3);
+    EXPECT_EQ(s->describe()["elaboration"]["capacity"], 9);
+    EXPECT_EQ(s->describe()["elaboration"]["group_capacity"], 64);
+    // The threshold table follows slots=, every per-material table materials=.
+    for (const auto& [where, p] : tables(unit_cost(*m))) {
+      if (where.find("per slot") != std::string::npos) {
+        EXPECT_EQ(p.width_a * p.count % 64, 0) << where;
+      }
+      if (where.find("per datapath group") != std::string::npos) {
+        EXPECT_EQ(p.width_a * p.count % 3, 0) << where;
+      }
+    }
+    for (const auto& [where, p] : tables(unit_cost(*s))) {
+      if (where.find("per datapath group") != std::string::npos) {
+        EXPECT_EQ(p.width_a * p.count % 64, 0) << where;
+      }
+    }
   }
 }
 

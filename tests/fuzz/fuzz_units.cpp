@@ -109,7 +109,7 @@ void exercise(const SpecularUnit& u, const SlotMap& slots) {
   }
   (void)acc.stats().to_json().dump();
   (void)u.describe().dump();
-  (void)unit_cost(u, true, static_cast<int>(slots.colour_entries()));
+  (void)unit_cost(u);
 }
 
 }  // namespace

@@ -185,8 +185,8 @@ TEST(RenderCli, OutputFolderThatIsAFileIsExitTwo) {
   EXPECT_EQ(test::read_file(dir.file("out")), "keep");
 }
 
-// --slots N: a chip of fixed capacity; a scene that needs more is refused before anything is
-// written, a larger chip costs more area and changes no pixel.
+// --chip ram:materials=N,slots=N: a chip of fixed capacity; a scene that needs more is refused
+// before anything is written, a larger chip costs more area and changes no pixel.
 TEST(RenderSlots, FixedCapacityChip) {
   Scene scene = load_scene(scene_path("multi.json"));
   scene.camera.width = 48;
@@ -195,18 +195,21 @@ TEST(RenderSlots, FixedCapacityChip) {
   o.units = {parse_unit_spec("lut")};
   const RenderResult fit = render_scene(scene, o);
   const std::size_t needed = fit.slots.size();
-  o.slot_capacity = needed - 1;
+  const auto chip = [](std::size_t n) {
+    return "ram:materials=" + std::to_string(n) + ",slots=" + std::to_string(n);
+  };
+  o.chip = parse_chip(chip(needed - 1));
   EXPECT_THROW(render_scene(scene, o), SlotCapacityError);
-  o.slot_capacity = needed + 16;
+  o.chip = parse_chip(chip(needed + 16));
   const RenderResult big = render_scene(scene, o);
   EXPECT_GT(big.units[0].cost.area_ge, fit.units[0].cost.area_ge);
   EXPECT_TRUE(encode_png(big.units[0].image) == encode_png(fit.units[0].image));
 
   test::TempDir dir;
-  const CliRun r = glint_cli(dir, "render '" + scene_path("multi.json") + "' -o out --slots " +
-                                      std::to_string(needed - 1));
+  const CliRun r =
+      glint_cli(dir, "render '" + scene_path("multi.json") + "' -o out --chip " + chip(needed - 1));
   EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.err.find("--slots"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--chip " + chip(needed - 1)), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir.file("out")));
 }
 

@@ -72,7 +72,7 @@ void check_equivalence(const SlotMap& slots, const std::vector<VectorRow>& rows,
     EXPECT_EQ(info.mismatches[u], 0u);
     EXPECT_LE(info.max_occupancy[u], static_cast<std::size_t>(unit.timing().buffer_depth));
     ASSERT_EQ(seen[u].size(), rows.size());
-    TimingEngine engine(clocked_timing(unit, options.colour_stage), options.sink);
+    TimingEngine engine(unit.timing(), options.sink);
     std::size_t bad = 0;
     for (std::size_t i = 0; i < rows.size() && bad < 5; ++i) {
       const std::size_t slot = slots.slot(rows[i]);
@@ -130,7 +130,6 @@ TEST_P(RtlEquivalenceTrace, MatchesDatapathAndTimingEngine) {
   const SlotMap slots = make_slots(trace.header);
   ClockedOptions options;
   options.sink = SinkReady{GetParam().ready, 0x5eed};
-  options.colour_stage = stream_is_coloured(trace.header);
   check_equivalence(
       slots, trace.rows, [&] { return std::make_unique<VectorReaderStream>(path); }, kSpecs,
       options);
@@ -204,7 +203,6 @@ TEST_P(RtlEquivalenceRandom, MatchesDatapathAndTimingEngine) {
   std::mt19937_64 rng(seed * 7919);
   ClockedOptions options;
   options.sink = SinkReady{0.3 + 0.6 * std::uniform_real_distribution<double>(0, 1)(rng), seed};
-  options.colour_stage = stream_is_coloured(s.header);
   SCOPED_TRACE("sink ready probability " + std::to_string(options.sink.probability));
   check_equivalence(
       slots, s.rows, [&] { return std::make_unique<MemoryRowStream>(s.rows); }, kSpecs, options);

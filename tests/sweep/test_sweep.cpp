@@ -312,8 +312,7 @@ TEST(SweepEngine, EqualsEvaluatorAndTimingRecurrences) {
   for (std::size_t k = 0; k < configs.size(); ++k) {
     glint::Evaluator ev(reader.header(), {configs[k].unit_spec});
     const glint::SpecularUnit& unit = *ev.units()[0];
-    glint::TimingEngine timing(glint::lane_timing(unit, glint::stream_is_coloured(reader.header())),
-                               glint::SinkReady{});
+    glint::TimingEngine timing(unit.timing(), glint::SinkReady{});
     const glint::SlotMap& slots = ev.slots();
     for (const auto& r : rows) {
       ev.add(r);

@@ -35,7 +35,9 @@ struct Lut : UnitKindDefaults {
        "--vectors traces/eight_lights.vec --sink-ready 0.8"},
       {"ram", "tables=ram", "--vectors traces/phong_basic.vec --sink-ready 0.6"},
       {"ram_bits4", "tables=ram,bits=4,table_frac=20,in=uq1.12",
-       "--vectors traces/multi_light.vec --sink-ready 0.5"}};
+       "--vectors traces/multi_light.vec --sink-ready 0.5"},
+      {"chip_capacity", "bits=4,in=uq1.12",
+       "--vectors traces/multi_light.vec --chip ram:materials=5,slots=12 --sink-ready 0.7"}};
 
   static std::unique_ptr<SpecularUnit> build(const KeyReader& keys, const CommonKeys& common,
                                              const SlotPlan& plan) {

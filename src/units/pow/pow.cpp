@@ -36,7 +36,9 @@ struct Pow : UnitKindDefaults {
        "--vectors traces/contract_cases.vec --sink-ready 0.9 --seed 11"},
       {"ram", "tables=ram", "--vectors traces/phong_basic.vec --sink-ready 0.6"},
       {"ram_small_tables", "tables=ram,log_bits=6,exp_bits=4,in=uq1.12,out=uq1.10",
-       "--vectors traces/blinn_colored.vec --sink-ready 0.5"}};
+       "--vectors traces/blinn_colored.vec --sink-ready 0.5"},
+      {"chip_capacity", "in=uq1.12,out=uq1.10",
+       "--vectors traces/blinn_colored.vec --chip ram:materials=9,slots=7 --sink-ready 0.6"}};
 
   static std::unique_ptr<SpecularUnit> build(const KeyReader& keys, const CommonKeys& common,
                                              const SlotPlan& plan) {
