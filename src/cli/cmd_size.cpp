@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "cli/cli.h"
 #include "eval/parallel.h"
@@ -31,6 +32,23 @@ struct SizeOptions {
   bool no_widen = false;
   bool widen_limit_given = false;  // --widen-rounds or --widen-configurations
 };
+
+// The overall choice's spec, or "" when nothing meets the budget.
+std::string best_spec(const SizeRun& run) {
+  const nlohmann::json& b = run.document.at("best");
+  return b.is_null() ? std::string() : b.at("spec").get<std::string>();
+}
+
+// Without --chip, the answer on both chips (units/chip.h): the default's, ROMs of the inputs'
+// materials fixed at synthesis, and a GPU's, tables loaded at run time. The cheapest unit can flip
+// between them (a loadable table costs a register per bit): say whether it does.
+std::string chips_line(const SizeRun& rom, const SizeRun& ram) {
+  const std::string a = best_spec(rom), b = best_spec(ram);
+  const auto name = [](const std::string& s) { return s.empty() ? std::string("none") : s; };
+  if (a == b) return fmt::format("chips: the same answer on rom and ram: {}\n", name(a));
+  return fmt::format("chips: the winner differs: rom {}, ram {} (--chip chooses one)\n", name(a),
+                     name(b));
+}
 
 int run_size_command(const SizeOptions& o) {
   std::vector<SweepInput> inputs;
@@ -63,21 +81,41 @@ int run_size_command(const SizeOptions& o) {
   std::function<void(const std::string&)> progress;
   if (isatty(STDERR_FILENO))
     progress = [](const std::string& line) { std::fprintf(stderr, "\r%s", line.c_str()); };
-  SizeRun run;
-  try {
-    WidenLimits widen = o.widen;
-    widen.widen = !o.no_widen;
-    run =
-        run_size(inputs, grids, budgets, objective, settings, !o.no_image, widen, o.top, progress);
-  } catch (const SlotCapacityError& e) {
-    refuse_chip(o.chip, e);
+  WidenLimits widen = o.widen;
+  widen.widen = !o.no_widen;
+  const auto size_on = [&](const Chip& chip) {
+    SweepSettings on = settings;
+    on.chip = chip;
+    try {
+      SizeRun run =
+          run_size(inputs, grids, budgets, objective, on, !o.no_image, widen, o.top, progress);
+      run.document["chip"] = chip.spec();
+      return run;
+    } catch (const SlotCapacityError& e) {
+      refuse_chip(chip, e);
+    }
+  };
+  SizeRun run = size_on(o.chip);
+  std::optional<SizeRun> loadable;
+  if (!o.chip.given) {
+    Chip ram;
+    ram.ram = ram.given = true;
+    loadable = size_on(ram);
+    run.document["loadable"] = loadable->document;
+    run.document["winner_differs"] = best_spec(run) != best_spec(*loadable);
   }
   if (progress) std::fprintf(stderr, "\n");
   if (o.json) {
     print_json(run.document);
+  } else if (loadable) {
+    // The default chip's answer last: its spec is the last line, ready to paste.
+    std::cout << chips_line(run, *loadable) << "== chip ram: tables loaded at run time\n"
+              << format_size(*loadable) << "== chip rom (default): ROMs of the inputs' materials\n"
+              << format_size(run);
   } else {
-    std::cout << format_size(run);
+    std::cout << "chip: " << o.chip.spec() << "\n" << format_size(run);
   }
+  // The answer is the chip's that --chip gives, or the default's.
   return run.pick.best ? kExitOk : kExitNoneMeets;
 }
 

@@ -323,6 +323,40 @@ TEST_F(SweepCli, SizePicksTheCheapestAndExitsOneWhenNoneMeets) {
 }
 
 // The default grids run on every shipped trace (src/cli/guide/size.md lists them).
+// Without --chip, size answers on both chips and says whether the winner differs; each answer is
+// the one --chip gives on its own. On these traces a ROM lut wins while loaded tables make lut's
+// table a register file and pow wins (issue 25's finding).
+TEST_F(SweepCli, SizeAnswersOnBothChipsUnlessOneIsGiven) {
+  const std::string args =
+      "size --no-widen --budget 'max_lsb8<=1' --grid 'lut:in=uq1.16,out=uq1.8,bits=6..8' "
+      "--grid 'pow:in=uq1.16,out=uq1.8,log_bits=6,exp_bits=4' " +
+      quote(kTraces + "/phong_basic.vec") + " " + quote(kTraces + "/multi_light.vec");
+  const json both = glint_json(args + " --json");
+  const json rom = glint_json(args + " --json --chip rom");
+  const json ram = glint_json(args + " --json --chip ram");
+  ASSERT_TRUE(both.is_object() && rom.is_object() && ram.is_object());
+  EXPECT_EQ(both.at("chip"), "rom");
+  EXPECT_EQ(both.at("loadable").at("chip"), "ram");
+  EXPECT_EQ(both.at("best"), rom.at("best"));
+  EXPECT_EQ(both.at("loadable").at("best"), ram.at("best"));
+  EXPECT_FALSE(rom.contains("loadable"));
+  EXPECT_FALSE(rom.contains("winner_differs"));
+  const std::string rom_spec = rom.at("best").at("spec"), ram_spec = ram.at("best").at("spec");
+  EXPECT_EQ(rom_spec.rfind("lut:", 0), 0u) << rom_spec;
+  EXPECT_EQ(ram_spec.rfind("pow:", 0), 0u) << ram_spec;
+  EXPECT_EQ(both.at("winner_differs"), true);
+  const CliRun text = glint(args);
+  ASSERT_EQ(text.status, 0) << text.err;
+  EXPECT_EQ(text.out.rfind("chips: the winner differs: rom " + rom_spec + ", ram " + ram_spec, 0),
+            0u)
+      << text.out;
+  // The default chip's answer last, ready to paste.
+  EXPECT_EQ(text.out.substr(text.out.rfind('\n', text.out.size() - 2) + 1), rom_spec + "\n");
+  const CliRun given = glint(args + " --chip ram");
+  EXPECT_EQ(given.out.rfind("chip: ram\n", 0), 0u) << given.out;
+  EXPECT_EQ(given.out.find("chips:"), std::string::npos) << given.out;
+}
+
 TEST_F(SweepCli, SizeDefaultGridsOnTheTraces) {
   std::string inputs;
   for (const char* f : {"/phong_basic.vec", "/multi_light.vec", "/eight_lights.vec"})
