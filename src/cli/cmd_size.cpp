@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "cli/cli.h"
 #include "eval/parallel.h"
@@ -27,7 +28,27 @@ struct SizeOptions {
   std::size_t top = 1;
   bool no_image = false;
   bool json = false;
+  WidenLimits widen;
+  bool no_widen = false;
+  bool widen_limit_given = false;  // --widen-rounds or --widen-configurations
 };
+
+// The overall choice's spec, or "" when nothing meets the budget.
+std::string best_spec(const SizeRun& run) {
+  const nlohmann::json& b = run.document.at("best");
+  return b.is_null() ? std::string() : b.at("spec").get<std::string>();
+}
+
+// Without --chip, the answer on both chips (units/chip.h): the default's, ROMs of the inputs'
+// materials fixed at synthesis, and a GPU's, tables loaded at run time. The cheapest unit can flip
+// between them (a loadable table costs a register per bit): say whether it does.
+std::string chips_line(const SizeRun& rom, const SizeRun& ram) {
+  const std::string a = best_spec(rom), b = best_spec(ram);
+  const auto name = [](const std::string& s) { return s.empty() ? std::string("none") : s; };
+  if (a == b) return fmt::format("chips: the same answer on rom and ram: {}\n", name(a));
+  return fmt::format("chips: the winner differs: rom {}, ram {} (--chip chooses one)\n", name(a),
+                     name(b));
+}
 
 int run_size_command(const SizeOptions& o) {
   std::vector<SweepInput> inputs;
@@ -37,6 +58,10 @@ int run_size_command(const SizeOptions& o) {
   if (o.no_image && o.scenes.empty())
     throw std::invalid_argument(
         "--no-image leaves out the image-level error of --scene: it needs --scene");
+  // The caps bound the widening: with --no-widen they would be ignored in silence.
+  if (o.no_widen && o.widen_limit_given)
+    throw std::invalid_argument(
+        "--widen-rounds and --widen-configurations bound the widening: --no-widen has none");
   const SizeObjective objective = parse_size_objective(o.objective);
   // Image-level measures only when every input is a scene rendered with them.
   const bool image = !o.no_image && o.vectors.empty();
@@ -56,18 +81,41 @@ int run_size_command(const SizeOptions& o) {
   std::function<void(const std::string&)> progress;
   if (isatty(STDERR_FILENO))
     progress = [](const std::string& line) { std::fprintf(stderr, "\r%s", line.c_str()); };
-  SizeRun run;
-  try {
-    run = run_size(inputs, grids, budgets, objective, settings, !o.no_image, o.top, progress);
-  } catch (const SlotCapacityError& e) {
-    refuse_chip(o.chip, e);
+  WidenLimits widen = o.widen;
+  widen.widen = !o.no_widen;
+  const auto size_on = [&](const Chip& chip) {
+    SweepSettings on = settings;
+    on.chip = chip;
+    try {
+      SizeRun run =
+          run_size(inputs, grids, budgets, objective, on, !o.no_image, widen, o.top, progress);
+      run.document["chip"] = chip.spec();
+      return run;
+    } catch (const SlotCapacityError& e) {
+      refuse_chip(chip, e);
+    }
+  };
+  SizeRun run = size_on(o.chip);
+  std::optional<SizeRun> loadable;
+  if (!o.chip.given) {
+    Chip ram;
+    ram.ram = ram.given = true;
+    loadable = size_on(ram);
+    run.document["loadable"] = loadable->document;
+    run.document["winner_differs"] = best_spec(run) != best_spec(*loadable);
   }
   if (progress) std::fprintf(stderr, "\n");
   if (o.json) {
     print_json(run.document);
+  } else if (loadable) {
+    // The default chip's answer last: its spec is the last line, ready to paste.
+    std::cout << chips_line(run, *loadable) << "== chip ram: tables loaded at run time\n"
+              << format_size(*loadable) << "== chip rom (default): ROMs of the inputs' materials\n"
+              << format_size(run);
   } else {
-    std::cout << format_size(run);
+    std::cout << "chip: " << o.chip.spec() << "\n" << format_size(run);
   }
+  // The answer is the chip's that --chip gives, or the default's.
   return run.pick.best ? kExitOk : kExitNoneMeets;
 }
 
@@ -83,10 +131,12 @@ void add_size_command(CLI::App& app, int& status) {
   sub->add_option("--scene", o->scenes, "Scene files (repeatable; every one must meet the budget)")
       ->allow_extra_args(false);
   sub->add_option("--budget", o->budget,
-                  "MEASURE OP VALUE[,...], all must hold, e.g. 'lsb8<=1', "
-                  "'bound_lsb<=0.5,mismatch_fraction<0.01', 'image.max_lsb<=1'")
+                  "MEASURE OP VALUE[,...], all must hold, e.g. 'max_lsb8<=1', "
+                  "'bound_lsb<=0.5,mismatch_fraction<0.01', 'image.max_lsb<=1'; a MEASURE is "
+                  "named as in the tables, the CSV and the JSON (aliases: src/cli/guide/size.md)")
       ->required();
-  sub->add_option("--objective", o->objective, "area | throughput | area*latency")
+  sub->add_option("--objective", o->objective,
+                  "area | throughput | area*latency (or the measure: area_ge, area_latency)")
       ->capture_default_str();
   sub->add_option("--grid", o->grids,
                   "Grids to choose from (as glint sweep; repeatable); default: a grid per unit "
@@ -100,10 +150,27 @@ void add_size_command(CLI::App& app, int& status) {
                   "List the K cheapest configurations meeting the budget (over every family)")
       ->check(CLI::Range(std::size_t{1}, kMaxSweepConfigurations))
       ->capture_default_str();
+  sub->add_flag("--no-widen", o->no_widen,
+                "Keep the grids as given: by default a grid whose answer sits at an end of an "
+                "ordered key (in, out, bits, d, degree, ...) where it improves outward takes one "
+                "more value beyond that end, round by round, within the key's range "
+                "(src/cli/guide/size.md)");
+  sub->add_option("--widen-rounds", o->widen.rounds, "Widening rounds per grid, at most")
+      ->check(CLI::Range(std::size_t{0}, std::size_t{64}))
+      ->capture_default_str();
+  sub->add_option("--widen-configurations", o->widen.configurations,
+                  "Configurations over all grids, at most, when widening (the grids as given "
+                  "are swept whatever their size)")
+      ->check(CLI::Range(std::size_t{1}, kMaxSweepConfigurations))
+      ->capture_default_str();
   sub->add_flag("--no-image", o->no_image,
                 "With --scene: leave out the image-level error (request-level errors only)");
   sub->add_flag("--json", o->json, "Print the choice as one JSON document on stdout");
-  sub->callback([o, &status] { status = guarded([&] { return run_size_command(*o); }); });
+  sub->callback([o, sub, &status] {
+    o->widen_limit_given =
+        sub->count("--widen-rounds") > 0 || sub->count("--widen-configurations") > 0;
+    status = guarded([&] { return run_size_command(*o); });
+  });
 }
 
 }  // namespace glint::cli

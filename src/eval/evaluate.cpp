@@ -424,23 +424,25 @@ std::string lsb_cell(double v) {
 }  // namespace
 
 std::string format_eval_table(const std::vector<UnitStats>& stats) {
-  // Columns `glint sim`'s table has too (unit, vectors, skip%, max_err, dp_ulps) carry its headings
-  // and unit-column width. Errors in LSBs of the display depth: lsb = observed, bound_lsb = the
-  // contract's bound, wlsb = weighted by the slot's c_y (what reaches the pixel).
+  // Every column but unit, skip% and contract is named as the measure it prints is named in the
+  // JSON report, the sweep's CSV and a size budget (src/sweep/measures.h), LSB measures with their
+  // depth (max_lsb8: max_abs in LSBs of an 8-bit display). Columns `glint sim`'s table has too
+  // carry the same headings and unit-column width.
   const int bits = stats.empty() ? 8 : stats.front().display_bits;
   std::string out = fmt::format(
-      "{:<9} {:>9} {:>7} {:>10} {:>8} {:>10} {:>9} {:>9} {:>9} {:>8} {:>7} {:<17}\n", "unit",
-      "vectors", "skip%", "max_err", "t@max", "rms_err", fmt::format("lsb{}", bits), "bound_lsb",
-      fmt::format("wlsb{}", bits), "dp_ulps", "disp%", "contract");
+      "{:<9} {:>9} {:>7} {:>10} {:>8} {:>10} {:>9} {:>11} {:>18} {:>17} {:>17} {:<17}\n", "unit",
+      "vectors", "skip%", "max_abs", "t_at_max", "rms", fmt::format("max_lsb{}", bits),
+      fmt::format("bound_lsb{}", bits), fmt::format("weighted.max_lsb{}", bits),
+      "max_datapath_ulps", "mismatch_fraction", "contract");
   for (const auto& s : stats) {
     const double lsb = display_scale(s.display_bits);
     out += fmt::format(
-        "{:<9} {:>9} {:>6.1f}% {:>10.3e} {:>8.5f} {:>10.3e} {:>9} {:>9} {:>9} {:>8.3f} {:>6.2f}% "
-        "{:<17}\n",
+        "{:<9} {:>9} {:>6.1f}% {:>10.3e} {:>8.5f} {:>10.3e} {:>9} {:>11} {:>18} {:>17.3f} "
+        "{:>17.4f} {:<17}\n",
         s.name, s.vectors, s.vectors ? 100.0 * s.skipped / s.vectors : 0.0, s.total.max_abs,
         s.total.t_at_max, s.total.rms(), lsb_cell(s.total.max_abs * lsb),
         lsb_cell(s.bound().total() * lsb), lsb_cell(s.weighted.max_abs * lsb), s.max_ulps(),
-        s.vectors ? 100.0 * s.mismatch / s.vectors : 0.0, to_string(s.contract()));
+        s.vectors ? static_cast<double>(s.mismatch) / s.vectors : 0.0, to_string(s.contract()));
   }
   return out;
 }

@@ -92,8 +92,7 @@ struct LsbMeasure {
   const char* lsb;
   const char* abs_pointer;
 };
-constexpr LsbMeasure kLsbMeasures[] = {{"lsb", "/errors/max_abs"},
-                                       {"max_lsb", "/errors/max_abs"},
+constexpr LsbMeasure kLsbMeasures[] = {{"max_lsb", "/errors/max_abs"},
                                        {"bound_lsb", "/errors/bound"},
                                        {"weighted.max_lsb", "/errors/weighted/max_abs"},
                                        {"weighted.bound_lsb", "/errors/weighted/bound"}};
@@ -103,9 +102,32 @@ std::string measure_list(bool scene) {
   for (const SweepColumn& c : sweep_columns())
     if (numeric(c) && (scene || !c.scene_only) && c.name != "index")
       out += (out.empty() ? "" : ", ") + c.name;
-  return out +
-         "; LSB measures at another depth with a suffix: lsbN, max_lsbN, bound_lsbN, "
-         "weighted.max_lsbN, weighted.bound_lsbN (N = 1..16)";
+  out +=
+      "; LSB measures at another depth with a suffix: max_lsbN, bound_lsbN, "
+      "weighted.max_lsbN, weighted.bound_lsbN (N = 1..16); aliases: ";
+  for (const MeasureAlias& a : measure_aliases())
+    out +=
+        fmt::format("{}{} = {}", &a == &measure_aliases().front() ? "" : ", ", a.alias, a.measure);
+  return out;
+}
+
+// A measure by its own name: a column, or an LSB measure with a depth suffix.
+std::optional<MeasureRef> find_named(std::string_view name, bool scene) {
+  if (const SweepColumn* c = column(name, scene))
+    return MeasureRef{std::string(name), c->pointer, 0};
+  // An LSB measure with a depth: the longest digit suffix after a known LSB name.
+  std::size_t digits = 0;
+  while (digits < name.size() &&
+         std::isdigit(static_cast<unsigned char>(name[name.size() - 1 - digits])))
+    ++digits;
+  if (digits == 0 || digits > 2) return std::nullopt;
+  const std::string_view base = name.substr(0, name.size() - digits);
+  int bits = 0;
+  std::from_chars(name.data() + base.size(), name.data() + name.size(), bits);
+  if (bits < 1 || bits > 16) return std::nullopt;
+  for (const LsbMeasure& m : kLsbMeasures)
+    if (base == m.lsb) return MeasureRef{std::string(name), m.abs_pointer, bits};
+  return std::nullopt;
 }
 
 }  // namespace
@@ -121,22 +143,45 @@ const std::vector<SweepColumn>& sweep_columns() {
   return columns;
 }
 
+const std::vector<MeasureAlias>& measure_aliases() {
+  // Short names of the text tables before they were headed by the measures' own names, issue 9's
+  // "lsb8", and the --objective words.
+  static const std::vector<MeasureAlias> aliases = {
+      {"lsb", "max_lsb", "issue 9's lsb8 <= 1; glint eval's table before (lsb8)"},
+      {"wlsb", "weighted.max_lsb", "glint eval's table before (wlsb8)"},
+      {"max_err", "max_abs", "glint eval's and sim's tables before"},
+      {"rms_err", "rms", "glint eval's table before"},
+      {"t@max", "t_at_max", "glint eval's table before"},
+      {"dp_ulps", "max_datapath_ulps", "glint eval's and sim's tables before"},
+      {"res/cyc", "throughput", "glint sim's and sweep's tables before"},
+      {"stalls", "stall_cycles", "glint sim's table before"},
+      {"cp", "critical_path", "glint sim's table before"},
+      {"area", "area_ge", "glint size --objective area"},
+      {"area*latency", "area_latency", "glint size --objective area*latency"},
+      {"area*lat", "area_latency", "glint sweep's table before"},
+      {"lat", "latency", "glint sweep's table before"},
+  };
+  return aliases;
+}
+
 std::optional<MeasureRef> find_measure(std::string_view name, bool scene) {
-  if (name == "lsb") return MeasureRef{std::string(name), "/errors/max_lsb", 0};
-  if (const SweepColumn* c = column(name, scene))
-    return MeasureRef{std::string(name), c->pointer, 0};
-  // An LSB measure with a depth: the longest digit suffix after a known LSB name.
-  std::size_t digits = 0;
-  while (digits < name.size() &&
-         std::isdigit(static_cast<unsigned char>(name[name.size() - 1 - digits])))
-    ++digits;
-  if (digits == 0 || digits > 2) return std::nullopt;
-  const std::string_view base = name.substr(0, name.size() - digits);
-  int bits = 0;
-  std::from_chars(name.data() + base.size(), name.data() + name.size(), bits);
-  if (bits < 1 || bits > 16) return std::nullopt;
-  for (const LsbMeasure& m : kLsbMeasures)
-    if (base == m.lsb) return MeasureRef{std::string(name), m.abs_pointer, bits};
+  if (auto m = find_named(name, scene)) return m;
+  // An alias, and an LSB alias with a depth suffix ("lsb8", "wlsb10"): the measure it stands for,
+  // under the name as written.
+  for (const MeasureAlias& a : measure_aliases()) {
+    const std::string_view alias = a.alias;
+    if (name.substr(0, alias.size()) != alias) continue;
+    const std::string_view rest = name.substr(alias.size());
+    const bool depth =
+        !rest.empty() && std::string_view(a.measure).find("lsb") != std::string::npos &&
+        std::all_of(rest.begin(), rest.end(),
+                    [](char c) { return std::isdigit(static_cast<unsigned char>(c)); });
+    if (!rest.empty() && !depth) continue;
+    if (auto m = find_named(std::string(a.measure) + std::string(rest), scene)) {
+      m->name = std::string(name);
+      return m;
+    }
+  }
   return std::nullopt;
 }
 

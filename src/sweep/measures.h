@@ -4,7 +4,7 @@
 // names it: "area_ge", "throughput", "max_lsb", "weighted.max_lsb", "parts.input.max_abs",
 // "image.max_lsb", ... Every numeric column is a measure. Measures in display LSBs may name
 // another depth by a suffix: "max_lsb10" is max_abs x (2^10 - 1), whatever --display-bits was,
-// and "lsb8" is short for "max_lsb8" (issue 9's "lsb8<=1").
+// and "lsb8" is an alias of "max_lsb8" (issue 9's "lsb8<=1"; measure_aliases lists every alias).
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -39,7 +39,18 @@ struct MeasureRef {
   int bits = 0;
 };
 
-// Resolves a measure name; nullopt if no column (or LSB measure with a depth suffix) has it.
+// Other names of measures: the short headings the text tables had before they took the measures'
+// names, and the --objective words. An alias of an LSB measure takes a depth suffix as the measure
+// does ("wlsb8" is "weighted.max_lsb8"). src/cli/guide/size.md lists them ("Measure names").
+struct MeasureAlias {
+  const char* alias;
+  const char* measure;
+  const char* origin;  // where the alias comes from
+};
+const std::vector<MeasureAlias>& measure_aliases();
+
+// Resolves a measure name or alias; nullopt if no column (or LSB measure with a depth suffix) has
+// it. The reference keeps the name as written.
 // `scene`: image-level columns exist.
 std::optional<MeasureRef> find_measure(std::string_view name, bool scene);
 // The same, throwing std::invalid_argument naming `option` and listing the measures.

@@ -104,8 +104,9 @@ std::string format_sweep_summary(const nlohmann::json& report) {
   for (const Objective& o : kObjectives) {
     out += fmt::format("Pareto front, error vs {} ({}):\n", o.name,
                        o.minimise ? "both minimised" : "error minimised, throughput maximised");
-    out += fmt::format("  {:>5} {:>11} {:>10} {:>8} {:>12} {:>4}  {}\n", "index", "error",
-                       "area_ge", "res/cyc", "area*lat", "lat", "spec");
+    // Headed by the measures' names (measures.h).
+    out += fmt::format("  {:>5} {:>11} {:>10} {:>10} {:>12} {:>7}  {}\n", "index", "error",
+                       "area_ge", "throughput", "area_latency", "latency", "spec");
     // The front from the cheapest (or fastest) configuration to the most accurate.
     std::vector<const nlohmann::json*> front;
     for (const nlohmann::json& r : rows)
@@ -120,7 +121,7 @@ std::string format_sweep_summary(const nlohmann::json& report) {
     // the CSV flag every one of them.
     for (std::size_t i = 0; i < front.size();) {
       const nlohmann::json& r = *front[i];
-      out += fmt::format("  {:>5} {:>11} {:>10} {:>8} {:>12} {:>4}  {}\n",
+      out += fmt::format("  {:>5} {:>11} {:>10} {:>10} {:>12} {:>7}  {}\n",
                          r.at("index").get<std::size_t>(), cell(r.at("error"), "{:.4g}"),
                          cell(r.at("area_ge"), "{:.0f}"), cell(r.at("throughput"), "{:.4f}"),
                          cell(r.at("area_latency"), "{:.0f}"), r.at("latency").get<int>(),

@@ -4,19 +4,37 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <map>
 #include <stdexcept>
 
+#include "sweep/report.h"
 #include "sweep/size_explain.h"
 #include "units/catalogue.h"
 
 namespace glint {
 
 SizeObjective parse_size_objective(const std::string& text) {
-  if (text == "area") return SizeObjective::kArea;
+  // The objective's words, or the measure each minimises or maximises.
+  if (text == "area" || text == "area_ge") return SizeObjective::kArea;
   if (text == "throughput") return SizeObjective::kThroughput;
   if (text == "area*latency" || text == "area_latency") return SizeObjective::kAreaLatency;
-  throw std::invalid_argument(
-      fmt::format("--objective '{}': expected area, throughput or area*latency", text));
+  throw std::invalid_argument(fmt::format(
+      "--objective '{}': expected area, throughput or area*latency (or the measure: area_ge, "
+      "throughput, area_latency)",
+      text));
+}
+
+const char* objective_measure(SizeObjective o) {
+  switch (o) {
+    case SizeObjective::kArea:
+      return "area_ge";
+    case SizeObjective::kThroughput:
+      return "throughput";
+    case SizeObjective::kAreaLatency:
+      return "area_latency";
+  }
+  return "?";
 }
 
 const char* to_string(SizeObjective o) {
@@ -48,16 +66,33 @@ const std::vector<std::string>& default_size_grids() {
 namespace {
 
 double objective_of(const nlohmann::json& row, SizeObjective o) {
-  const char* key = o == SizeObjective::kArea         ? "area_ge"
-                    : o == SizeObjective::kThroughput ? "throughput"
-                                                      : "area_latency";
-  const auto v = row.find(key);  // a refused configuration has none
+  const auto v = row.find(objective_measure(o));  // a refused configuration has none
   return v != row.end() && v->is_number() ? v->get<double>() : NAN;
 }
 
 // Smaller is cheaper: throughput is negated.
 double cost_of(double value, SizeObjective o) {
   return o == SizeObjective::kThroughput ? -value : value;
+}
+
+// The report one sweep of `grids` would write, from the rows of several sweeps by spec and the
+// first sweep's report without its rows.
+nlohmann::json sweep_report_of(const nlohmann::json& shell,
+                               const std::map<std::string, nlohmann::json>& rows,
+                               const std::vector<Grid>& grids,
+                               const std::vector<SweepConfig>& configs) {
+  nlohmann::json report = shell, texts = nlohmann::json::array(), results = nlohmann::json::array();
+  for (const Grid& g : grids) texts.push_back(g.text);
+  for (const SweepConfig& c : configs) {
+    nlohmann::json row = rows.at(c.spec);
+    row["index"] = c.index;
+    results.push_back(std::move(row));
+  }
+  report["grids"] = std::move(texts);
+  report["configurations"] = configs.size();
+  report["results"] = std::move(results);
+  mark_pareto(report);
+  return report;
 }
 
 nlohmann::json choice_json(const SizeRun& run, std::size_t i, const std::vector<Budget>& budgets) {
@@ -129,29 +164,111 @@ std::vector<std::size_t> cheapest_meeting(const SizePick& pick, SizeObjective ob
 
 SizeRun run_size(const std::vector<SweepInput>& inputs, const std::vector<Grid>& grids,
                  const std::vector<Budget>& budgets, SizeObjective objective,
-                 const SweepSettings& settings, bool image, std::size_t top,
-                 const std::function<void(const std::string&)>& progress) {
+                 const SweepSettings& settings, bool image, const WidenLimits& widen,
+                 std::size_t top, const std::function<void(const std::string&)>& progress) {
   if (inputs.empty()) throw std::invalid_argument("size: give VECTORS files or --scene SCENE");
   SizeRun run;
-  for (const SweepInput& in : inputs) {
-    SweepJob job;
-    job.input = in;
-    job.grids = grids;
-    job.settings = settings;
-    job.image = image;
-    job.progress = progress;
-    run.reports.push_back(run_sweep(job));
+  // Per input: every row swept so far by spec (each configuration is swept once, whatever round
+  // added it), and the first sweep's report without its rows (its input and settings).
+  std::vector<std::map<std::string, nlohmann::json>> rows(inputs.size());
+  std::vector<nlohmann::json> shells(inputs.size());
+  const auto sweep = [&](const std::vector<Grid>& more) {
+    for (std::size_t k = 0; k < inputs.size(); ++k) {
+      SweepJob job;
+      job.input = inputs[k];
+      job.grids = more;
+      job.settings = settings;
+      job.image = image;
+      job.progress = progress;
+      nlohmann::json r = run_sweep(job);
+      for (nlohmann::json& row : r.at("results")) {
+        const std::string spec = row.at("spec").get<std::string>();
+        rows[k][spec] = std::move(row);
+      }
+      if (shells[k].is_null()) {
+        r.erase("results");
+        shells[k] = std::move(r);
+      }
+    }
+  };
+  std::vector<GridSearch> searches;
+  for (const Grid& g : grids) {
+    GridSearch& s = searches.emplace_back();
+    s.given = s.grid = g;
   }
-  run.pick = pick_cheapest(run.reports, budgets, objective);
+  std::vector<bool> searching(grids.size(), widen.widen);
+  std::vector<SweepConfig> configs;
+  std::size_t rounds = 0;
+  sweep(grids);
+  for (;;) {
+    // The reports of the grids as they stand, as one sweep of them would write them.
+    std::vector<Grid> now;
+    for (const GridSearch& s : searches) now.push_back(s.grid);
+    configs = expand_grids(now);
+    run.reports.clear();
+    for (std::size_t k = 0; k < inputs.size(); ++k)
+      run.reports.push_back(sweep_report_of(shells[k], rows[k], now, configs));
+    run.pick = pick_cheapest(run.reports, budgets, objective);
+    std::vector<double> cost(configs.size()), margin(configs.size());
+    for (std::size_t i = 0; i < configs.size(); ++i) {
+      cost[i] = cost_of(run.pick.value[i], objective);
+      margin[i] = -std::numeric_limits<double>::infinity();
+      for (const Budget& b : budgets)
+        margin[i] = std::max(margin[i], relative_margin(worst_over_inputs(run.reports, i, b), b));
+    }
+    std::vector<Grid> more;
+    std::size_t total = configs.size();
+    for (std::size_t g = 0; g < searches.size(); ++g) {
+      GridSearch& s = searches[g];
+      if (!searching[g]) continue;
+      const WidenDecision d = decide_widening(s.grid, g, configs, cost, run.pick.meets, margin,
+                                              widen.rounds - s.rounds);
+      if (d.stop) {
+        s.stop = *d.stop;
+        s.why = d.why;
+        searching[g] = false;
+        continue;
+      }
+      Grid wider = widen_grid(s.grid, d.steps);
+      const std::size_t added = wider.size() - s.grid.size();
+      if (total + added > widen.configurations) {
+        s.stop = WidenStop::kConfigurationCap;
+        s.why =
+            fmt::format("widening to {} would make {} configurations in all, over the cap of {}",
+                        wider.text, total + added, widen.configurations);
+        searching[g] = false;
+        continue;
+      }
+      total += added;
+      ++s.rounds;
+      for (const GridStep& step : d.steps)
+        s.steps.push_back(
+            nlohmann::json{{"round", s.rounds}, {"key", step.key}, {"value", step.value}});
+      for (Grid& part : grid_difference(s.grid, wider)) more.push_back(std::move(part));
+      s.grid = std::move(wider);
+    }
+    if (more.empty()) break;
+    ++rounds;
+    if (progress) progress(fmt::format("size: widening, round {}", rounds));
+    sweep(more);
+  }
+  if (!widen.widen)
+    for (GridSearch& s : searches) s.why = "--no-widen: the grid as given";
 
   nlohmann::json conditions = nlohmann::json::array(), in = nlohmann::json::array(),
-                 families = nlohmann::json::array(), grid_texts = nlohmann::json::array();
+                 families = nlohmann::json::array(), grid_texts = nlohmann::json::array(),
+                 given_texts = nlohmann::json::array();
   for (const Budget& b : budgets) conditions.push_back(b.text);
   for (const SweepInput& i : inputs)
     in.push_back({{"path", i.path}, {"kind", i.scene ? "scene" : "vectors"}});
-  for (const Grid& g : grids) grid_texts.push_back(g.text);
-  // Families in catalogue order, each with how close it came (size_explain.h).
-  const std::vector<SweepConfig> configs = expand_grids(grids);
+  std::vector<Grid> final_grids;
+  for (const GridSearch& s : searches) {
+    grid_texts.push_back(s.grid.text);
+    given_texts.push_back(s.given.text);
+    final_grids.push_back(s.grid);
+  }
+  // Families in catalogue order, each with how close it came (size_explain.h) and how its grids
+  // widened.
   std::vector<double> cost(run.pick.value.size());
   for (std::size_t i = 0; i < cost.size(); ++i) cost[i] = cost_of(run.pick.value[i], objective);
   for (const std::string& name : unit_names()) {
@@ -159,18 +276,28 @@ SizeRun run_size(const std::vector<SweepInput>& inputs, const std::vector<Grid>&
     if (it == run.pick.by_family.end()) continue;
     nlohmann::json family = it->second ? choice_json(run, *it->second, budgets)
                                        : nlohmann::json{{"unit", name}, {"spec", nullptr}};
-    family.update(
-        explain_family(name, run.reports, budgets, grids, configs, cost, it->second.has_value()));
+    family.update(explain_family(name, run.reports, budgets, final_grids, configs, cost,
+                                 it->second.has_value()));
+    nlohmann::json search = nlohmann::json::array();
+    for (const GridSearch& s : searches)
+      if (s.grid.unit == name) search.push_back(s.to_json());
+    family["search"] = std::move(search);
     families.push_back(std::move(family));
   }
   nlohmann::json cheapest = nlohmann::json::array();
   for (std::size_t i : cheapest_meeting(run.pick, objective, top))
     cheapest.push_back(choice_json(run, i, budgets));
-  run.document = {{"glint_size_report", 1},
+  run.document = {{"glint_size_report", 2},
                   {"budget", conditions},
                   {"objective", to_string(objective)},
                   {"inputs", in},
+                  {"grids_given", given_texts},
                   {"grids", grid_texts},
+                  {"widen",
+                   {{"enabled", widen.widen},
+                    {"max_rounds", widen.rounds},
+                    {"max_configurations", widen.configurations},
+                    {"rounds", rounds}}},
                   {"display_bits", settings.display_bits},
                   {"configurations", run.pick.value.size()},
                   {"meeting", run.pick.meeting},
@@ -181,19 +308,54 @@ SizeRun run_size(const std::vector<SweepInput>& inputs, const std::vector<Grid>&
   return run;
 }
 
+namespace {
+
+// How each grid was searched: one line per grid, and the grid it ended with when it widened.
+std::string format_search(const nlohmann::json& d) {
+  const nlohmann::json& w = d.at("widen");
+  std::string out =
+      w.at("enabled").get<bool>()
+          ? fmt::format(
+                "grids widened where the answer improves outward (at most {} rounds per "
+                "grid, {} configurations in all):\n",
+                w.at("max_rounds").get<std::size_t>(),
+                w.at("max_configurations").get<std::size_t>())
+          : std::string("grids as given (--no-widen)\n");
+  if (!w.at("enabled").get<bool>()) return out;
+  for (const nlohmann::json& f : d.at("families")) {
+    for (const nlohmann::json& s : f.at("search")) {
+      std::vector<std::string> steps;
+      for (const nlohmann::json& step : s.at("steps"))
+        steps.push_back(fmt::format("{}={}", step.at("key").get<std::string>(),
+                                    step.at("value").get<std::string>()));
+      const auto rounds = s.at("rounds").get<std::size_t>();
+      out += fmt::format("  {}: {} round{}{}; stopped ({}): {}\n", f.at("unit").get<std::string>(),
+                         rounds, rounds == 1 ? "" : "s",
+                         steps.empty() ? "" : fmt::format(" ({})", fmt::join(steps, ", ")),
+                         s.at("stopped").get<std::string>(), s.at("why").get<std::string>());
+      if (rounds > 0) out += fmt::format("    searched {}\n", s.at("grid").get<std::string>());
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
 std::string format_size(const SizeRun& run) {
   const nlohmann::json& d = run.document;
   std::vector<std::string> conditions, paths;
   for (const auto& c : d.at("budget")) conditions.push_back(c.get<std::string>());
   for (const auto& i : d.at("inputs")) paths.push_back(i.at("path").get<std::string>());
   const std::string objective = d.at("objective").get<std::string>();
+  // Values are headed by the measure's name (area_ge, ...), as in every table and budget.
+  const std::string measure = objective_measure(parse_size_objective(objective));
   std::string out = fmt::format(
       "budget {} on every input ({}); objective: {}{}\n"
       "{} configurations, {} meet the budget on every input\n",
       fmt::join(conditions, ","), fmt::join(paths, ", "), objective,
       paths.size() > 1 ? " (worst over the inputs)" : "", d.at("configurations").get<std::size_t>(),
       d.at("meeting").get<std::size_t>());
-  out += fmt::format("{:<8} {:>14}  {}\n", "family", objective, "cheapest spec meeting the budget");
+  out += fmt::format("{:<8} {:>14}  {}\n", "family", measure, "cheapest spec meeting the budget");
   std::string why;
   for (const nlohmann::json& f : d.at("families")) {
     const std::string unit = f.at("unit").get<std::string>();
@@ -207,16 +369,17 @@ std::string format_size(const SizeRun& run) {
     }
   }
   out += why;
+  out += format_search(d);
   const nlohmann::json& top = d.at("top");
   if (top.size() > 1) {
-    out += fmt::format("the {} cheapest meeting the budget:\n", top.size());
+    out += fmt::format("the {} cheapest meeting the budget ({}):\n", top.size(), measure);
     for (const nlohmann::json& c : top)
       out += fmt::format("  {:>14.6g}  {}\n", c.at("value").get<double>(),
                          c.at("spec").get<std::string>());
   }
   if (d.at("best").is_null()) return out + "no configuration meets the budget\n";
   const nlohmann::json& b = d.at("best");
-  return out + fmt::format("cheapest overall ({} {:.6g}; canonical {}):\n{}\n", objective,
+  return out + fmt::format("cheapest overall ({} {:.6g}; canonical {}):\n{}\n", measure,
                            b.at("value").get<double>(), b.at("canonical_spec").get<std::string>(),
                            b.at("spec").get<std::string>());
 }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "sweep/measures.h"
+#include "sweep/size_widen.h"
 #include "sweep/sweep.h"
 
 namespace glint {
@@ -18,9 +19,13 @@ namespace glint {
 // area (a chip that serves every input holds every input's slots), the least throughput, the
 // largest area x latency.
 enum class SizeObjective { kArea, kThroughput, kAreaLatency };
-// "area", "throughput" or "area*latency"; throws std::invalid_argument naming --objective.
+// "area", "throughput" or "area*latency" (or the measure's name, objective_measure); throws
+// std::invalid_argument naming --objective.
 SizeObjective parse_size_objective(const std::string& text);
 const char* to_string(SizeObjective o);
+// The measure an objective minimises (maximises, for throughput): "area_ge", "throughput",
+// "area_latency".
+const char* objective_measure(SizeObjective o);
 
 // The grids `glint size` sweeps without --grid: a few per unit family (src/cli/guide/size.md lists
 // them).
@@ -44,9 +49,12 @@ SizePick pick_cheapest(const std::vector<nlohmann::json>& reports,
 std::vector<std::size_t> cheapest_meeting(const SizePick& pick, SizeObjective objective,
                                           std::size_t k);
 
-// The whole of `glint size`: one sweep per input (each read once), then the pick. The document
-// --json prints: budgets, objective, inputs, the choice per family and overall, the `top` cheapest
-// and, per family, how close it came (size_explain.h).
+// The whole of `glint size`: a sweep of the grids per input, then the pick; unless `widen.widen`
+// is false, rounds of widening (size_widen.h), each sweeping only the configurations the widened
+// grids add, until every grid stops. The document --json prints: budgets, objective, inputs, the
+// grids as given and as searched, the choice per family and overall, the `top` cheapest and, per
+// family, how close it came (size_explain.h) and how its grids widened. A function of its
+// arguments alone: two calls with other settings are independent.
 struct SizeRun {
   std::vector<nlohmann::json> reports;  // per input
   SizePick pick;
@@ -54,8 +62,8 @@ struct SizeRun {
 };
 SizeRun run_size(const std::vector<SweepInput>& inputs, const std::vector<Grid>& grids,
                  const std::vector<Budget>& budgets, SizeObjective objective,
-                 const SweepSettings& settings, bool image, std::size_t top = 1,
-                 const std::function<void(const std::string&)>& progress = {});
+                 const SweepSettings& settings, bool image, const WidenLimits& widen = {},
+                 std::size_t top = 1, const std::function<void(const std::string&)>& progress = {});
 
 // The text `glint size` prints: the budget, a line per family and, last, the overall choice's
 // spec alone on its line (ready to paste; `| tail -1`).

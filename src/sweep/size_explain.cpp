@@ -76,9 +76,44 @@ nlohmann::json blocking_slot(const nlohmann::json& row, bool weighted, double sc
   return out;
 }
 
-// An axis whose values have an order a wider grid could extend: all integers (d, bits, degree)
-// or all fixed-point formats (in, out: ordered by fraction bits, then integer bits).
-std::optional<std::vector<double>> ordered_values(const GridAxis& axis) {
+// The keys of the closest configuration that sit at an end of their grid's ordered axis while the
+// budget gets nearer towards that end: its neighbour one value inwards misses by more. (An end the
+// error does not improve towards, e.g. a narrower output that the error ignores, is no hint.)
+nlohmann::json grid_edges(const Grid& grid, const std::vector<SweepConfig>& configs,
+                          std::size_t index, const std::vector<double>& miss) {
+  nlohmann::json out = nlohmann::json::array();
+  const SweepConfig& config = configs.at(index);
+  for (const GridAxis& axis : grid.axes) {
+    if (axis.values.size() < 2) continue;
+    const auto order = axis_order(axis);
+    const std::string* given = config_value(config, axis.key);
+    if (!order || !given) continue;
+    const auto at = std::find(axis.values.begin(), axis.values.end(), *given);
+    if (at == axis.values.end()) continue;
+    const double mine = (*order)[static_cast<std::size_t>(at - axis.values.begin())];
+    // The next value inwards: the nearest in the axis's order.
+    const auto [lo, hi] = std::minmax_element(order->begin(), order->end());
+    if (mine != *lo && mine != *hi) continue;
+    std::optional<std::size_t> inward;
+    for (std::size_t k = 0; k < order->size(); ++k) {
+      if ((*order)[k] == mine) continue;
+      if (!inward || std::abs((*order)[k] - mine) < std::abs((*order)[*inward] - mine)) inward = k;
+    }
+    const auto next = grid_neighbour(configs, config, axis.key, axis.values[*inward]);
+    if (!next || !(miss[*next] > miss[index]) || std::isinf(miss[*next])) continue;
+    out.push_back(
+        {{"key", axis.key}, {"value", *given}, {"end", mine == *hi ? "largest" : "smallest"}});
+  }
+  return out;
+}
+
+std::string lsb_text(double lsb) {
+  return fmt::format("{:.3g} LSB", lsb);
+}
+
+}  // namespace
+
+std::optional<std::vector<double>> axis_order(const GridAxis& axis) {
   std::vector<double> keys;
   bool integers = true, formats = true;
   for (const std::string& v : axis.values) {
@@ -98,15 +133,15 @@ std::optional<std::vector<double>> ordered_values(const GridAxis& axis) {
   return keys;
 }
 
-const std::string* key_value(const SweepConfig& c, const std::string& key) {
+const std::string* config_value(const SweepConfig& c, const std::string& key) {
   for (const auto& [k, v] : c.unit_spec.keys)
     if (k == key) return &v;
   return nullptr;
 }
 
-// The configuration of the same grid with `key` = `value` and every other key as in `c`.
-std::optional<std::size_t> neighbour(const std::vector<SweepConfig>& configs, const SweepConfig& c,
-                                     const std::string& key, const std::string& value) {
+std::optional<std::size_t> grid_neighbour(const std::vector<SweepConfig>& configs,
+                                          const SweepConfig& c, const std::string& key,
+                                          const std::string& value) {
   for (const SweepConfig& o : configs) {
     if (o.grid != c.grid || o.unit_spec.keys.size() != c.unit_spec.keys.size()) continue;
     bool same = true;
@@ -120,43 +155,6 @@ std::optional<std::size_t> neighbour(const std::vector<SweepConfig>& configs, co
   return std::nullopt;
 }
 
-// The keys of the closest configuration that sit at an end of their grid's ordered axis while the
-// budget gets nearer towards that end: its neighbour one value inwards misses by more. (An end the
-// error does not improve towards, e.g. a narrower output that the error ignores, is no hint.)
-nlohmann::json grid_edges(const Grid& grid, const std::vector<SweepConfig>& configs,
-                          std::size_t index, const std::vector<double>& miss) {
-  nlohmann::json out = nlohmann::json::array();
-  const SweepConfig& config = configs.at(index);
-  for (const GridAxis& axis : grid.axes) {
-    if (axis.values.size() < 2) continue;
-    const auto order = ordered_values(axis);
-    const std::string* given = key_value(config, axis.key);
-    if (!order || !given) continue;
-    const auto at = std::find(axis.values.begin(), axis.values.end(), *given);
-    if (at == axis.values.end()) continue;
-    const double mine = (*order)[static_cast<std::size_t>(at - axis.values.begin())];
-    // The next value inwards: the nearest in the axis's order.
-    const auto [lo, hi] = std::minmax_element(order->begin(), order->end());
-    if (mine != *lo && mine != *hi) continue;
-    std::optional<std::size_t> inward;
-    for (std::size_t k = 0; k < order->size(); ++k) {
-      if ((*order)[k] == mine) continue;
-      if (!inward || std::abs((*order)[k] - mine) < std::abs((*order)[*inward] - mine)) inward = k;
-    }
-    const auto next = neighbour(configs, config, axis.key, axis.values[*inward]);
-    if (!next || !(miss[*next] > miss[index]) || std::isinf(miss[*next])) continue;
-    out.push_back(
-        {{"key", axis.key}, {"value", *given}, {"end", mine == *hi ? "largest" : "smallest"}});
-  }
-  return out;
-}
-
-std::string lsb_text(double lsb) {
-  return fmt::format("{:.3g} LSB", lsb);
-}
-
-}  // namespace
-
 std::optional<double> worst_over_inputs(const std::vector<nlohmann::json>& reports, std::size_t i,
                                         const Budget& b) {
   std::optional<double> worst;
@@ -166,6 +164,12 @@ std::optional<double> worst_over_inputs(const std::vector<nlohmann::json>& repor
     if (!worst || (upper_limit(b) ? *v > *worst : *v < *worst)) worst = v;
   }
   return worst;
+}
+
+double relative_margin(const std::optional<double>& value, const Budget& b) {
+  if (!value || std::isnan(*value)) return std::numeric_limits<double>::infinity();
+  const double over = upper_limit(b) ? *value - b.limit : b.limit - *value;
+  return b.limit != 0 ? over / std::abs(b.limit) : over;
 }
 
 double relative_miss(const std::optional<double>& value, const Budget& b) {
@@ -314,9 +318,16 @@ std::string format_explanation(const nlohmann::json& e) {
   for (const nlohmann::json& g : c.at("grid_edges"))
     edges.push_back(fmt::format("{}={} ({} in the grid)", g.at("key").get<std::string>(),
                                 g.at("value").get<std::string>(), g.at("end").get<std::string>()));
+  // After a search (size_widen.h) the edges are the searched grid's, where it stopped.
+  std::vector<std::string> stops;
+  if (const auto search = e.find("search"); search != e.end())
+    for (const nlohmann::json& g : *search)
+      if (g.at("stopped") != "fixed") stops.push_back(g.at("stopped").get<std::string>());
   if (!edges.empty())
-    out += fmt::format("    at its grid's edge: {}: a wider --grid may help\n",
-                       fmt::join(edges, ", "));
+    out += fmt::format("    at its grid's edge: {}: {}\n", fmt::join(edges, ", "),
+                       stops.empty() ? std::string("a wider --grid may help")
+                                     : fmt::format("the search stopped there ({}, below)",
+                                                   fmt::join(stops, ", ")));
   return out;
 }
 

@@ -1077,10 +1077,21 @@ TEST_F(CliTest, EvalAndSimTablesShareColumnNames) {
   };
   // Line 0 names the input, line 1 the chip, line 2 heads the table.
   const auto eh = words(lines_of(e.out).at(2)), sh = words(lines_of(s.out).at(2));
-  for (const char* col : {"unit", "vectors", "skip%", "max_err", "dp_ulps", "disp%"}) {
+  for (const char* col :
+       {"unit", "vectors", "skip%", "max_abs", "max_datapath_ulps", "mismatch_fraction"}) {
     EXPECT_EQ(std::count(eh.begin(), eh.end(), col), 1) << col << " in eval: " << e.out;
     EXPECT_EQ(std::count(sh.begin(), sh.end(), col), 1) << col << " in sim: " << s.out;
   }
+  // Every other heading but the contract and the latencies (min/mean/max in one column) is a
+  // measure a size budget takes, under the same name: all of them in one budget parse.
+  std::string budget;
+  for (const auto* heads : {&eh, &sh})
+    for (const std::string& h : *heads)
+      if (h != "unit" && h != "skip%" && h != "contract" && h.find('/') == std::string::npos)
+        budget += (budget.empty() ? "" : ",") + h + "<=1e300";
+  const CliRun b = glint("size --no-widen --grid lut:bits=6 --budget " + quote(budget) + " " +
+                         quote(kPhongBasic));
+  EXPECT_NE(b.status, 2) << budget << "\n" << b.err;
   // unit, vectors and skip% lead both tables: the same words on every unit row.
   for (std::size_t i = 0; i < kAllUnits.size(); ++i) {
     const auto er = words(lines_of(e.out).at(3 + i)), sr = words(lines_of(s.out).at(3 + i));

@@ -230,6 +230,8 @@ TEST_F(SweepCli, BadInputExitsTwoAndWritesNothing) {
       {"size --budget 'frobs<=1' " + vec, "unknown measure 'frobs'"},
       {"size --budget 'lsb8<=1' --objective speed " + vec, "--objective"},
       {"size --budget 'lsb8<=1'", "VECTORS"},
+      {"size --budget 'lsb8<=1' --no-widen --widen-rounds 2 " + vec, "--no-widen"},
+      {"size --budget 'lsb8<=1' --widen-rounds 65 " + vec, "--widen-rounds"},
       {"merge -o out.json", "SHARD"},
   };
   for (const auto& b : bad) {
@@ -254,7 +256,9 @@ TEST_F(SweepCli, SizePicksTheCheapestAndExitsOneWhenNoneMeets) {
     sweeps.push_back(glint_json("sweep " + quote(f) + " " + grids + " --json"));
     inputs += " " + quote(f);
   }
-  const json size = glint_json("size --budget 'max_lsb8<=2' " + grids + inputs + " --top 4 --json");
+  // --no-widen: the grids as given, as the sweeps ran them (widening: the tests below).
+  const json size =
+      glint_json("size --no-widen --budget 'max_lsb8<=2' " + grids + inputs + " --top 4 --json");
   // Brute force: the largest area over the inputs among configurations within 2 LSB on both.
   std::optional<std::size_t> best;
   double best_area = 0;
@@ -308,17 +312,51 @@ TEST_F(SweepCli, SizePicksTheCheapestAndExitsOneWhenNoneMeets) {
   for (std::size_t k = 0; k < size.at("top").size(); ++k)
     EXPECT_EQ(size.at("top")[k].at("index"), meeting[k].second) << k;
   // The text ends with the spec alone, ready to paste.
-  const CliRun text = glint("size --budget 'max_lsb8<=2' " + grids + inputs);
+  const CliRun text = glint("size --no-widen --budget 'max_lsb8<=2' " + grids + inputs);
   ASSERT_EQ(text.status, 0) << text.err;
   const std::string last = text.out.substr(text.out.rfind('\n', text.out.size() - 2) + 1);
   EXPECT_EQ(last, sweeps[0]["results"][*best]["spec"].get<std::string>() + "\n");
 
-  const CliRun none = glint("size --budget 'max_abs<0' " + grids + inputs);
+  const CliRun none = glint("size --no-widen --budget 'max_abs<0' " + grids + inputs);
   EXPECT_EQ(none.status, 1) << none.err;
   EXPECT_NE(none.out.find("no configuration meets the budget"), std::string::npos) << none.out;
 }
 
 // The default grids run on every shipped trace (src/cli/guide/size.md lists them).
+// Without --chip, size answers on both chips and says whether the winner differs; each answer is
+// the one --chip gives on its own. On these traces a ROM lut wins while loaded tables make lut's
+// table a register file and pow wins (issue 25's finding).
+TEST_F(SweepCli, SizeAnswersOnBothChipsUnlessOneIsGiven) {
+  const std::string args =
+      "size --no-widen --budget 'max_lsb8<=1' --grid 'lut:in=uq1.16,out=uq1.8,bits=6..8' "
+      "--grid 'pow:in=uq1.16,out=uq1.8,log_bits=6,exp_bits=4' " +
+      quote(kTraces + "/phong_basic.vec") + " " + quote(kTraces + "/multi_light.vec");
+  const json both = glint_json(args + " --json");
+  const json rom = glint_json(args + " --json --chip rom");
+  const json ram = glint_json(args + " --json --chip ram");
+  ASSERT_TRUE(both.is_object() && rom.is_object() && ram.is_object());
+  EXPECT_EQ(both.at("chip"), "rom");
+  EXPECT_EQ(both.at("loadable").at("chip"), "ram");
+  EXPECT_EQ(both.at("best"), rom.at("best"));
+  EXPECT_EQ(both.at("loadable").at("best"), ram.at("best"));
+  EXPECT_FALSE(rom.contains("loadable"));
+  EXPECT_FALSE(rom.contains("winner_differs"));
+  const std::string rom_spec = rom.at("best").at("spec"), ram_spec = ram.at("best").at("spec");
+  EXPECT_EQ(rom_spec.rfind("lut:", 0), 0u) << rom_spec;
+  EXPECT_EQ(ram_spec.rfind("pow:", 0), 0u) << ram_spec;
+  EXPECT_EQ(both.at("winner_differs"), true);
+  const CliRun text = glint(args);
+  ASSERT_EQ(text.status, 0) << text.err;
+  EXPECT_EQ(text.out.rfind("chips: the winner differs: rom " + rom_spec + ", ram " + ram_spec, 0),
+            0u)
+      << text.out;
+  // The default chip's answer last, ready to paste.
+  EXPECT_EQ(text.out.substr(text.out.rfind('\n', text.out.size() - 2) + 1), rom_spec + "\n");
+  const CliRun given = glint(args + " --chip ram");
+  EXPECT_EQ(given.out.rfind("chip: ram\n", 0), 0u) << given.out;
+  EXPECT_EQ(given.out.find("chips:"), std::string::npos) << given.out;
+}
+
 TEST_F(SweepCli, SizeDefaultGridsOnTheTraces) {
   std::string inputs;
   for (const char* f : {"/phong_basic.vec", "/multi_light.vec", "/eight_lights.vec"})
@@ -327,6 +365,120 @@ TEST_F(SweepCli, SizeDefaultGridsOnTheTraces) {
   EXPECT_GT(size.at("configurations").get<std::size_t>(), 100u);
   ASSERT_TRUE(size.at("best").is_object());
   for (const json& v : size.at("best").at("measures").at("lsb8")) EXPECT_LE(v.get<double>(), 1.0);
+}
+
+const json* family(const json& size, const std::string& unit) {
+  for (const json& f : size.at("families"))
+    if (f.at("unit") == unit) return &f;
+  return nullptr;
+}
+
+// The value of `key` in a spec "unit:key=value,...".
+std::string spec_value(const std::string& spec, const std::string& key) {
+  const std::smatch m = [&] {
+    std::smatch r;
+    std::regex_search(spec, r, std::regex("[:,]" + key + "=([^,]+)"));
+    return r;
+  }();
+  return m.empty() ? std::string() : m[1].str();
+}
+
+int frac_bits(const std::string& format) {
+  return std::stoi(format.substr(format.find('.') + 1));
+}
+
+// A budget the fixed grid misses and the widened one meets: the winner's key lies beyond the old
+// edge, the report says how the grid grew, and its final grid swept as given gives the same answer.
+TEST_F(SweepCli, SizeWidensAGridUntilTheBudgetIsMet) {
+  const std::string vec = quote(kTraces + "/phong_basic.vec");
+  const std::string args = "size --budget 'lsb8<=1' --grid 'lut:bits=4..5' " + vec;
+  const CliRun fixed = glint(args + " --no-widen");
+  EXPECT_EQ(fixed.status, 1) << fixed.err;
+  const json size = glint_json(args + " --json");
+  ASSERT_TRUE(size.at("best").is_object());
+  const std::string spec = size.at("best").at("spec");
+  EXPECT_GT(std::stoi(spec_value(spec, "bits")), 5) << spec;
+  for (const json& v : size.at("best").at("measures").at("lsb8")) EXPECT_LE(v.get<double>(), 1.0);
+  EXPECT_EQ(size.at("grids_given"), json::array({"lut:bits=4..5"}));
+  const json& search = family(size, "lut")->at("search").at(0);
+  EXPECT_EQ(search.at("stopped"), "met");
+  EXPECT_GE(search.at("rounds").get<int>(), 1);
+  EXPECT_EQ(search.at("steps").at(0).at("key"), "bits");
+  EXPECT_EQ(search.at("steps").at(0).at("value"), "6");
+  EXPECT_EQ(size.at("grids").at(0), search.at("grid"));
+  EXPECT_EQ(size.at("configurations"), search.at("configurations"));
+  EXPECT_EQ(size.at("widen").at("rounds"), search.at("rounds"));
+
+  const json again = glint_json("size --no-widen --budget 'lsb8<=1' --grid " +
+                                quote(search.at("grid")) + " " + vec + " --json");
+  EXPECT_EQ(again.at("best").at("spec"), spec);
+  EXPECT_EQ(again.at("best").at("index"), size.at("best").at("index"));
+  EXPECT_EQ(again.at("best").at("value"), size.at("best").at("value"));
+}
+
+// A budget the fixed grid meets, with its winner at the narrowest output: a narrower output,
+// beyond the grid, is cheaper and still meets it.
+TEST_F(SweepCli, SizeWidensTowardsACheaperConfiguration) {
+  const std::string args =
+      "size --budget 'lsb8<=1' --grid 'lut:in=uq1.16,out=uq1.10|uq1.12,"
+      "bits=6..8' " +
+      quote(kTraces + "/phong_basic.vec") + " " + quote(kTraces + "/multi_light.vec") + " --json";
+  const json fixed = glint_json(args + " --no-widen");
+  const json wide = glint_json(args);
+  ASSERT_TRUE(fixed.at("best").is_object());
+  ASSERT_TRUE(wide.at("best").is_object());
+  EXPECT_EQ(spec_value(fixed.at("best").at("spec"), "out"), "uq1.10");
+  EXPECT_LT(frac_bits(spec_value(wide.at("best").at("spec"), "out")), 10) << wide.at("best");
+  EXPECT_LT(wide.at("best").at("value").get<double>(), fixed.at("best").at("value").get<double>());
+  EXPECT_EQ(family(fixed, "lut")->at("search").at(0).at("stopped"), "fixed");
+  EXPECT_FALSE(fixed.at("widen").at("enabled").get<bool>());
+}
+
+// Budgets nothing reaches: the search ends within its caps and says why.
+TEST_F(SweepCli, SizeStopsWideningWithinItsCaps) {
+  const std::string vec = quote(kTraces + "/phong_basic.vec");
+  // max_abs < 0: every step improves, so the rounds run out.
+  CliRun r =
+      glint("size --budget 'max_abs<0' --grid 'lut:bits=4..5' --widen-rounds 2 --json " + vec);
+  EXPECT_EQ(r.status, 1) << r.err;
+  json size = json::parse(r.out);
+  json search = family(size, "lut")->at("search").at(0);
+  EXPECT_EQ(search.at("stopped"), "round_cap");
+  EXPECT_EQ(search.at("rounds"), 2);
+  EXPECT_EQ(size.at("configurations"), 4);
+  EXPECT_EQ(size.at("widen").at("max_rounds"), 2);
+  // ... or the configurations.
+  r = glint("size --budget 'max_abs<0' --grid 'lut:bits=4..5' --widen-configurations 3 --json " +
+            vec);
+  EXPECT_EQ(r.status, 1) << r.err;
+  size = json::parse(r.out);
+  search = family(size, "lut")->at("search").at(0);
+  EXPECT_EQ(search.at("stopped"), "configuration_cap");
+  EXPECT_LE(size.at("configurations").get<int>(), 3);
+  // Schlick misses 1 LSB by a factor of ~50, its approximation's: wider formats close too little.
+  r = glint("size --budget 'lsb8<=1' --grid 'schlick:in=uq1.12|uq1.14,out=uq1.10|uq1.12' --json " +
+            vec);
+  EXPECT_EQ(r.status, 1) << r.err;
+  size = json::parse(r.out);
+  search = family(size, "schlick")->at("search").at(0);
+  EXPECT_EQ(search.at("stopped"), "too_slow");
+  EXPECT_EQ(search.at("rounds"), 0);
+  // The key table's end: lut's bits takes 1..16, and a budget of more area than bits=16 has
+  // improves towards it.
+  const std::string bits = "--grid 'lut:bits=15..16' " + vec;
+  r = glint("size --no-widen --budget 'area_ge>=1e12' --json " + bits);
+  EXPECT_EQ(r.status, 1) << r.err;
+  const double largest = json::parse(r.out).at("families")[0].at("reached")[0].at("best");
+  std::ostringstream limit;
+  limit.precision(17);
+  limit << largest * 1.01;
+  r = glint("size --budget 'area_ge>=" + limit.str() + "' --json " + bits);
+  EXPECT_EQ(r.status, 1) << r.err;
+  size = json::parse(r.out);
+  search = family(size, "lut")->at("search").at(0);
+  EXPECT_EQ(search.at("stopped"), "range_end");
+  EXPECT_EQ(search.at("grid"), "lut:bits=15..16");
+  EXPECT_NE(search.at("why").get<std::string>().find("1..16"), std::string::npos) << search;
 }
 
 // --plot: both plots as SVG and PNG; the SVG holds one point per configuration with an error

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <limits>
 #include <set>
 #include <string>
@@ -248,6 +249,48 @@ TEST(SweepMeasures, NamesSuffixesAndBudgets) {
             std::string::npos);
 }
 
+// Every alias names the measure it stands for, with a depth suffix where the measure is in LSBs,
+// and the size guide's table lists exactly the aliases there are.
+TEST(SweepMeasures, AliasesNameTheirMeasures) {
+  std::set<std::string> listed;
+  {
+    std::ifstream guide(GLINT_SOURCE_DIR "/src/cli/guide/size.md");
+    ASSERT_TRUE(guide) << "src/cli/guide/size.md";
+    bool in_table = false;
+    for (std::string line; std::getline(guide, line);) {
+      if (line == "| alias | measure | from |") in_table = true;
+      if (!in_table) continue;
+      if (line.empty()) break;
+      const auto a = line.find("| `"), b = line.find("` |");
+      if (a == 0 && b != std::string::npos) listed.insert(line.substr(3, b - 3));
+    }
+  }
+  std::set<std::string> aliases;
+  for (const glint::MeasureAlias& a : glint::measure_aliases()) {
+    aliases.insert(a.alias);
+    const auto alias = glint::find_measure(a.alias, true);
+    const auto measure = glint::find_measure(a.measure, true);
+    ASSERT_TRUE(alias) << a.alias;
+    ASSERT_TRUE(measure) << a.measure;
+    EXPECT_EQ(alias->pointer, measure->pointer) << a.alias;
+    EXPECT_EQ(alias->bits, measure->bits) << a.alias;
+    EXPECT_EQ(alias->name, a.alias);  // reports name it as written
+    EXPECT_FALSE(glint::find_measure(std::string(a.alias) + "x", true)) << a.alias << "x";
+    if (std::string(a.measure).find("lsb") != std::string::npos) {
+      const auto deep = glint::find_measure(std::string(a.alias) + "10", false);
+      ASSERT_TRUE(deep) << a.alias << "10";
+      EXPECT_EQ(deep->bits, 10);
+      EXPECT_EQ(deep->pointer, glint::find_measure(std::string(a.measure) + "10", false)->pointer);
+    }
+  }
+  EXPECT_EQ(listed, aliases);
+  // The headings eval's table used to print parse as the measures they headed.
+  const json row = {{"errors", {{"max_abs", 2.0 / 255}, {"weighted", {{"max_abs", 1.0 / 255}}}}}};
+  EXPECT_NEAR(*glint::measure_value(row, *glint::find_measure("wlsb8", false)), 1.0, 1e-12);
+  EXPECT_NEAR(*glint::measure_value(row, *glint::find_measure("lsb8", false)), 2.0, 1e-12);
+  EXPECT_FALSE(glint::find_measure("wlsb17", false));
+}
+
 // The engine on one file: each configuration's errors equal a plain Evaluator's over the same
 // rows, and its cycles equal a TimingEngine fed the same unit's skip decisions one by one.
 TEST(SweepEngine, EqualsEvaluatorAndTimingRecurrences) {
@@ -440,7 +483,15 @@ TEST(SweepSize, ExplainsWhatBlocksAFamily) {
   const std::string text = glint::format_explanation(e);
   EXPECT_NE(text.find("closest: lut:bits=6 misses lsb8<=1 by a factor 2.04"), std::string::npos)
       << text;
-  EXPECT_NE(text.find("bits=6 (largest in the grid)"), std::string::npos) << text;
+  EXPECT_NE(text.find("bits=6 (largest in the grid): a wider --grid may help"), std::string::npos)
+      << text;
+  // After a search that stopped, the edges are where it stopped, and why is said below.
+  json searched = e;
+  searched["search"] = json::array({{{"stopped", "too_slow"}}});
+  const std::string after = glint::format_explanation(searched);
+  EXPECT_NE(after.find("bits=6 (largest in the grid): the search stopped there (too_slow, below)"),
+            std::string::npos)
+      << after;
 
   // An end the error does not improve towards is no hint: bits=5 as good as bits=6.
   const std::vector<json> flat = {hand_report(
