@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "reference/pixel_error.h"
 #include "units/catalogue.h"
 
 namespace glint {
@@ -59,6 +60,8 @@ void require_backpressure_for_seed(bool seed_given, double sink_ready);
 
 // --slots N: a chip of fixed capacity N (1..kMaxSlotCapacity); 0 (absent): sized to the stream.
 void add_slots_option(CLI::App* sub, std::size_t& slots);
+// --eps-measure luminance|channel: what eps is a threshold of (reference/pixel_error.h).
+void add_eps_measure_option(CLI::App* sub, EpsMeasure& measure);
 // make_slots' refusal of a stream that needs more slots than --slots N, rethrown naming the option.
 [[noreturn]] void refuse_slots(std::size_t slots, const std::exception& e);
 

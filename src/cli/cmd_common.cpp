@@ -88,6 +88,22 @@ void add_slots_option(CLI::App* sub, std::size_t& slots) {
       ->type_name("N");
 }
 
+void add_eps_measure_option(CLI::App* sub, EpsMeasure& measure) {
+  sub->add_option_function<std::string>(
+         "--eps-measure",
+         [&measure](const std::string& text) {
+           const auto m = try_parse_eps_measure(text);
+           if (!m)
+             throw CLI::ValidationError("--eps-measure",
+                                        "'" + text + "' is not one of luminance, channel");
+           measure = *m;
+         },
+         "What eps bounds: luminance = Källberg & Larsson's c_y (eq.3, the default), channel = "
+         "the largest channel of light x specular, so that no channel of a skipped lobe exceeds "
+         "eps")
+      ->type_name("luminance|channel");
+}
+
 void refuse_slots(std::size_t slots, const std::exception& e) {
   throw std::invalid_argument(fmt::format("--slots {}: {}", slots, e.what()));
 }

@@ -24,7 +24,8 @@ struct EvalOptions {
   std::string dump;
   int display_bits = 8;
   std::size_t slots = 0;  // --slots N; 0: sized to the stream
-  int threads = 0;        // --threads N; 0: every core
+  EpsMeasure eps_measure = EpsMeasure::kLuminance;
+  int threads = 0;  // --threads N; 0: every core
   bool json = false;
 };
 
@@ -39,7 +40,8 @@ int run_eval(const EvalOptions& o) {
   VectorReader reader(o.vectors);
   std::unique_ptr<Evaluator> evaluator;
   try {
-    evaluator = std::make_unique<Evaluator>(reader.header(), specs, o.display_bits, o.slots);
+    evaluator = std::make_unique<Evaluator>(with_eps_measure(reader.header(), o.eps_measure), specs,
+                                            o.display_bits, o.slots);
   } catch (const SlotCapacityError& e) {
     refuse_slots(o.slots, e);  // the stream needs more than the chip holds
   } catch (const ResourceLimitError& e) {
@@ -115,8 +117,8 @@ int run_eval(const EvalOptions& o) {
                        slots.groups.size(),
                        slots.capacity > 0 ? fmt::format(", a chip of {} slots", slots.capacity)
                                           : std::string())
-        << format_eval_table(ev.stats()) << format_parts_table(ev.stats())
-        << "elaboration (what the scene built):\n"
+        << pixel_measure_line(slots) << format_eval_table(ev.stats())
+        << format_parts_table(ev.stats()) << "elaboration (what the scene built):\n"
         << format_elaboration(ev.stats());
     for (const auto& s : ev.stats()) out << fmt::format("  {}: {}\n", s.name, s.spec);
   }
@@ -142,6 +144,7 @@ void add_eval_command(CLI::App& app, int& status) {
   add_threads_option(sub, o->threads);
   add_display_bits_option(sub, o->display_bits);
   add_slots_option(sub, o->slots);
+  add_eps_measure_option(sub, o->eps_measure);
   sub->add_flag("--json", o->json, "Print one JSON document on stdout");
   sub->callback([o, &status] { status = guarded([&] { return run_eval(*o); }); });
 }

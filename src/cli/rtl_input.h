@@ -19,6 +19,7 @@ struct RtlInputOptions {
   std::string vectors, scene;
   std::vector<std::string> materials;  // "NAME shininess=N [lobe=...] [specular=r,g,b]"
   double eps = 1e-3;
+  EpsMeasure eps_measure = EpsMeasure::kLuminance;  // --eps-measure: the slots' thresholds
 };
 // --vectors, --scene, --material, --eps. (No --slots: the tables, ROMs or with tables=ram
 // registers with a write port, hold the input's slots and datapath groups.)

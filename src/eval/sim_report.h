@@ -14,8 +14,9 @@
 namespace glint {
 
 // 2: errors decomposed; 3: the scene's elaboration (datapath_groups, slot_capacity, per unit
-// "elaboration") (src/eval/sim_report.md).
-inline constexpr int kSimReportVersion = 3;
+// "elaboration"); 4: pixel_measure, and weighted errors are the pixel error of
+// reference/pixel_error.h (3: the scalar error times c_y) (src/eval/sim_report.md).
+inline constexpr int kSimReportVersion = 4;
 
 // One unit's report: config, elaboration, counts, timing, operations, area and critical path,
 // errors. colour_entries: the colour stage's RGB entries (SlotMap::colour_entries).
