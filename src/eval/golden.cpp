@@ -74,7 +74,7 @@ struct Field {
   Kind kind;
 };
 
-// The sim report's fixed part (src/eval/sim_report.md, version 3): its top level and each
+// The sim report's fixed part (src/eval/sim_report.md, version 4): its top level and each
 // unit's keys. tests/eval/test_golden.cpp checks that a report of this build passes.
 constexpr Field kReportFields[] = {{"glint_sim_report", Kind::kUnsigned},
                                    {"vectors_file", Kind::kString},
@@ -82,6 +82,7 @@ constexpr Field kReportFields[] = {{"glint_sim_report", Kind::kUnsigned},
                                    {"mode", Kind::kString},
                                    {"sink_ready", Kind::kNumber},
                                    {"seed", Kind::kUnsigned},
+                                   {"pixel_measure", Kind::kObject},
                                    {"slots", Kind::kUnsigned},
                                    {"per_light_slots", Kind::kBoolean},
                                    {"datapath_groups", Kind::kUnsigned},
