@@ -111,14 +111,15 @@ int run_eval(const EvalOptions& o) {
     // With an output on standard output ("-"), the summary goes to stderr.
     std::ostream& out = outputs.writes_stdout() ? std::cerr : std::cout;
     const SlotMap& slots = ev.slots();
-    out << fmt::format("{}: {} vectors, {} slots{}, {} datapath groups{}\n", o.vectors,
+    out << fmt::format("{}: {} vectors, {} slots{}, {} datapath groups{}; {}\n", o.vectors,
                        reader.rows_read(), slots.params.size(),
                        slots.per_light ? " (lights change some materials' tau)" : "",
                        slots.groups.size(),
                        slots.capacity > 0 ? fmt::format(", a chip of {} slots", slots.capacity)
-                                          : std::string())
-        << pixel_measure_line(slots) << format_eval_table(ev.stats())
-        << format_parts_table(ev.stats()) << "elaboration (what the scene built):\n"
+                                          : std::string(),
+                       pixel_measure_line(slots))
+        << format_eval_table(ev.stats()) << format_parts_table(ev.stats())
+        << "elaboration (what the scene built):\n"
         << format_elaboration(ev.stats());
     for (const auto& s : ev.stats()) out << fmt::format("  {}: {}\n", s.name, s.spec);
   }

@@ -275,10 +275,10 @@ void write_outputs(const SimOptions& o, SimPlan& plan, std::uint64_t rows,
     return;
   }
   std::ostream& out = plan.outputs.writes_stdout() ? std::cerr : std::cout;
-  out << fmt::format("{}: {} vectors, {} mode, sink ready {}{}\n", o.vectors, rows,
+  out << fmt::format("{}: {} vectors, {} mode, sink ready {}{}; {}\n", o.vectors, rows,
                      clocked ? "clocked" : "fast", o.sink_ready,
-                     o.vcd.empty() ? "" : ", VCD " + o.vcd)
-      << pixel_measure_line(lanes_slots) << format_sim_table(report);
+                     o.vcd.empty() ? "" : ", VCD " + o.vcd, pixel_measure_line(lanes_slots))
+      << format_sim_table(report);
   for (const auto& u : report["units"])
     out << fmt::format("  {}: {}\n", u["unit"].get<std::string>(), u["spec"].get<std::string>());
 }

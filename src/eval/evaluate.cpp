@@ -202,11 +202,10 @@ SlotMap make_slots(const VectorHeader& header, std::size_t capacity) {
 }
 
 std::string pixel_measure_line(const SlotMap& slots) {
-  return fmt::format("pixel error: largest channel of light x specular, {} display; eps on {}\n",
+  return fmt::format("pixel error: largest channel of light x specular, {} display; eps on {}",
                      to_string(slots.display),
-                     slots.eps_measure == EpsMeasure::kChannel
-                         ? "the largest channel (--eps-measure channel)"
-                         : "luminance c_y (Källberg eq.3)");
+                     slots.eps_measure == EpsMeasure::kChannel ? "the largest channel"
+                                                               : "luminance c_y (Källberg eq.3)");
 }
 
 nlohmann::json pixel_measure_json(const SlotMap& slots) {

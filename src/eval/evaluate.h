@@ -143,7 +143,7 @@ inline VectorHeader with_eps_measure(VectorHeader header, EpsMeasure measure) {
 }
 
 // What every report states of its pixel measure (reference/pixel_error.h): the display encoding
-// and the eps measure, as a line of text ("pixel error: ...") and as JSON fields.
+// and the eps measure, as text for a summary line ("pixel error: ...", no newline) and as JSON.
 std::string pixel_measure_line(const SlotMap& slots);
 nlohmann::json pixel_measure_json(const SlotMap& slots);
 

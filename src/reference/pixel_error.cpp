@@ -61,8 +61,8 @@ double encoding_slope(DisplayEncoding e) {
 
 double request_pixel_error(DisplayEncoding e, const Rgb& w, double x, double r) {
   if (e == DisplayEncoding::kLinear8) return largest_channel(w) * std::fabs(x - r);
-  // sRGB is not linear: a smaller channel weight can give the larger difference (its toe is
-  // steeper), so every channel is encoded.
+  // Every channel is encoded: sRGB clamps at full scale, so a channel of weight above 1 may
+  // saturate and show less of the difference than a dimmer one.
   return std::max({std::fabs(encode(e, w.r * x) - encode(e, w.r * r)),
                    std::fabs(encode(e, w.g * x) - encode(e, w.g * r)),
                    std::fabs(encode(e, w.b * x) - encode(e, w.b * r))});
