@@ -95,6 +95,15 @@ std::string format_sweep_summary(const nlohmann::json& report) {
                         report.at("configurations").get<std::size_t>())
           : std::string(),
       report.at("error_measure").get<std::string>(), report.at("display_bits").get<int>());
+  // The pixel measure its weighted and image errors are in (reference/pixel_error.h).
+  // A report that merge accepted may come from elsewhere: only a well-formed one is printed.
+  const auto text = [](const nlohmann::json& o, const char* key) {
+    const auto it = o.find(key);
+    return it != o.end() && it->is_string() ? it->get<std::string>() : std::string("?");
+  };
+  if (const auto pm = input.find("pixel_measure"); pm != input.end() && pm->is_object())
+    out += fmt::format("pixel error: largest channel of light x specular, {} display; eps on {}\n",
+                       text(*pm, "display"), text(*pm, "eps_measure"));
   std::size_t refused = 0;
   for (const nlohmann::json& r : rows) refused += r.at("refused").is_string();
   if (refused > 0)

@@ -147,8 +147,10 @@ SizeRun run_size(const std::vector<SweepInput>& inputs, const std::vector<Grid>&
   nlohmann::json conditions = nlohmann::json::array(), in = nlohmann::json::array(),
                  families = nlohmann::json::array(), grid_texts = nlohmann::json::array();
   for (const Budget& b : budgets) conditions.push_back(b.text);
-  for (const SweepInput& i : inputs)
-    in.push_back({{"path", i.path}, {"kind", i.scene ? "scene" : "vectors"}});
+  for (std::size_t k = 0; k < inputs.size(); ++k)
+    in.push_back({{"path", inputs[k].path},
+                  {"kind", inputs[k].scene ? "scene" : "vectors"},
+                  {"pixel_measure", run.reports[k].at("input").at("pixel_measure")}});
   for (const Grid& g : grids) grid_texts.push_back(g.text);
   // Families in catalogue order, each with how close it came (size_explain.h).
   const std::vector<SweepConfig> configs = expand_grids(grids);
