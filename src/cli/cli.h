@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "reference/pixel_error.h"
 #include "units/catalogue.h"
 #include "units/chip.h"
 
@@ -65,6 +66,8 @@ void add_chip_option(CLI::App* sub, Chip& chip);
 [[noreturn]] void refuse_chip(const Chip& chip, const std::exception& e);
 // specs_on_chip, its refusal named by refuse_chip: called before any output is made.
 std::vector<UnitSpec> specs_for_chip(std::vector<UnitSpec> specs, const Chip& chip);
+// --eps-measure luminance|channel: what eps is a threshold of (reference/pixel_error.h).
+void add_eps_measure_option(CLI::App* sub, EpsMeasure& measure);
 
 // Throws std::invalid_argument naming the option unless v is finite and > 0 (NaN is refused).
 void require_finite_positive(double v, const std::string& option);

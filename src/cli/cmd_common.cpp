@@ -103,6 +103,22 @@ std::vector<UnitSpec> specs_for_chip(std::vector<UnitSpec> specs, const Chip& ch
   }
 }
 
+void add_eps_measure_option(CLI::App* sub, EpsMeasure& measure) {
+  sub->add_option_function<std::string>(
+         "--eps-measure",
+         [&measure](const std::string& text) {
+           const auto m = try_parse_eps_measure(text);
+           if (!m)
+             throw CLI::ValidationError("--eps-measure",
+                                        "'" + text + "' is not one of luminance, channel");
+           measure = *m;
+         },
+         "What eps bounds: luminance = Källberg & Larsson's c_y (eq.3, the default), channel = "
+         "the largest channel of light x specular, so that no channel of a skipped lobe exceeds "
+         "eps")
+      ->type_name("luminance|channel");
+}
+
 void refuse_size(const std::string& file, const std::exception& e) {
   throw InputError(file, 0, "slots", e.what());
 }

@@ -24,7 +24,8 @@ struct EvalOptions {
   std::vector<std::string> units;
   std::string dump;
   int display_bits = 8;
-  Chip chip;        // --chip
+  Chip chip;  // --chip
+  EpsMeasure eps_measure = EpsMeasure::kLuminance;
   int threads = 0;  // --threads N; 0: every core
   bool json = false;
 };
@@ -40,7 +41,8 @@ int run_eval(const EvalOptions& o) {
   VectorReader reader(o.vectors);
   std::unique_ptr<Evaluator> evaluator;
   try {
-    evaluator = std::make_unique<Evaluator>(reader.header(), specs, o.display_bits, o.chip);
+    evaluator = std::make_unique<Evaluator>(with_eps_measure(reader.header(), o.eps_measure), specs,
+                                            o.display_bits, o.chip);
   } catch (const SlotCapacityError& e) {
     refuse_chip(o.chip, e);  // the stream needs more than the chip holds
   } catch (const ResourceLimitError& e) {
@@ -110,10 +112,10 @@ int run_eval(const EvalOptions& o) {
     // With an output on standard output ("-"), the summary goes to stderr.
     std::ostream& out = outputs.writes_stdout() ? std::cerr : std::cout;
     const SlotMap& slots = ev.slots();
-    out << fmt::format("{}: {} vectors, {} slots{}, {} datapath groups\n", o.vectors,
+    out << fmt::format("{}: {} vectors, {} slots{}, {} datapath groups; {}\n", o.vectors,
                        reader.rows_read(), slots.params.size(),
                        slots.per_light ? " (lights change some materials' tau)" : "",
-                       slots.groups.size())
+                       slots.groups.size(), pixel_measure_line(slots))
         << chip_line(chip_json(ev.chip(), slots)) << format_eval_table(ev.stats())
         << format_parts_table(ev.stats()) << "elaboration (what the scene built):\n"
         << format_elaboration(ev.stats());
@@ -141,6 +143,7 @@ void add_eval_command(CLI::App& app, int& status) {
   add_threads_option(sub, o->threads);
   add_display_bits_option(sub, o->display_bits);
   add_chip_option(sub, o->chip);
+  add_eps_measure_option(sub, o->eps_measure);
   sub->add_flag("--json", o->json, "Print one JSON document on stdout");
   sub->callback([o, &status] { status = guarded([&] { return run_eval(*o); }); });
 }

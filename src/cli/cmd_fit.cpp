@@ -20,6 +20,7 @@ struct FitCliOptions {
   std::string domain = "full";
   double eps = 1e-3;
   std::string color = "1,1,1";
+  EpsMeasure eps_measure = EpsMeasure::kLuminance;
   bool constrain = false;
   bool json = false;
   bool samples_given = false;
@@ -46,10 +47,14 @@ int run_fit(const FitCliOptions& o) {
   if (!std::isfinite(c_y(Rgb{m[0], m[1], m[2]})))
     throw std::invalid_argument(
         fmt::format("--color {}: c_y, the colour's luminance, overflows", o.color));
-  const TauResult tau = tau_power(o.shininess, o.eps, c_y(Rgb{m[0], m[1], m[2]}));
+  // Under a white light; the weight is c_y or, with --eps-measure channel, the largest channel.
+  const TauResult tau = tau_power(
+      o.shininess, o.eps, threshold_weight(o.eps_measure, Rgb{1, 1, 1}, Rgb{m[0], m[1], m[2]}));
   if (f.domain == FitDomain::kTau) {
     if (tau.always_skip)
-      throw std::invalid_argument("c_y <= eps: the lobe is never visible, nothing to fit");
+      throw std::invalid_argument(
+          fmt::format("{} <= eps: the lobe is never visible, nothing to fit",
+                      o.eps_measure == EpsMeasure::kChannel ? "the largest channel" : "c_y"));
     f.tau = tau.tau;
   }
   f.constrain_one = o.constrain;
@@ -72,6 +77,7 @@ int run_fit(const FitCliOptions& o) {
                 {"samples", f.method == FitMethod::kMinimax ? nlohmann::json(nullptr)
                                                             : nlohmann::json(f.samples)},
                 {"tau", r.tau},
+                {"eps_measure", to_string(o.eps_measure)},
                 {"variable", to_string(r.variable)},
                 {"constrain_one", f.constrain_one},
                 {"constrain_zero", f.constrain_zero},
@@ -90,7 +96,8 @@ int run_fit(const FitCliOptions& o) {
       to_string(f.method), to_string(f.domain),
       f.method == FitMethod::kMinimax ? "" : fmt::format(", {} samples", f.samples),
       o.constrain ? " (constrained)" : "");
-  if (f.domain == FitDomain::kTau) std::cout << fmt::format("tau {:.6f}\n", r.tau);
+  if (f.domain == FitDomain::kTau)
+    std::cout << fmt::format("tau {:.6f} (eps on {})\n", r.tau, to_string(o.eps_measure));
   std::cout << fmt::format("variable {}\ncoefficients (c0 first):\n", var);
   for (std::size_t k = 0; k < r.coeffs.size(); ++k)
     std::cout << fmt::format("  c{:<2} {: .17g}\n", k, r.coeffs[k]);
@@ -129,6 +136,7 @@ void add_fit_command(CLI::App& app, int& status) {
       ->check(CLI::IsMember({"full", "tau"}))
       ->capture_default_str();
   sub->add_option("--eps", o->eps, "eps for tau (domain tau; finite, > 0)")->capture_default_str();
+  add_eps_measure_option(sub, o->eps_measure);
   sub->add_option("--color", o->color, "Specular colour r,g,b for c_y (each finite, >= 0)")
       ->capture_default_str();
   sub->add_flag("--constrain", o->constrain, "Force f(1) = 1 (and f(tau) = 0 on domain tau)");

@@ -41,6 +41,7 @@ struct SimOptions {
   int threads = 0;  // --threads N; 0: every core
   int display_bits = 8;
   Chip chip;  // --chip
+  EpsMeasure eps_measure = EpsMeasure::kLuminance;
   bool json = false;
 };
 
@@ -243,6 +244,7 @@ nlohmann::json build_report(const SimOptions& o, bool clocked, const SimLanes& l
                            {"mode", clocked ? "clocked" : "fast"},
                            {"sink_ready", o.sink_ready},
                            {"seed", o.seed},
+                           {"pixel_measure", pixel_measure_json(lanes.slots)},
                            {"slots", lanes.slots.params.size()},
                            {"per_light_slots", lanes.slots.per_light},
                            {"datapath_groups", lanes.slots.groups.size()},
@@ -259,7 +261,7 @@ nlohmann::json build_report(const SimOptions& o, bool clocked, const SimLanes& l
 // Writes --report, commits every output (all or none), then prints the report (JSON or table) on
 // stdout; the table on stderr when an output is standard output.
 void write_outputs(const SimOptions& o, SimPlan& plan, std::uint64_t rows,
-                   const nlohmann::json& report) {
+                   const nlohmann::json& report, const SlotMap& lanes_slots) {
   const bool clocked = plan.clocked;
   if (plan.report) plan.report->stream() << report.dump(2) << "\n";
   plan.outputs.commit();
@@ -268,9 +270,9 @@ void write_outputs(const SimOptions& o, SimPlan& plan, std::uint64_t rows,
     return;
   }
   std::ostream& out = plan.outputs.writes_stdout() ? std::cerr : std::cout;
-  out << fmt::format("{}: {} vectors, {} mode, sink ready {}{}\n", o.vectors, rows,
+  out << fmt::format("{}: {} vectors, {} mode, sink ready {}{}; {}\n", o.vectors, rows,
                      clocked ? "clocked" : "fast", o.sink_ready,
-                     o.vcd.empty() ? "" : ", VCD " + o.vcd)
+                     o.vcd.empty() ? "" : ", VCD " + o.vcd, pixel_measure_line(lanes_slots))
       << chip_line(report.at("chip")) << format_sim_table(report);
   for (const auto& u : report["units"])
     out << fmt::format("  {}: {}\n", u["unit"].get<std::string>(), u["spec"].get<std::string>());
@@ -292,7 +294,8 @@ int run_sim(const SimOptions& o) {
   }
   SimLanes lanes;
   try {
-    make_lanes(reader->header(), plan.specs, o.display_bits, o.chip, lanes);
+    make_lanes(with_eps_measure(reader->header(), o.eps_measure), plan.specs, o.display_bits,
+               o.chip, lanes);
   } catch (const ResourceLimitError& e) {
     refuse_size(o.vectors, e);  // more slots or contract work than a run may take
   }
@@ -303,7 +306,7 @@ int run_sim(const SimOptions& o) {
                          ? run_clocked_mode(o, plan.clocked_options, *input, lanes, dump.get())
                          : run_fast_mode(o, *reader, lanes, dump.get(), progress);
   if (progress && run.rows >= 0x100000) std::fprintf(stderr, "\n");
-  write_outputs(o, plan, run.rows, build_report(o, plan.clocked, lanes, run));
+  write_outputs(o, plan, run.rows, build_report(o, plan.clocked, lanes, run), lanes.slots);
   return kExitOk;
 }
 
@@ -343,6 +346,7 @@ void add_sim_command(CLI::App& app, int& status) {
   add_threads_option(sub, o->threads);
   add_display_bits_option(sub, o->display_bits);
   add_chip_option(sub, o->chip);
+  add_eps_measure_option(sub, o->eps_measure);
   sub->add_flag("--json", o->json, "Print the report as one JSON document on stdout");
   sub->callback([sub, o, &status] {
     o->batch_given = sub->count("--batch") > 0;

@@ -24,6 +24,7 @@ struct SizeOptions {
   std::string budget, objective = "area";
   int display_bits = 8;
   Chip chip;
+  EpsMeasure eps_measure = EpsMeasure::kLuminance;
   int jobs = 0;
   std::size_t top = 1;
   bool no_image = false;
@@ -77,6 +78,7 @@ int run_size_command(const SizeOptions& o) {
   SweepSettings settings;
   settings.display_bits = o.display_bits;
   settings.chip = o.chip;
+  settings.eps_measure = o.eps_measure;
   settings.jobs = o.jobs > 0 ? o.jobs : default_threads();
   std::function<void(const std::string&)> progress;
   if (isatty(STDERR_FILENO))
@@ -107,13 +109,25 @@ int run_size_command(const SizeOptions& o) {
   if (progress) std::fprintf(stderr, "\n");
   if (o.json) {
     print_json(run.document);
-  } else if (loadable) {
-    // The default chip's answer last: its spec is the last line, ready to paste.
-    std::cout << chips_line(run, *loadable) << "== chip ram: tables loaded at run time\n"
-              << format_size(*loadable) << "== chip rom (default): ROMs of the inputs' materials\n"
-              << format_size(run);
   } else {
-    std::cout << "chip: " << o.chip.spec() << "\n" << format_size(run);
+    // The pixel measure the budgets are judged in (reference/pixel_error.h), per input.
+    std::string displays;
+    for (const auto& in : run.document.at("inputs"))
+      displays += fmt::format("{}{} {}", displays.empty() ? "" : ", ",
+                              in.at("pixel_measure").at("display").get<std::string>(),
+                              in.at("path").get<std::string>());
+    std::cout << fmt::format(
+        "pixel error: largest channel of light x specular, display {}; eps on {}\n", displays,
+        to_string(o.eps_measure));
+    if (loadable) {
+      // The default chip's answer last: its spec is the last line, ready to paste.
+      std::cout << chips_line(run, *loadable) << "== chip ram: tables loaded at run time\n"
+                << format_size(*loadable)
+                << "== chip rom (default): ROMs of the inputs' materials\n"
+                << format_size(run);
+    } else {
+      std::cout << "chip: " << o.chip.spec() << "\n" << format_size(run);
+    }
   }
   // The answer is the chip's that --chip gives, or the default's.
   return run.pick.best ? kExitOk : kExitNoneMeets;
@@ -144,6 +158,7 @@ void add_size_command(CLI::App& app, int& status) {
       ->allow_extra_args(false);
   add_display_bits_option(sub, o->display_bits);
   add_chip_option(sub, o->chip);
+  add_eps_measure_option(sub, o->eps_measure);
   sub->add_option("--jobs", o->jobs, "Threads (default: every core); results do not depend on it")
       ->check(CLI::Range(1, 256));
   sub->add_option("--top", o->top,

@@ -24,6 +24,7 @@ struct SweepCommandOptions {
   std::string error_measure = "max_lsb";
   int display_bits = 8;
   Chip chip;
+  EpsMeasure eps_measure = EpsMeasure::kLuminance;
   int jobs = 0;
   bool no_image = false;
   double sink_ready = 1.0;
@@ -50,6 +51,7 @@ int run_sweep_command(const SweepCommandOptions& o) {
   if (!o.shard.empty()) std::tie(job.shard, job.shards) = parse_shard(o.shard);
   job.settings.display_bits = o.display_bits;
   job.settings.chip = o.chip;
+  job.settings.eps_measure = o.eps_measure;
   job.settings.jobs = o.jobs > 0 ? o.jobs : default_threads();
   job.settings.sink = SinkReady{o.sink_ready, o.seed};
   job.error_measure = o.error_measure;
@@ -116,6 +118,7 @@ void add_sweep_command(CLI::App& app, int& status) {
       ->capture_default_str();
   add_display_bits_option(sub, o->display_bits);
   add_chip_option(sub, o->chip);
+  add_eps_measure_option(sub, o->eps_measure);
   sub->add_option("--jobs", o->jobs,
                   "Threads over configurations (default: every core); results do not depend on "
                   "it")

@@ -16,6 +16,7 @@ struct TauOptions {
   std::string color = "1,1,1";
   std::string light = "1,1,1";
   int lights = 1;
+  EpsMeasure eps_measure = EpsMeasure::kLuminance;
   std::string lobe = "phong";
   double roughness = 0;
   bool shininess_given = false, roughness_given = false;
@@ -27,7 +28,8 @@ int run_tau(const TauOptions& o) {
   require_finite_positive(o.eps, "--eps");
   const auto m = parse_rgb(o.color, "--color");
   const auto i = parse_rgb(o.light, "--light");
-  const double cy = c_y(Rgb{i[0], i[1], i[2]}, Rgb{m[0], m[1], m[2]});
+  // The weight eps is compared against: c_y (eq.3), or the largest channel of light x colour.
+  const double cy = threshold_weight(o.eps_measure, Rgb{i[0], i[1], i[2]}, Rgb{m[0], m[1], m[2]});
   // Each component is finite, their product need not be (1e200 x 1e200).
   if (!std::isfinite(cy))
     throw std::invalid_argument(
@@ -57,14 +59,17 @@ int run_tau(const TauOptions& o) {
                 {"eps", o.eps},
                 {"lights", o.lights},
                 {"eps_effective", r.eps},
-                {"c_y", r.c_y},
+                {"eps_measure", to_string(o.eps_measure)},
+                {"c_y", c_y(Rgb{i[0], i[1], i[2]}, Rgb{m[0], m[1], m[2]})},
+                {"weight", r.c_y},
                 {"tau", r.tau},
                 {"always_skip", r.always_skip},
                 {"never_skip", r.never_skip}});
     return kExitOk;
   }
-  std::cout << fmt::format("tau {:.6f}\nc_y {:.6f}\neps {:.6g} (effective {:.6g} for {} lights)\n",
-                           r.tau, r.c_y, o.eps, r.eps, o.lights)
+  std::cout << fmt::format("tau {:.6f}\n{} {:.6f}\neps {:.6g} (effective {:.6g} for {} lights)\n",
+                           r.tau, o.eps_measure == EpsMeasure::kChannel ? "w_max" : "c_y", r.c_y,
+                           o.eps, r.eps, o.lights)
             << fmt::format("skip {}\n", verdict);
   return kExitOk;
 }
@@ -92,6 +97,7 @@ void add_tau_command(CLI::App& app, int& status) {
       ->capture_default_str();
   CLI::Option* roughness =
       sub->add_option("--roughness", o->roughness, "Gaussian roughness omega in (0, 1]");
+  add_eps_measure_option(sub, o->eps_measure);
   sub->add_flag("--json", o->json, "Print one JSON document on stdout");
   sub->callback([o, &status, shininess, roughness] {
     o->shininess_given = shininess->count() > 0;

@@ -22,6 +22,7 @@ void add_rtl_input_options(CLI::App* sub, RtlInputOptions& o) {
                   "'gold shininess=64 lobe=blinn specular=1,0.77,0.34' (repeatable; specular "
                   "defaults to 1,1,1, lobe to phong)");
   sub->add_option("--eps", o.eps, "Perceptibility threshold eps of --material (default 1e-3)");
+  add_eps_measure_option(sub, o.eps_measure);
   add_chip_option(sub, o.chip);
 }
 
@@ -36,8 +37,9 @@ void check_rtl_input(const RtlInputOptions& o) {
 }
 
 VectorHeader rtl_header(const RtlInputOptions& o) {
-  if (!o.vectors.empty()) return VectorReader(o.vectors).header();
-  if (!o.scene.empty()) return scene_request_header(load_scene(o.scene));
+  if (!o.vectors.empty()) return with_eps_measure(VectorReader(o.vectors).header(), o.eps_measure);
+  if (!o.scene.empty())
+    return with_eps_measure(scene_request_header(load_scene(o.scene)), o.eps_measure);
   // A vector file of the materials alone: its reader checks every field and names the line
   // (line 4 is the first --material).
   std::string text = fmt::format("glint-vectors 1\neps {}\nlights 1\n", o.eps);
@@ -52,7 +54,7 @@ VectorHeader rtl_header(const RtlInputOptions& o) {
   }
   text += "columns t material\ndata\n";
   std::istringstream in(text);
-  return VectorReader(in, "--material").header();
+  return with_eps_measure(VectorReader(in, "--material").header(), o.eps_measure);
 }
 
 std::string rtl_input_name(const RtlInputOptions& o) {

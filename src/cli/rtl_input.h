@@ -20,8 +20,9 @@ struct RtlInputOptions {
   std::vector<std::string> materials;  // "NAME shininess=N [lobe=...] [specular=r,g,b]"
   double eps = 1e-3;
   Chip chip;  // --chip: the lane's tables, ROMs of the input's materials or loadable, and capacity
+  EpsMeasure eps_measure = EpsMeasure::kLuminance;  // --eps-measure: the slots' thresholds
 };
-// --vectors, --scene, --material, --eps, --chip.
+// --vectors, --scene, --material, --eps, --eps-measure, --chip.
 void add_rtl_input_options(CLI::App* sub, RtlInputOptions& o);
 // Exactly one input kind; throws std::invalid_argument naming the options otherwise.
 void check_rtl_input(const RtlInputOptions& o);

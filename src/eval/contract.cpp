@@ -42,6 +42,10 @@ nlohmann::json parts_json(const ErrorParts& p, double scale) {
 
 }  // namespace
 
+double SlotContract::weighted_bound() const {
+  return pixel_error_bound(display, weight, always_skipped ? 1.0 : bound.total());
+}
+
 nlohmann::json SlotContract::to_json(int display_bits) const {
   nlohmann::json j{{"slot", slot},
                    {"name", name},
@@ -50,8 +54,8 @@ nlohmann::json SlotContract::to_json(int display_bits) const {
                    {"always_skipped", always_skipped}};
   if (always_skipped) {
     // The lobe never reaches eps on the pixel: not folded into any bound (its scalar error is the
-    // whole lobe, its weighted error at most c_y <= eps).
-    j["weighted_bound"] = weight;
+    // whole lobe, its weighted error at most the weight, c_y <= eps under the luminance measure).
+    j["weighted_bound"] = weighted_bound();
     return j;
   }
   j["contract"] = to_string(kind);
@@ -60,7 +64,7 @@ nlohmann::json SlotContract::to_json(int display_bits) const {
   j["bound"] = parts_json(bound, 1.0);
   j["bound"]["total"] = bound.total();
   j["bound_lsb"] = bound.total() * display_scale(display_bits);
-  j["weighted_bound_lsb"] = bound.total() * weight * display_scale(display_bits);
+  j["weighted_bound_lsb"] = weighted_bound() * display_scale(display_bits);
   j["exact"] = exact;
   return j;
 }
@@ -98,13 +102,15 @@ SlotContract slot_contract(const SpecularUnit& unit, std::size_t slot, const Slo
   const MaterialParams& m = slots.params[slot];
   c.slot = slot;
   c.name = m.name;
-  c.weight = slots.c_y[slot];
+  c.weight = slots.pixel_weight_max[slot];
+  c.display = slots.display;
   c.threshold_raw = unit.tau_raw(slot);
   if (m.always_skip && unit.comparator_enabled()) {
     c.always_skipped = true;
     c.bound.skip = 1.0;
     c.kind = ContractKind::kNone;
-    c.reason = "always skipped: c_y <= eps";
+    c.reason = slots.eps_measure == EpsMeasure::kChannel ? "always skipped: w_max <= eps"
+                                                         : "always skipped: c_y <= eps";
     return c;
   }
   const QFormat in = unit.in_format();

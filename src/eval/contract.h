@@ -24,6 +24,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "reference/pixel_error.h"
 #include "units/unit.h"
 
 namespace glint {
@@ -60,7 +61,10 @@ struct SlotContract {
   std::size_t slot = 0;
   std::string name;             // "material 'm'" or "light 2 x material 'm'"
   bool always_skipped = false;  // c_y <= eps: never computed, reported apart from the bounds
-  double weight = 1.0;          // c_y: what the scalar lobe is multiplied by on the pixel
+  // The slot's largest channel weight (SlotMap::pixel_weight_max): what the scalar lobe is
+  // multiplied by on the pixel's largest channel, in the display's encoding.
+  double weight = 1.0;
+  DisplayEncoding display = DisplayEncoding::kLinear8;
   std::int64_t threshold_raw = -1;
   ErrorParts bound;
   double datapath_ulps = 0.0;
@@ -68,6 +72,9 @@ struct SlotContract {
   std::string reason;
   bool exact = true;
 
+  // The bound on the slot's pixel error (reference/pixel_error.h): the whole lobe when always
+  // skipped, else the bound's total, through the weight and the encoding's slope.
+  double weighted_bound() const;
   nlohmann::json to_json(int display_bits) const;
 };
 

@@ -69,8 +69,9 @@ class SettledRows {
     const bool sum = sum_absorbs_ | (least_ & (total_max >= kSumFloor));
     return sum & (total_max > bound_) & (skip_max > bound_);
   }
-  // The weighted maximum holds more than the bound times the slot's weight c_y.
-  bool weighted(double weighted_max, double c_y) const { return weighted_max > bound_ * c_y; }
+  // The weighted maximum holds more than the bound times `weight`: the most a reference at the
+  // bound can reach on the pixel (the encoding's slope times the slot's largest channel weight).
+  bool weighted(double weighted_max, double weight) const { return weighted_max > bound_ * weight; }
 
   // An error whose square, 2^-26, has half an ulp (2^-80) above the least bound's square.
   static constexpr double kSumFloor = 0x1.0p-13;

@@ -92,12 +92,15 @@ SlotMap make_slots(const VectorHeader& header, const Chip& chip) {
       const VectorMaterial& m = header.materials[mi];
       MaterialSlots& ms = per_material[mi];
       // A white light's product is the specular colour itself: its c_y is eq.6's exactly.
-      const double cy = c_y(rgb(i), rgb(m.specular));
+      const double cy = threshold_weight(header.eps_measure, rgb(i), rgb(m.specular));
+      const Rgb w = channel_weights(rgb(i), rgb(m.specular));
       const auto it = std::find(ms.c_y.begin(), ms.c_y.end(), cy);
       std::uint32_t slot;
       if (it != ms.c_y.end()) {
         slot = ms.slot[static_cast<std::size_t>(it - ms.c_y.begin())];
         map.origin[slot].lights.push_back(static_cast<int>(l));
+        Rgb& pw = map.pixel_weight[slot];
+        pw = Rgb{std::max(pw.r, w.r), std::max(pw.g, w.g), std::max(pw.b, w.b)};
       } else {
         slot = static_cast<std::uint32_t>(map.params.size());
         if (map.params.size() == kMaxStreamSlots)
@@ -111,10 +114,20 @@ SlotMap make_slots(const VectorHeader& header, const Chip& chip) {
         map.lobe.push_back(m.lobe);
         map.roughness.push_back(m.roughness);
         map.c_y.push_back(cy);
+        map.pixel_weight.push_back(w);
         map.origin.push_back(SlotOrigin{mi, {static_cast<int>(l)}, cy, false});
       }
       slot_of[l * materials + mi] = slot;
     }
+  }
+  map.display = header.display;
+  map.eps_measure = header.eps_measure;
+  map.skip_ratio = header.eps_measure == EpsMeasure::kChannel ? 1.0 : 0.0;
+  for (std::size_t s = 0; s < map.pixel_weight.size(); ++s) {
+    map.pixel_weight_max.push_back(largest_channel(map.pixel_weight[s]));
+    // The largest channel weight over c_y: at most 1 / 0.0722 (pure blue); 0 / 0 is a black slot.
+    if (map.c_y[s] > 0)
+      map.skip_ratio = std::max(map.skip_ratio, map.pixel_weight_max[s] / map.c_y[s]);
   }
 
   // Names: a material's only slot is the material; several slots say which lights give each.
@@ -123,9 +136,11 @@ SlotMap make_slots(const VectorHeader& header, const Chip& chip) {
     const std::string& name = header.materials[o.material].name;
     o.own_tau = per_material[o.material].slot.size() > 1;
     map.per_light = map.per_light || o.own_tau;
-    map.params[s].name = o.own_tau ? fmt::format("material '{}' under {} (c_y {:.3g}: its own tau)",
-                                                 name, light_list(o.lights), o.c_y)
-                                   : fmt::format("material '{}'", name);
+    map.params[s].name =
+        o.own_tau ? fmt::format("material '{}' under {} ({} {:.3g}: its own tau)", name,
+                                light_list(o.lights),
+                                header.eps_measure == EpsMeasure::kChannel ? "w_max" : "c_y", o.c_y)
+                  : fmt::format("material '{}'", name);
   }
   if (map.per_light) {
     map.slot_of = std::move(slot_of);
@@ -184,6 +199,17 @@ SlotMap make_slots(const VectorHeader& header, const Chip& chip) {
   return map;
 }
 
+std::string pixel_measure_line(const SlotMap& slots) {
+  return fmt::format("pixel error: largest channel of light x specular, {} display; eps on {}",
+                     to_string(slots.display),
+                     slots.eps_measure == EpsMeasure::kChannel ? "the largest channel"
+                                                               : "luminance c_y (Källberg eq.3)");
+}
+
+nlohmann::json pixel_measure_json(const SlotMap& slots) {
+  return {{"display", to_string(slots.display)}, {"eps_measure", to_string(slots.eps_measure)}};
+}
+
 void check_lane_slots(std::size_t units, const SlotMap& slots) {
   if (units * slots.params.size() > kMaxLaneSlots)
     throw ResourceLimitError(fmt::format(
@@ -217,8 +243,7 @@ ErrorParts UnitStats::bound() const {
 
 double UnitStats::weighted_bound() const {
   double w = 0;
-  for (const SlotContract& c : slots)
-    w = std::max(w, c.weight * (c.always_skipped ? 1.0 : c.bound.total()));
+  for (const SlotContract& c : slots) w = std::max(w, c.weighted_bound());
   return w;
 }
 
@@ -410,9 +435,13 @@ std::vector<UnitStats> Evaluator::stats() const {
 nlohmann::json Evaluator::to_json() const {
   nlohmann::json units = nlohmann::json::array();
   for (const auto& lane : lanes_) units.push_back(lane.stats().to_json());
-  return {{"glint_eval_report", kEvalReportVersion}, {"slots", slots_.params.size()},
-          {"per_light_slots", slots_.per_light},     {"datapath_groups", slots_.groups.size()},
-          {"chip", chip_json(chip_, slots_)},        {"units", units}};
+  return {{"glint_eval_report", kEvalReportVersion},
+          {"pixel_measure", pixel_measure_json(slots_)},
+          {"slots", slots_.params.size()},
+          {"per_light_slots", slots_.per_light},
+          {"datapath_groups", slots_.groups.size()},
+          {"chip", chip_json(chip_, slots_)},
+          {"units", units}};
 }
 
 namespace {

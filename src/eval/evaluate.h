@@ -16,6 +16,7 @@
 #include "eval/contract.h"
 #include "eval/deferral.h"
 #include "io/vectors.h"
+#include "reference/pixel_error.h"
 #include "reference/reference.h"
 #include "timing/timing.h"
 #include "units/catalogue.h"
@@ -32,8 +33,20 @@ namespace glint {
 struct SlotMap : SlotPlan {
   std::vector<Lobe> lobe;         // lobe of each slot's material
   std::vector<double> roughness;  // gaussian omega (0 otherwise)
-  std::vector<double> c_y;        // luminance behind each slot's tau (its pixel weight)
-  bool per_light = false;         // some light changes some material's c_y: it has several slots
+  // The weight behind each slot's tau (eq.5: tau = (eps_K / weight)^(1/n)): c_y, the luminance of
+  // light x specular (eq.3), or with EpsMeasure::kChannel the largest channel weight.
+  std::vector<double> c_y;
+  // Each slot's channel weights on the pixel (reference/pixel_error.h), and the largest: the
+  // weighted error's factor. Lights that share a slot (the same c_y) with different colours give
+  // it the largest of their weights per channel, a bound on each request's.
+  std::vector<Rgb> pixel_weight;
+  std::vector<double> pixel_weight_max;
+  DisplayEncoding display = DisplayEncoding::kLinear8;  // the stream's (the header's `display`)
+  EpsMeasure eps_measure = EpsMeasure::kLuminance;
+  // The largest pixel_weight_max / c_y over the slots (1 with EpsMeasure::kChannel): a skipped
+  // lobe reaches at most eps_K times it on a channel (skip_guarantee_lsb).
+  double skip_ratio = 1;
+  bool per_light = false;  // some light changes some material's c_y: it has several slots
   std::size_t materials = 0;
   // The slot of (light, material) is slot_of[light * light_stride + material]; light_stride is 0
   // when every light gives each material the same slot.
@@ -120,6 +133,18 @@ void check_memo_bytes(const std::vector<const SpecularUnit*>& units);
 // (ResourceLimitError).
 SlotMap make_slots(const VectorHeader& header, const Chip& chip = {});
 
+// The header with the run's eps measure (--eps-measure): make_slots keys slots and thresholds on
+// it.
+inline VectorHeader with_eps_measure(VectorHeader header, EpsMeasure measure) {
+  header.eps_measure = measure;
+  return header;
+}
+
+// What every report states of its pixel measure (reference/pixel_error.h): the display encoding
+// and the eps measure, as text for a summary line ("pixel error: ...", no newline) and as JSON.
+std::string pixel_measure_line(const SlotMap& slots);
+nlohmann::json pixel_measure_json(const SlotMap& slots);
+
 // The float reference the units are judged against: max(0,t)^n for Phong and Blinn (eq.1-2, the
 // scalar lobe; colour is a separate multiply), exp(-(acos t / omega)^2) for Gaussian lobes (eq.7),
 // at t clamped to <= 1.
@@ -162,8 +187,11 @@ struct UnitStats {
   nlohmann::json description;
   std::uint64_t vectors = 0, skipped = 0;
   std::uint64_t always_skipped_vectors = 0;  // of always-skipped slots: in no scalar statistic
-  ErrorStats total;     // fixed result vs the reference lobe at the real t (what a user sees)
-  ErrorStats weighted;  // the same times the slot's c_y: what reaches the pixel (Källberg eq.3)
+  ErrorStats total;  // fixed result vs the reference lobe at the real t (what a user sees)
+  // The pixel error (reference/pixel_error.h): the result's error on the largest channel of the
+  // light x specular colour, in the display's encoding (linear: |error| x the largest channel
+  // weight).
+  ErrorStats weighted;
   // Observed parts (contract.h): input, parameter, approximation and datapath on computed
   // requests, skip (the lobe's value) on skipped ones.
   PartStats input, parameter, approximation, datapath, skip;
@@ -318,11 +346,12 @@ class LaneAccumulator {
   bool sum_settled_ = false;
   // Per slot, the largest t at or below which a row is skipped and its reference at most the
   // deferral bound (-inf: none; accumulate_rows leaves such rows out once its statistics are
-  // settled); whether any slot has one, whether some begun slot is always skipped, and the largest
-  // slot weight.
+  // settled); whether any slot has one, whether some begun slot is always skipped, and per slot and
+  // over all the factor a deferred reference's pixel error is at most (slope x w_max).
   std::vector<double> drop_t_;
   bool drops_any_ = false, any_always_ = false;
-  double max_c_y_ = 0;
+  std::vector<double> settle_weight_;
+  double max_weight_ = 0;
   void set_drop_t(int e);
   // The largest t the comparator of `slot` surely skips (the value of its threshold's code;
   // -inf when it skips nothing).
@@ -345,8 +374,9 @@ struct EvalRecord {
 // error_bound); 2 nests them in "errors"; 3 decomposes them (errors.parts, bounds per slot, display
 // and weighted errors, contract); 4 adds the scene's elaboration (datapath_groups, slot_capacity,
 // description.elaboration); 5 states the chip (chip replaces slot_capacity; elaboration.storage,
-// group_capacity).
-inline constexpr int kEvalReportVersion = 5;
+// group_capacity); 6 states the pixel measure (pixel_measure: display, eps_measure) and makes the
+// weighted errors the pixel error of reference/pixel_error.h (5: the scalar error times c_y).
+inline constexpr int kEvalReportVersion = 6;
 
 // The results of one batch of rows through every unit of an Evaluator: unit u's result for row i
 // at raw[u * rows + i] (0 when skipped), its skip flag at skipped[u * rows + i], and the float

@@ -76,7 +76,7 @@ struct Field {
   bool optional = false;
 };
 
-// The sim report's fixed part (src/eval/sim_report.md, version 3): its top level and each
+// The sim report's fixed part (src/eval/sim_report.md, version 5): its top level and each
 // unit's keys. tests/eval/test_golden.cpp checks that a report of this build passes.
 constexpr Field kReportFields[] = {{"glint_sim_report", Kind::kUnsigned},
                                    {"vectors_file", Kind::kString},
@@ -84,6 +84,7 @@ constexpr Field kReportFields[] = {{"glint_sim_report", Kind::kUnsigned},
                                    {"mode", Kind::kString},
                                    {"sink_ready", Kind::kNumber},
                                    {"seed", Kind::kUnsigned},
+                                   {"pixel_measure", Kind::kObject},
                                    {"slots", Kind::kUnsigned},
                                    {"per_light_slots", Kind::kBoolean},
                                    {"datapath_groups", Kind::kUnsigned},
@@ -106,7 +107,7 @@ constexpr Field kStallFields[] = {{"merge_buffer_full", Kind::kUnsigned},
                                   {"unit_busy", Kind::kUnsigned}};
 constexpr Field kAreaFields[] = {{"ge", Kind::kNumber}, {"inventory", Kind::kArray}};
 constexpr Field kCriticalPathFields[] = {{"delay", Kind::kNumber}, {"stage", Kind::kString}};
-// The render report's fixed part (src/render/render_report.md, version 2).
+// The render report's fixed part (src/render/render_report.md, version 3).
 constexpr Field kRenderReportFields[] = {{"glint_render_report", Kind::kUnsigned},
                                          {"scene", Kind::kString},
                                          {"resolution", Kind::kArray},
@@ -118,7 +119,10 @@ constexpr Field kRenderReportFields[] = {{"glint_render_report", Kind::kUnsigned
                                          {"chip", Kind::kObject},
                                          {"slots", Kind::kArray},
                                          {"skip", Kind::kObject},
+                                         {"display", Kind::kString},
+                                         {"eps_measure", Kind::kString},
                                          {"skip_only_image_error", Kind::kObject},
+                                         {"skip_guarantee", Kind::kObject},
                                          {"units", Kind::kArray},
                                          {"files", Kind::kArray}};
 constexpr Field kRenderUnitFields[] = {{"unit", Kind::kString},
@@ -135,10 +139,10 @@ constexpr Field kRenderUnitFields[] = {{"unit", Kind::kString},
                                        {"errors", Kind::kObject},
                                        {"description", Kind::kObject}};
 // The report is kAny here: an object, or null for a golden of budgets only (checked below).
-constexpr Field kGoldenFields[] = {
-    {"trace", Kind::kString},  {"units", Kind::kArray},          {"sink_ready", Kind::kNumber},
-    {"seed", Kind::kUnsigned}, {"chip", Kind::kString, true}, {"budgets", Kind::kObject, true},
-    {"report", Kind::kAny}};
+constexpr Field kGoldenFields[] = {{"trace", Kind::kString},      {"units", Kind::kArray},
+                                   {"sink_ready", Kind::kNumber}, {"seed", Kind::kUnsigned},
+                                   {"chip", Kind::kString, true}, {"budgets", Kind::kObject, true},
+                                   {"report", Kind::kAny}};
 constexpr Field kSceneGoldenFields[] = {{"scene", Kind::kString},
                                         {"units", Kind::kArray},
                                         {"chip", Kind::kString, true},

@@ -55,6 +55,18 @@ inline double min1(double v) {
   return select(v > 1.0, 1.0, v);
 }
 
+// A row's pixel error (reference/pixel_error.h) from its slot's channel weights w and their largest
+// w_max: the linear encoding inline (|err| w_max, the engine's common case), sRGB per channel.
+inline double row_pixel_error(bool linear, const Rgb& w, double w_max, double fixed, double ref) {
+  return linear ? std::fabs(fixed - ref) * w_max
+                : request_pixel_error(DisplayEncoding::kSrgb8, w, fixed, ref);
+}
+
+// The same for a skipped row (result 0): sRGB is increasing, so its largest channel is w_max's.
+inline double skipped_pixel_error(bool linear, double w_max, double ref) {
+  return linear ? ref * w_max : encode(DisplayEncoding::kSrgb8, ref * w_max);
+}
+
 // A largest value (strict >: the first row to reach it) with that row's index in the run, so
 // that the maxima of two passes over disjoint rows join into the one of a single pass.
 struct FirstMax {
@@ -209,7 +221,13 @@ LaneAccumulator::LaneAccumulator(const SpecularUnit& unit, const SlotMap& slots,
   slot_state_.assign(unit.slots(), -1);
   tau_.resize(unit.slots());
   for (std::size_t s = 0; s < tau_.size(); ++s) tau_[s] = unit.tau_raw(s);
-  for (const double w : slots.c_y) max_c_y_ = std::max(max_c_y_, w);
+  // A deferred reference r <= 2^e reaches the pixel as at most slope * w_max * r (the encoding's
+  // slope bounds it: encoding_slope): the factor SettledRows::weighted compares against.
+  const double slope = encoding_slope(slots.display);
+  for (const double w : slots.pixel_weight_max) {
+    settle_weight_.push_back(slope * w);
+    max_weight_ = std::max(max_weight_, slope * w);
+  }
   set_drop_t(kDeferredExponent);
   const int width = unit.in_format().width();
   if (width <= kMemoMaxWidth && unit.slots() << width <= kMemoMaxCodes) {
@@ -230,7 +248,7 @@ void LaneAccumulator::begin_slot(std::size_t slot) {
     SlotContract c = stats_.slots[it->second];  // the same sweep: only who it is differs
     c.slot = slot;
     c.name = slots_.params[slot].name;
-    c.weight = slots_.c_y[slot];
+    c.weight = slots_.pixel_weight_max[slot];
     stats_.slots.push_back(std::move(c));
   }
   slot_state_[slot] = stats_.slots.back().always_skipped ? 1 : 0;
@@ -316,10 +334,12 @@ void LaneAccumulator::add(std::size_t slot, const RowReference& ref, std::int64_
                           bool skipped, std::int64_t out_raw) {
   begin_slot(slot);
   const double fixed = static_cast<double>(out_raw) * ulp_;
-  const double err = fixed - ref.value;
   ++stats_.vectors;
   stats_.skipped += skipped;
-  stats_.weighted.add(err * slots_.c_y[slot], ref.t);
+  stats_.weighted.add(
+      row_pixel_error(slots_.display == DisplayEncoding::kLinear8, slots_.pixel_weight[slot],
+                      slots_.pixel_weight_max[slot], fixed, ref.value),
+      ref.t);
   // A lobe that never reaches eps on the pixel is counted apart: its scalar error is the whole
   // lobe and would hide every other slot's (it stays in the weighted error and the digest).
   if (slot_state_[slot] == 1) {
@@ -355,10 +375,11 @@ namespace {
 struct LaneView {
   const SlotMap& slots;
   InputQuantizer quantize;
-  const std::int64_t* tau;   // per slot: the comparator's threshold
-  const std::int8_t* state;  // per slot: 1 always skipped
-  const double* drop_t;      // per slot (LaneAccumulator::drop_t)
-  double max_c_y, ulp, display;
+  const std::int64_t* tau;      // per slot: the comparator's threshold
+  const std::int8_t* state;     // per slot: 1 always skipped
+  const double* drop_t;         // per slot (LaneAccumulator::drop_t)
+  const double* settle_weight;  // per slot: slope x largest channel weight (SettledRows::weighted)
+  double max_weight, ulp, display;
   bool any_always;  // some begun slot is always skipped
   SettledRows settled;
 };
@@ -388,7 +409,10 @@ struct Run {
         p(p),
         tau(lane.tau),
         state(lane.state),
-        c_y(lane.slots.c_y.data()),
+        weight(lane.slots.pixel_weight_max.data()),
+        pixel_weight(lane.slots.pixel_weight.data()),
+        settle_weight(lane.settle_weight),
+        linear(lane.slots.display == DisplayEncoding::kLinear8),
         ulp(lane.ulp),
         display(lane.display),
         settled(lane.settled) {
@@ -440,11 +464,11 @@ struct Run {
     // which changes nothing either (every maximum it enters is larger, its square is 0, its
     // display code 0): no branch on which rows were deferred, which a stream takes at random.
     const bool scalars = scalars_settled();
-    const bool weighted = settled.weighted(skipped_weighted.value, c_y[s]);
+    const bool weighted = settled.weighted(skipped_weighted.value, settle_weight[s]);
     const bool is_settled = (always | scalars) & weighted;
     if ((ref < 0.0) & !is_settled) ref = reference_value(lane.slots, s, t);
     ref = select(ref < 0.0, 0.0, ref);  // kDeferredReference is negative, a lobe never
-    skipped_weighted.add(ref * c_y[s], t, k);
+    skipped_weighted.add(skipped_pixel_error(linear, weight[s], ref), t, k);
     if (always) {
       ++always_rows;
       square[k] = 0;
@@ -469,7 +493,7 @@ struct Run {
       const std::size_t i = a + j;
       const std::size_t s = rows.slot[i];
       const double ref = rows.reference[i];
-      const bool weighted = settled.weighted(weighted_now, c_y[s]);
+      const bool weighted = settled.weighted(weighted_now, settle_weight[s]);
       const bool keep = (ref > 0.0) | ((ref < 0.0) & !weighted);
       square[j] = 0;
       always_rows += (state[s] == 1) & !keep;
@@ -505,7 +529,7 @@ struct Run {
       const std::size_t some = classify(nullptr, k, std::min(n, k + kSettledCheck) - k);
       for (std::size_t x = 0; x < some; ++x) add_skipped(skipped_rows[x]);
     }
-    const bool drop = settled.weighted(skipped_weighted.value, lane.max_c_y);
+    const bool drop = settled.weighted(skipped_weighted.value, lane.max_weight);
     const std::size_t rest = drop ? leave_out_dropped(k) : n - k;
     add_unsettled_skipped(0, classify(drop ? listed : nullptr, k, rest));
   }
@@ -595,7 +619,7 @@ struct Run {
       }
       const double fixed = static_cast<double>(out) * ulp;
       const double err = fixed - ref;
-      computed_weighted.add(std::fabs(err * c_y[s]), t, k);
+      computed_weighted.add(row_pixel_error(linear, pixel_weight[s], weight[s], fixed, ref), t, k);
       if (always) {
         ++always_rows;
         square[k] = 0;
@@ -633,7 +657,10 @@ struct Run {
   LanePartial& p;
   const std::int64_t* const tau;
   const std::int8_t* const state;
-  const double* const c_y;
+  const double* const weight;         // per slot: the largest channel weight
+  const Rgb* const pixel_weight;      // per slot: the channel weights
+  const double* const settle_weight;  // per slot: LaneView::settle_weight
+  const bool linear;                  // the display's encoding is linear
   const double ulp, display;
   const SettledRows settled;
   double* square = nullptr;
@@ -665,11 +692,17 @@ void LaneAccumulator::accumulate_rows(const RowsView& rows, std::size_t a, std::
                                       LanePartial& p, std::int64_t* raw,
                                       std::uint8_t* skipped) const {
   const LaneView lane{
-      slots_,         InputQuantizer(unit_.in_format()),
-      tau_.data(),    slot_state_.data(),
-      drop_t_.data(), max_c_y_,
-      ulp_,           display_,
-      any_always_,    SettledRows(deferred_exponent_, sum_settled_),
+      slots_,
+      InputQuantizer(unit_.in_format()),
+      tau_.data(),
+      slot_state_.data(),
+      drop_t_.data(),
+      settle_weight_.data(),
+      max_weight_,
+      ulp_,
+      display_,
+      any_always_,
+      SettledRows(deferred_exponent_, sum_settled_),
   };
   const auto facts = [this](std::size_t slot, std::int64_t t_raw) {
     return compute_facts(slot, t_raw);

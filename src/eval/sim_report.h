@@ -14,9 +14,10 @@
 namespace glint {
 
 // 2: errors decomposed; 3: the scene's elaboration (datapath_groups, slot_capacity, per unit
-// "elaboration"); 4: no colour stage in any lane (units[].colour_multiply gone)
-// (src/eval/sim_report.md).
-inline constexpr int kSimReportVersion = 4;
+// "elaboration"); 4: no colour stage in any lane (units[].colour_multiply gone); 5: pixel_measure,
+// and weighted errors are the pixel error of reference/pixel_error.h (4: the scalar error times
+// c_y) (src/eval/sim_report.md).
+inline constexpr int kSimReportVersion = 5;
 
 // One unit's report: config, elaboration, counts, timing, operations, area and critical path,
 // errors.

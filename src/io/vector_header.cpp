@@ -57,6 +57,7 @@ class HeaderParser {
   void parse_magic(const Tokens& tok);
   void parse_keyword(const Tokens& tok);
   void parse_eps(const Tokens& tok);
+  void parse_display(const Tokens& tok);
   void parse_lights(const Tokens& tok);
   void parse_light(const Tokens& tok);
   void parse_material(const Tokens& tok);
@@ -87,7 +88,7 @@ class HeaderParser {
   VectorFileHeader result_;
   bool magic_seen_ = false;
   bool done_ = false;  // `data` read
-  std::uint64_t eps_line_ = 0, lights_line_ = 0, columns_line_ = 0;
+  std::uint64_t eps_line_ = 0, lights_line_ = 0, columns_line_ = 0, display_line_ = 0;
   std::vector<PendingLight> pending_lights_;
   // Where each material was defined, by name: also the duplicate check, in constant time since
   // a file may hold kVectorMaxMaterials of them.
@@ -146,6 +147,7 @@ void HeaderParser::parse_keyword(const Tokens& tok) {
       {"eps", &HeaderParser::parse_eps},         {"lights", &HeaderParser::parse_lights},
       {"light", &HeaderParser::parse_light},     {"material", &HeaderParser::parse_material},
       {"columns", &HeaderParser::parse_columns}, {"data", &HeaderParser::parse_data},
+      {"display", &HeaderParser::parse_display},
   };
   const std::string_view key = tok[0];
   for (const Keyword& k : kKeywords) {
@@ -164,6 +166,15 @@ void HeaderParser::parse_eps(const Tokens& tok) {
   if (!valid_eps(eps)) fail("eps", "eps must be > 0, got " + quote_input(tok[1]));
   result_.header.eps = eps;
   eps_line_ = line();
+}
+
+void HeaderParser::parse_display(const Tokens& tok) {
+  once(display_line_, "display");
+  expect_tokens(tok, 2, "display", "display linear8|srgb8");
+  const auto display = try_parse_display(tok[1]);
+  if (!display) fail("display", "expected linear8 or srgb8, got " + quote_input(tok[1]));
+  result_.header.display = *display;
+  display_line_ = line();
 }
 
 void HeaderParser::parse_lights(const Tokens& tok) {

@@ -206,6 +206,11 @@ struct VectorWriter::Impl {
     buf += magic_line();
     buf += "\neps ";
     append_double(buf, header.eps);
+    // Only when not the default, so that files written before the line existed stay the same.
+    if (header.display != DisplayEncoding::kLinear8) {
+      buf += "\ndisplay ";
+      buf += to_string(header.display);
+    }
     buf += "\nlights ";
     append_int(buf, header.lights);
     buf += '\n';

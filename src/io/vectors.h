@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "io/input_error.h"
+#include "reference/pixel_error.h"
 #include "reference/reference.h"
 
 namespace glint {
@@ -72,6 +73,12 @@ struct VectorHeader {
   std::vector<VectorMaterial> materials;  // at least one; names unique
   bool has_light = false;                 // rows carry a light index column
   bool has_xy = false;                    // rows carry pixel coordinates x y
+  // The display the requests' pixel errors are measured in (reference/pixel_error.h): the
+  // optional `display` line, linear8 when absent.
+  DisplayEncoding display = DisplayEncoding::kLinear8;
+  // What eps is a threshold of: not a line of the file but the run's --eps-measure, which the
+  // command sets after reading the header.
+  EpsMeasure eps_measure = EpsMeasure::kLuminance;
 
   // Index of the material called `name`, or npos.
   std::size_t material_index(std::string_view name) const;

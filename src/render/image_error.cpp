@@ -8,13 +8,15 @@ namespace glint {
 
 int ImageErrorAccumulator::add(const Rgb8& reference, const Rgb8& image, Highlight reference_hl,
                                Highlight image_hl) {
+  // The pixel error (reference/pixel_error.h): the largest channel's code difference. The mean
+  // is of that figure; PSNR stays the usual one over every channel.
   int worst = 0;
   for (int c = 0; c < 3; ++c) {
     const int d = std::abs(int{image[c]} - int{reference[c]});
     worst = d > worst ? d : worst;
-    sum_abs_ += static_cast<std::uint64_t>(d);
     sum_sq_ += static_cast<std::uint64_t>(d * d);
   }
+  sum_abs_ += static_cast<std::uint64_t>(worst);
   max_ = worst > max_ ? worst : max_;
   differing_ += worst > 0;
   ++pixels_;
@@ -39,7 +41,7 @@ ImageError ImageErrorAccumulator::result() const {
   if (pixels_ == 0) return e;
   const double channels = 3.0 * static_cast<double>(pixels_);
   e.max_lsb = max_;
-  e.mean_lsb = static_cast<double>(sum_abs_) / channels;
+  e.mean_lsb = static_cast<double>(sum_abs_) / static_cast<double>(pixels_);
   // Integer sums, so the figures are exact whatever order the tiles were added in.
   if (sum_sq_ > 0) e.psnr_db = 10.0 * std::log10(255.0 * 255.0 * channels / sum_sq_);
   e.differing_fraction = static_cast<double>(differing_) / static_cast<double>(pixels_);

@@ -29,8 +29,24 @@ void add_scaled(Rgb& acc, const Rgb& colour, double s) {
   acc.b += colour.b * s;
 }
 
-Rgb8 to_srgb8(const Rgb& c) {
-  return {srgb8(c.r), srgb8(c.g), srgb8(c.b)};
+// The slot's luminance (eq.3): SlotMap::c_y under the luminance measure; under the channel
+// measure its c_y holds the largest channel weight, and the luminance is of its channel weights.
+double c_y_of(const SlotMap& slots, std::size_t s) {
+  return slots.eps_measure == EpsMeasure::kLuminance ? slots.c_y[s]
+                                                     : luminance(slots.pixel_weight[s]);
+}
+
+// A pixel's 8-bit codes in the scene's display encoding (reference/pixel_error.h).
+Rgb8 to_display8(DisplayEncoding e, const Rgb& c) {
+  return {display_code8(e, c.r), display_code8(e, c.g), display_code8(e, c.b)};
+}
+
+// The scene's request header with the run's eps measure.
+VectorHeader request_header(const Scene& scene, const RenderOptions& options,
+                            std::vector<std::int32_t>* header_of) {
+  VectorHeader h = scene_request_header(scene, header_of);
+  h.eps_measure = options.eps_measure;
+  return h;
 }
 
 // The materials objects use, in scene order.
@@ -75,7 +91,7 @@ class SceneRenderer {
         width_(scene.camera.width),
         height_(scene.camera.height),
         lights_(scene.lights.size()),
-        header_(scene_request_header(scene, &header_of_)),
+        header_(request_header(scene, options, &header_of_)),
         ev_(header_, unit_specs(options), 8, options.chip),
         units_(ev_.units().size()),
         tracer_(scene) {
@@ -231,7 +247,7 @@ class SceneRenderer {
   Rgb8 final_pixel(std::size_t source, std::size_t p) const {
     const Rgb& d = diffuse_[p];
     const Rgb& s = specular_light_[source][p];
-    return to_srgb8(Rgb{d.r + s.r, d.g + s.g, d.b + s.b});
+    return to_display8(scene_.display, Rgb{d.r + s.r, d.g + s.g, d.b + s.b});
   }
 
   // The highlight's extent and core are levels relative to the material's peak (10 % and 50 %),
@@ -255,7 +271,7 @@ class SceneRenderer {
       const Rgb8 ref = ref8_[p] = final_pixel(0, p);
       ref_highlight_[p] = highlight(0, p);
       out_.reference.set(x, y, ref);
-      out_.reference_specular.set(x, y, to_srgb8(specular_light_[0][p]));
+      out_.reference_specular.set(x, y, to_display8(scene_.display, specular_light_[0][p]));
       const Rgb8 skip_only = final_pixel(1, p);
       out_.skip_only.set(x, y, skip_only);
       skip_acc_.add(ref, skip_only, ref_highlight_[p], highlight(1, p));
@@ -282,7 +298,7 @@ class SceneRenderer {
       const int x = x_of(p), y = y_of(p);
       const Rgb8 img = final_pixel(2 + u, p);
       image_[u].set(x, y, img);
-      specular_[u].set(x, y, to_srgb8(specular_light_[2 + u][p]));
+      specular_[u].set(x, y, to_display8(scene_.display, specular_light_[2 + u][p]));
       error_[u][static_cast<std::size_t>(y) * width_ + x] = static_cast<std::uint8_t>(
           acc_[u].add(ref8_[p], img, ref_highlight_[p], highlight(2 + u, p)));
     }
@@ -290,6 +306,12 @@ class SceneRenderer {
 
   void finish() {
     out_.skip_only_error = skip_acc_.result();
+    const SlotMap& slot_map = ev_.slots();
+    out_.display = scene_.display;
+    out_.eps_measure = slot_map.eps_measure;
+    out_.skip_ratio = slot_map.skip_ratio;
+    out_.skip_guarantee_lsb = skip_guarantee_lsb(scene_.display, scene_.eps, slot_map.skip_ratio);
+    out_.skip_within_guarantee = out_.skip_only_error.max_lsb <= out_.skip_guarantee_lsb;
     const std::vector<UnitStats> stats = ev_.stats();
     for (std::size_t u = 0; u < units_; ++u) {
       UnitRender r;
@@ -318,7 +340,8 @@ class SceneRenderer {
       out_.slots.push_back({{"name", p.name},
                             {"lobe", to_string(slots.lobe[s])},
                             {"shininess", p.shininess},
-                            {"c_y", slots.c_y[s]},
+                            {"c_y", c_y_of(slots, s)},
+                            {"pixel_weight", slots.pixel_weight_max[s]},
                             {"tau", p.tau},
                             {"always_skip", p.always_skip}});
     }

@@ -23,7 +23,11 @@ namespace glint {
 class OutputSet;
 class OutputFile;
 
-inline constexpr int kRenderReportVersion = 2;
+// Version 3: image errors' mean_lsb is the mean of the pixels' largest channel (2: of every
+// channel); display, eps_measure, skip_guarantee and slots[].pixel_weight added; request-level
+// weighted errors in the scene's display encoding (2: linear, times c_y). Version 2 stated the
+// chip (chip; the colour stage gone).
+inline constexpr int kRenderReportVersion = 3;
 
 // The header of a scene's shading requests: the lights, and only the materials objects use (units
 // are elaborated for what the scene shows, not for what its file defines). header_of, if given,
@@ -34,17 +38,20 @@ VectorHeader scene_request_header(const Scene& scene,
 struct RenderOptions {
   std::vector<UnitSpec> units;  // empty: every unit at its defaults
   int threads = 1;
-  Chip chip;              // --chip (units/chip.h)
+  Chip chip;                                        // --chip (units/chip.h)
+  EpsMeasure eps_measure = EpsMeasure::kLuminance;  // --eps-measure (reference/pixel_error.h)
   int tile_rows = 16;     // rows ray-cast and evaluated together (memory: one tile's requests)
   bool progress = false;  // a progress line on stderr
   // Receives every tile's requests in raster order (pixel, then light), e.g. for a vector file.
   std::function<void(const VectorRow* rows, std::size_t count)> on_requests;
 };
 
-// Error of one image against the reference, on the final 8-bit sRGB pixels (every channel).
+// Error of one image against the reference, on the final 8-bit pixels in the scene's display
+// encoding. A pixel's error is its largest channel's code difference (reference/pixel_error.h);
+// max and mean are of that figure, and the heat map shows it.
 struct ImageError {
   double max_lsb = 0;
-  double mean_lsb = 0;  // mean |difference| over every channel of every pixel
+  double mean_lsb = 0;  // mean of the pixels' errors (before schema 2: of every channel)
   double psnr_db = std::numeric_limits<double>::infinity();  // 10 log10(255^2 / MSE); inf if equal
   double differing_fraction = 0;                             // pixels with any channel different
   // The highlight's extent: pixels whose specular luminance reaches a tenth of the material's peak
@@ -89,9 +96,17 @@ struct RenderResult {
   std::uint64_t requests = 0;
   Image8 reference, reference_specular, skip_mask;
   // The reference with Källberg's skip alone (every request at t <= tau gives 0): the image cost
-  // of the threshold itself, which eps keeps within 1 LSB.
+  // of the threshold itself.
   Image8 skip_only;
   ImageError skip_only_error;
+  // What eps guarantees of it (skip_guarantee_lsb): the scene's display, the eps measure, the
+  // largest channel weight over a slot's tau weight, the bound in LSB, and whether the image holds
+  // it (it must: a false here is a bug, and the render then states no bound).
+  DisplayEncoding display = DisplayEncoding::kSrgb8;
+  EpsMeasure eps_measure = EpsMeasure::kLuminance;
+  double skip_ratio = 1;
+  int skip_guarantee_lsb = 0;
+  bool skip_within_guarantee = false;
   std::vector<std::string> materials;          // every scene material (the index of skips)
   std::vector<std::string> lights;             // every light's name
   std::vector<std::string> used_materials;     // those objects use: the ones units are built for

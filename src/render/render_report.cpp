@@ -147,7 +147,13 @@ nlohmann::json RenderResult::to_json() const {
           {"chip", chip},
           {"slots", slots},
           {"skip", {{"total", total.to_json()}, {"per_light_material", per_pair}}},
+          {"display", to_string(display)},
+          {"eps_measure", to_string(eps_measure)},
           {"skip_only_image_error", skip_only_error.to_json()},
+          {"skip_guarantee",
+           {{"bound_lsb", skip_guarantee_lsb},
+            {"holds", skip_within_guarantee},
+            {"channel_over_tau_weight", skip_ratio}}},
           {"units", units_json},
           {"files", render_file_names(*this)}};
 }

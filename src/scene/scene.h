@@ -85,6 +85,9 @@ struct Scene {
   std::string file;   // the path it was loaded from (for messages and reports)
   std::string name;   // "name" in the file, else the file's stem
   double eps = 1e-3;  // perceptibility threshold (Källberg), > 0
+  // The display its images are encoded for, and its pixel errors measured in
+  // (reference/pixel_error.h): "display" in the file, sRGB unless it says linear8.
+  DisplayEncoding display = DisplayEncoding::kSrgb8;
   Rgb ambient{0, 0, 0};
   Rgb background{0, 0, 0};
   SceneCamera camera;

@@ -10,6 +10,7 @@ namespace glint {
 VectorHeader scene_vector_header(const Scene& scene) {
   VectorHeader h;
   h.eps = scene.eps;
+  h.display = scene.display;
   // Clamped so that an oversized count stays oversized (validate() rejects it) instead of wrapping.
   h.lights = static_cast<int>(std::min<std::size_t>(scene.lights.size(), kVectorMaxLights + 1));
   for (const SceneLight& light : scene.lights) {

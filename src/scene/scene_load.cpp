@@ -128,8 +128,8 @@ Scene load_scene(const std::string& path) {
   const Node root(doc, "", path);
   if (!doc.is_object()) root.fail(std::string("must be a JSON object, not ") + doc.type_name());
   check_version(root);
-  root.expect_object({"glint_scene", "name", "eps", "camera", "ambient", "background", "lights",
-                      "materials", "objects"});
+  root.expect_object({"glint_scene", "name", "eps", "display", "camera", "ambient", "background",
+                      "lights", "materials", "objects"});
   Scene scene;
   scene.file = path;
   scene.name = std::filesystem::path(path).stem().string();
@@ -138,6 +138,11 @@ Scene load_scene(const std::string& path) {
     if (scene.name.size() > 256) name->fail("longer than 256 bytes");
   }
   if (const auto eps = root.find("eps")) scene.eps = eps->positive();
+  if (const auto display = root.find("display")) {
+    const auto e = try_parse_display(display->string());
+    if (!e) display->fail("expected \"srgb8\" or \"linear8\"");
+    scene.display = *e;
+  }
   if (const auto ambient = root.find("ambient")) scene.ambient = ambient->colour();
   if (const auto background = root.find("background")) scene.background = background->colour();
   scene.camera = read_camera(root.at("camera"));

@@ -26,8 +26,9 @@ namespace glint {
 struct SweepSettings {
   int display_bits = 8;  // errors in LSBs of this depth (--display-bits)
   Chip chip;             // --chip: the chip every configuration is built on
-  int jobs = 1;          // threads (results do not depend on it)
-  SinkReady sink;        // sink backpressure of the timing model (default: always ready)
+  EpsMeasure eps_measure = EpsMeasure::kLuminance;  // --eps-measure
+  int jobs = 1;                                     // threads (results do not depend on it)
+  SinkReady sink;  // sink backpressure of the timing model (default: always ready)
   // Configurations per Evaluator (built on the threads by block), and rows per window of the
   // engine (each thread keeps ~16 bytes per row of it).
   std::size_t block = 64;

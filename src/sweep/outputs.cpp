@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "eval/chip_report.h"
 #include "sweep/plot.h"
 #include "sweep/report.h"
 
@@ -95,6 +96,26 @@ std::string format_sweep_summary(const nlohmann::json& report) {
                         report.at("configurations").get<std::size_t>())
           : std::string(),
       report.at("error_measure").get<std::string>(), report.at("display_bits").get<int>());
+  // The pixel measure its weighted and image errors are in (reference/pixel_error.h).
+  // A report that merge accepted may come from elsewhere: only a well-formed one is printed.
+  const auto text = [](const nlohmann::json& o, const char* key) {
+    const auto it = o.find(key);
+    return it != o.end() && it->is_string() ? it->get<std::string>() : std::string("?");
+  };
+  if (const auto pm = input.find("pixel_measure"); pm != input.end() && pm->is_object())
+    out += fmt::format("pixel error: largest channel of light x specular, {} display; eps on {}\n",
+                       text(*pm, "display"), text(*pm, "eps_measure"));
+  // The chip every configuration is built on (eval/chip_report.h), when well formed.
+  if (const auto chip = report.find("chip"); chip != report.end() && chip->is_object()) {
+    const auto count = [&](const char* key) {
+      const auto it = chip->find(key);
+      return it != chip->end() && it->is_number_unsigned();
+    };
+    if (count("materials") && count("slots") && text(*chip, "spec") != "?" &&
+        text(*chip, "tables") != "?" && text(*chip, "sized_to") != "?" && chip->contains("given") &&
+        chip->at("given").is_boolean())
+      out += chip_line(*chip);
+  }
   std::size_t refused = 0;
   for (const nlohmann::json& r : rows) refused += r.at("refused").is_string();
   if (refused > 0)

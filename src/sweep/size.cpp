@@ -259,8 +259,10 @@ SizeRun run_size(const std::vector<SweepInput>& inputs, const std::vector<Grid>&
                  families = nlohmann::json::array(), grid_texts = nlohmann::json::array(),
                  given_texts = nlohmann::json::array();
   for (const Budget& b : budgets) conditions.push_back(b.text);
-  for (const SweepInput& i : inputs)
-    in.push_back({{"path", i.path}, {"kind", i.scene ? "scene" : "vectors"}});
+  for (std::size_t k = 0; k < inputs.size(); ++k)
+    in.push_back({{"path", inputs[k].path},
+                  {"kind", inputs[k].scene ? "scene" : "vectors"},
+                  {"pixel_measure", run.reports[k].at("input").at("pixel_measure")}});
   std::vector<Grid> final_grids;
   for (const GridSearch& s : searches) {
     grid_texts.push_back(s.grid.text);

@@ -39,6 +39,7 @@ nlohmann::json input_json(const char* kind, const std::string& path, const Sweep
   return {{"kind", kind},
           {"path", path},
           {"rows", engine.rows()},
+          {"pixel_measure", pixel_measure_json(engine.slots())},
           {"slots", engine.slots().params.size()},
           {"datapath_groups", engine.slots().groups.size()},
           {"per_light_slots", engine.slots().per_light}};
@@ -52,7 +53,7 @@ nlohmann::json input_json(const char* kind, const std::string& path, const Sweep
 SweepEngine make_engine(const SweepJob& job, const VectorHeader& header,
                         const std::vector<SweepConfig>& mine) {
   try {
-    return SweepEngine(header, mine, job.settings);
+    return SweepEngine(with_eps_measure(header, job.settings.eps_measure), mine, job.settings);
   } catch (const ResourceLimitError& e) {
     throw InputError(job.input.path, 0, "slots", e.what());
   }
@@ -71,6 +72,7 @@ SceneRun sweep_scene(const SweepJob& job, const std::vector<SweepConfig>& all,
     RenderOptions options;
     options.threads = job.settings.jobs;
     options.chip = job.settings.chip;
+    options.eps_measure = job.settings.eps_measure;
     const std::size_t first = r * group;
     const std::size_t last = job.image ? std::min(mine.size(), first + group) : first;
     for (std::size_t k = first; k < last; ++k) options.units.push_back(mine[k].unit_spec);

@@ -214,6 +214,65 @@ TEST_F(CliTest, TauZeroShininessIsBadInput) {
   EXPECT_TRUE(r.out.empty()) << r.out;
 }
 
+// --eps-measure channel: the largest channel of light x colour in c_y's place (an orange light
+// on white: 1 against c_y 0.577), stated in the text and the JSON; every command that takes eps
+// refuses a bad value naming the option.
+TEST_F(CliTest, EpsMeasureChannelAndItsStatement) {
+  const json lum = glint_json("tau --shininess 50 --eps 1e-3 --light 1,0.5,0.1 --json");
+  const json chan =
+      glint_json("tau --shininess 50 --eps 1e-3 --light 1,0.5,0.1 --eps-measure channel --json");
+  ASSERT_TRUE(lum.is_object());
+  ASSERT_TRUE(chan.is_object());
+  EXPECT_EQ(lum.at("eps_measure"), "luminance");
+  EXPECT_EQ(chan.at("eps_measure"), "channel");
+  EXPECT_DOUBLE_EQ(chan.at("weight").get<double>(), 1.0);
+  EXPECT_DOUBLE_EQ(chan.at("c_y").get<double>(), lum.at("c_y").get<double>());
+  EXPECT_NEAR(chan.at("tau").get<double>(), std::pow(1e-3, 1.0 / 50), 1e-12);
+  EXPECT_LT(chan.at("tau").get<double>(), lum.at("tau").get<double>());
+  const json e = glint_json("eval " + quote(kPhongBasic) + " --eps-measure channel --json");
+  ASSERT_TRUE(e.is_object());
+  EXPECT_EQ(e.at("pixel_measure").at("eps_measure"), "channel");
+  EXPECT_EQ(e.at("pixel_measure").at("display"), "linear8");
+  const CliRun text = glint("sim " + quote(kPhongBasic) + " --unit lut --eps-measure channel");
+  ASSERT_EQ(text.status, 0) << text.err;
+  EXPECT_NE(lines_of(text.out).at(0).find("linear8 display; eps on the largest channel"),
+            std::string::npos)
+      << text.out;
+  for (const char* command : {"tau --shininess 50 --eps 1e-3", "eval", "sim", "sweep", "size",
+                              "render", "fit --shininess 50", "rtl --unit lut"}) {
+    const std::string input = std::string(command).rfind("render", 0) == 0
+                                  ? " " + quote(kTraces + "/scenes/small.json") + " -o x"
+                              : std::string(command).find("--") == std::string::npos
+                                  ? " " + quote(kPhongBasic)
+                                  : "";
+    const CliRun r = glint(std::string(command) + input + " --eps-measure lum");
+    EXPECT_EQ(r.status, 2) << command;
+    EXPECT_NE(r.err.find("--eps-measure"), std::string::npos) << command << ": " << r.err;
+  }
+}
+
+// A scene's "display": linear8 renders linear codes and says so; anything else is refused at its
+// field, before any output.
+TEST_F(CliTest, SceneDisplayField) {
+  std::string scene = read_text(kTraces + "/scenes/small.json");
+  const auto at = scene.find("\"eps\"");
+  ASSERT_NE(at, std::string::npos);
+  write_text(dir_ / "linear.json", std::string(scene).insert(at, "\"display\": \"linear8\", "));
+  write_text(dir_ / "bad.json", std::string(scene).insert(at, "\"display\": \"gamma22\", "));
+  const json r = glint_json("render " + quote((dir_ / "linear.json").string()) + " --unit lut -o " +
+                            quote((dir_ / "lin").string()) + " --json");
+  ASSERT_TRUE(r.is_object());
+  EXPECT_EQ(r.at("display"), "linear8");
+  EXPECT_EQ(r.at("units").at(0).at("errors").at("display_bits"), 8);
+  EXPECT_TRUE(r.at("skip_guarantee").at("holds"));
+  EXPECT_EQ(r.at("skip_guarantee").at("bound_lsb"), 1);  // 0.255 LSB at eps 1e-3, linear
+  const CliRun bad = glint("render " + quote((dir_ / "bad.json").string()) + " -o " +
+                           quote((dir_ / "bad").string()));
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("display"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(dir_ / "bad"));
+}
+
 TEST_F(CliTest, TauMissingEpsIsBadInput) {
   const CliRun r = glint("tau --shininess 50");
   EXPECT_EQ(r.status, 2);
@@ -1003,12 +1062,12 @@ TEST_F(CliTest, ReportsCarrySchemaVersions) {
   const json s = glint_json("sim " + quote(kPhongBasic) + " --json --report r.json");
   ASSERT_TRUE(e.is_object());
   ASSERT_TRUE(s.is_object());
-  // eval 5 / sim 4: the chip, no colour stage; eval 4 / sim 3: the scene's elaboration
-  // (src/eval/sim_report.md); eval 3 / sim 2 decomposed the errors into parts with bounds; eval 2
-  // nested v1's keys.
-  EXPECT_EQ(e.at("glint_eval_report"), 5);
-  EXPECT_EQ(s.at("glint_sim_report"), 4);
-  EXPECT_EQ(json::parse(read_text(dir_ / "r.json")).at("glint_sim_report"), 4);
+  // eval 6 / sim 5: the pixel measure (src/reference/pixel_error.h); eval 5 / sim 4: the chip, no
+  // colour stage; eval 4 / sim 3: the scene's elaboration (src/eval/sim_report.md); eval 3 / sim 2
+  // decomposed the errors into parts with bounds; eval 2 nested v1's keys.
+  EXPECT_EQ(e.at("glint_eval_report"), 6);
+  EXPECT_EQ(s.at("glint_sim_report"), 5);
+  EXPECT_EQ(json::parse(read_text(dir_ / "r.json")).at("glint_sim_report"), 5);
   for (const json* report : {&e, &s}) {
     for (const auto& u : report->at("units")) {
       for (const char* old : {"error_vs_reference", "datapath_error_ulps", "model_error",

@@ -164,12 +164,17 @@ SlotMap subset(const SlotMap& all) {
   SlotMap s;
   s.per_light = all.per_light;
   s.materials = all.materials;
+  s.display = all.display;
+  s.eps_measure = all.eps_measure;
+  s.skip_ratio = all.skip_ratio;
   std::map<std::uint32_t, std::uint32_t> regroup;  // the full map's group -> the subset's
   for (std::size_t i : chosen) {
     s.params.push_back(all.params[i]);
     s.lobe.push_back(all.lobe[i]);
     s.roughness.push_back(all.roughness[i]);
     s.c_y.push_back(all.c_y[i]);
+    s.pixel_weight.push_back(all.pixel_weight[i]);
+    s.pixel_weight_max.push_back(all.pixel_weight_max[i]);
     s.origin.push_back(all.origin[i]);
     const auto [it, fresh] =
         regroup.emplace(all.group[i], static_cast<std::uint32_t>(s.groups.size()));
