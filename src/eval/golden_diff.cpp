@@ -6,6 +6,7 @@
 #include <cmath>
 #include <utility>
 
+#include "eval/json_diff.h"
 #include "units/catalogue.h"
 
 namespace glint {
@@ -356,39 +357,19 @@ namespace {
 
 void diff_render_value(const std::string& path, const Json& g, const Json& f, double rel_tol,
                        std::vector<std::string>& out) {
-  if (g.is_object() && f.is_object()) {
-    for (auto it = g.begin(); it != g.end(); ++it) {
-      const std::string at = path.empty() ? it.key() : path + "." + it.key();
-      if (!f.contains(it.key())) {
-        out.push_back(at + ": missing in the new report");
-      } else {
-        diff_render_value(at, *it, f.at(it.key()), rel_tol, out);
-      }
-    }
-    for (auto it = f.begin(); it != f.end(); ++it)
-      if (!g.contains(it.key()))
-        out.push_back((path.empty() ? it.key() : path + "." + it.key()) +
-                      ": new field (not in the golden)");
-    return;
-  }
-  if (g.is_array() && f.is_array()) {
-    if (g.size() != f.size()) {
-      out.push_back(fmt::format("{}: {} entries, golden {}", path, f.size(), g.size()));
+  // Counts are integers in the JSON: exact. Other numbers are floating-point figures.
+  const LeafDiff leaf = [rel_tol](const std::string& at, const Json& a, const Json& b,
+                                  std::vector<std::string>& lines) {
+    if (a.is_number_float() && b.is_number() && !b.is_number_integer()) {
+      const double x = a.get<double>(), y = b.get<double>();
+      if (moved(x, y, rel_tol))
+        lines.push_back(
+            fmt::format("{}: {:.17g}, golden {:.17g} (beyond tolerance {:g})", at, y, x, rel_tol));
       return;
     }
-    for (std::size_t i = 0; i < g.size(); ++i)
-      diff_render_value(fmt::format("{}[{}]", path, i), g[i], f[i], rel_tol, out);
-    return;
-  }
-  // Counts are integers in the JSON: exact. Other numbers are floating-point figures.
-  if (g.is_number_float() && f.is_number() && !f.is_number_integer()) {
-    const double a = g.get<double>(), b = f.get<double>();
-    if (moved(a, b, rel_tol))
-      out.push_back(
-          fmt::format("{}: {:.17g}, golden {:.17g} (beyond tolerance {:g})", path, b, a, rel_tol));
-    return;
-  }
-  if (g != f) out.push_back(fmt::format("{}: {}, golden {}", path, f.dump(), g.dump()));
+    if (a != b) lines.push_back(fmt::format("{}: {}, golden {}", at, b.dump(), a.dump()));
+  };
+  diff_json(path, g, f, leaf, out);
 }
 
 }  // namespace

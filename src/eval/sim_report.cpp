@@ -2,8 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
+#include "eval/json_diff.h"
 #include "units/lane_cost.h"
 
 namespace glint {
@@ -69,36 +71,20 @@ namespace {
 
 void diff_value(const std::string& path, const nlohmann::json& g, const nlohmann::json& f,
                 bool exact, double rel_tol, std::vector<std::string>& out) {
-  if (g.is_object() && f.is_object()) {
-    for (auto it = g.begin(); it != g.end(); ++it) {
-      if (!f.contains(it.key())) {
-        out.push_back(fmt::format("{}.{}: missing in the new report", path, it.key()));
-        continue;
-      }
-      diff_value(path + "." + it.key(), it.value(), f.at(it.key()), exact, rel_tol, out);
-    }
-    for (auto it = f.begin(); it != f.end(); ++it)
-      if (!g.contains(it.key()))
-        out.push_back(fmt::format("{}.{}: new field (not in the golden)", path, it.key()));
-    return;
-  }
-  if (g.is_array() && f.is_array()) {
-    if (g.size() != f.size()) {
-      out.push_back(fmt::format("{}: {} entries, golden {}", path, f.size(), g.size()));
+  // Exact fields (digest, counts, cycles, ...) must be equal; the others are floating-point sums
+  // that may move within rel_tol.
+  const LeafDiff leaf = [exact, rel_tol](const std::string& at, const nlohmann::json& a,
+                                         const nlohmann::json& b, std::vector<std::string>& lines) {
+    if (!exact && a.is_number() && b.is_number()) {
+      const double x = a.get<double>(), y = b.get<double>();
+      if (std::fabs(x - y) > 1e-12 + rel_tol * std::max(std::fabs(x), std::fabs(y)))
+        lines.push_back(
+            fmt::format("{}: {:.17g}, golden {:.17g} (beyond tolerance {:g})", at, y, x, rel_tol));
       return;
     }
-    for (std::size_t i = 0; i < g.size(); ++i)
-      diff_value(fmt::format("{}[{}]", path, i), g[i], f[i], exact, rel_tol, out);
-    return;
-  }
-  if (!exact && g.is_number() && f.is_number()) {
-    const double a = g.get<double>(), b = f.get<double>();
-    if (std::fabs(a - b) > 1e-12 + rel_tol * std::max(std::fabs(a), std::fabs(b)))
-      out.push_back(
-          fmt::format("{}: {:.17g}, golden {:.17g} (beyond tolerance {:g})", path, b, a, rel_tol));
-    return;
-  }
-  if (g != f) out.push_back(fmt::format("{}: {}, golden {}", path, f.dump(), g.dump()));
+    if (a != b) lines.push_back(fmt::format("{}: {}, golden {}", at, b.dump(), a.dump()));
+  };
+  diff_json(path, g, f, leaf, out);
 }
 
 }  // namespace
