@@ -1,7 +1,8 @@
 // Walks a golden and a fresh report side by side and lists each difference as a line a reader can
 // act on ("hast.errors.max_abs: 0.5, golden 0.4"): a field on one side only, arrays of other
-// lengths, and leaves that `leaf` finds moved. The sim and render goldens' comparisons share it
-// (sim_report.cpp, golden_diff.cpp); they differ only in what a leaf may move by.
+// lengths, leaves that differ. The sim and render goldens' comparisons share it (sim_report.cpp,
+// golden_diff.cpp); they differ only in which leaves are floating-point figures that may move
+// within a tolerance.
 #pragma once
 
 #include <functional>
@@ -11,12 +12,14 @@
 
 namespace glint {
 
-// Appends the line for the leaves g (golden) and f (fresh) at `path` when they differ.
-using LeafDiff = std::function<void(const std::string& path, const nlohmann::json& g,
-                                    const nlohmann::json& f, std::vector<std::string>& out)>;
+// A golden figure a and a fresh one b differ by more than rel_tol relative (plus 1e-12 absolute).
+bool moved_beyond(double a, double b, double rel_tol);
+
+// True for leaves (golden, fresh) compared within the tolerance; every other leaf must be equal.
+using Tolerant = std::function<bool(const nlohmann::json& golden, const nlohmann::json& fresh)>;
 
 // `path` names g and f ("" at a document's top: its keys then stand alone).
 void diff_json(const std::string& path, const nlohmann::json& g, const nlohmann::json& f,
-               const LeafDiff& leaf, std::vector<std::string>& out);
+               const Tolerant& tolerant, double rel_tol, std::vector<std::string>& out);
 
 }  // namespace glint
