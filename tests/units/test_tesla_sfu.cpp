@@ -57,7 +57,7 @@ float as_float(std::uint32_t bits) {
 
 TEST(TeslaSfu, Lg2MatchesTheHardwareModel) {
   const auto lines = read_vectors("lg2");
-  ASSERT_EQ(lines.size(), 3082u);
+  ASSERT_EQ(lines.size(), 5450u);
   int failures = 0;
   for (const Line& l : lines) {
     ASSERT_EQ(l.words.size(), 2u) << "line " << l.number;
@@ -100,6 +100,50 @@ TEST(TeslaSfu, HighlightMatchesTheShaderOnTheHardwareModel) {
                     << " " << hex(l.words[3]) << " " << hex(l.words[4]) << " " << hex(l.words[5]);
   }
   EXPECT_EQ(failures, 0);
+}
+
+// The vectors pin every table entry: changing any coefficient of any segment by one changes at
+// least one expected output (so a wrong entry cannot hide between the vectors' points).
+template <typename Eval>
+void every_entry_matters(const Table& hardware, const std::vector<std::uint32_t>& inputs,
+                         Eval eval) {
+  std::vector<std::uint32_t> want;
+  for (std::uint32_t x : inputs) want.push_back(eval(x, hardware));
+  int unpinned = 0;
+  for (int segment = 0; segment < kSegments; ++segment) {
+    for (std::int32_t Coefficients::*field :
+         {&Coefficients::a, &Coefficients::b, &Coefficients::c}) {
+      for (int delta : {-1, 1}) {
+        Table changed = hardware;
+        changed[segment].*field += delta;
+        bool seen = false;
+        for (std::size_t i = 0; i < inputs.size() && !seen; ++i)
+          seen = eval(inputs[i], changed) != want[i];
+        if (!seen && ++unpinned <= 10)
+          ADD_FAILURE() << "segment " << segment << ", coefficient "
+                        << (field == &Coefficients::a   ? "A"
+                            : field == &Coefficients::b ? "B"
+                                                        : "C")
+                        << ": a change of " << delta
+                        << " in a coefficient changes no vector's output";
+      }
+    }
+  }
+  EXPECT_EQ(unpinned, 0);
+}
+
+TEST(TeslaSfu, VectorsPinEveryLg2TableEntry) {
+  std::vector<std::uint32_t> inputs;
+  for (const Line& l : read_vectors("lg2")) inputs.push_back(l.words[0]);
+  every_entry_matters(kLg2Table, inputs,
+                      [](std::uint32_t x, const Table& table) { return lg2(x, table); });
+}
+
+TEST(TeslaSfu, VectorsPinEveryEx2TableEntry) {
+  std::vector<std::uint32_t> inputs;
+  for (const Line& l : read_vectors("ex2")) inputs.push_back(l.words[1]);  // pre_ex2's output
+  every_entry_matters(kEx2Table, inputs,
+                      [](std::uint32_t p, const Table& table) { return ex2(p, table); });
 }
 
 // What the vectors cannot show: the model is the hardware's own accuracy, near but not at t^n.

@@ -75,14 +75,14 @@ struct Segment {
   std::int64_t r, r2;
 };
 // The segment of a 23-bit fraction: its top 6 bits pick the table entry, its low 17 are r.
-Segment segment_of(const std::array<Coefficients, kSegments>& table, std::uint32_t frac) {
+Segment segment_of(const Table& table, std::uint32_t frac) {
   const std::uint32_t r = frac & ((1u << kOffsetBits) - 1);
   return {table[frac >> kOffsetBits & (kSegments - 1)], r, truncated_square(r)};
 }
 
 }  // namespace
 
-std::uint32_t lg2(std::uint32_t x) {
+std::uint32_t lg2(std::uint32_t x, const Table& table) {
   if (is_nan(x)) return kNaN;
   const Unpacked u = unpack(x);
   if (u.sig == 0) return kNegInf;
@@ -93,7 +93,7 @@ std::uint32_t lg2(std::uint32_t x) {
   // polynomial would miss).
   std::int64_t fixed = 0;
   if (!(u.sig == kOne && u.exp == kBias)) {
-    const Segment s = segment_of(kLg2Table, u.sig);
+    const Segment s = segment_of(table, u.sig);
     fixed = (std::int64_t{s.k.a} * 4096 + s.k.b * s.r + 2 * (s.k.c * s.r2) + 0x3345) / 4;
   }
   // The exponent is the integer part; a negative sum is complemented (one's complement: the
@@ -120,7 +120,7 @@ std::uint32_t pre_ex2(std::uint32_t x) {
   return sign | (-e >= 32 ? 0 : u.sig >> -e);  // truncated
 }
 
-std::uint32_t ex2(std::uint32_t p) {
+std::uint32_t ex2(std::uint32_t p, const Table& table) {
   const std::uint32_t negative = sign_of(p);
   int integer = exp_field(p);  // bits 30..23: the 7-bit integer part, or a special code
   std::uint32_t frac = frac_field(p);
@@ -137,7 +137,7 @@ std::uint32_t ex2(std::uint32_t p) {
       ++integer;
     }
   }
-  const Segment s = segment_of(kEx2Table, frac);
+  const Segment s = segment_of(table, frac);
   const std::int64_t sum = std::int64_t{s.k.a} * 8192 + s.k.b * s.r + s.k.c * s.r2 + 0x77e2;
   return pack(0, integer + kBias, static_cast<std::uint32_t>(sum >> 15));
 }

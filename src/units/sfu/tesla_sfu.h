@@ -25,16 +25,18 @@ inline constexpr int kOffsetBits = 17;  // r, the segment's offset, and the squa
 struct Coefficients {
   std::int32_t a, b, c;  // A + B r + C r^2, scaled per function (tesla_sfu.cpp)
 };
-extern const std::array<Coefficients, kSegments> kEx2Table, kLg2Table;
+using Table = std::array<Coefficients, kSegments>;
+extern const Table kEx2Table, kLg2Table;
 
 // MUFU.LG2: log2 of an fp32. lg2(+-0 or a denormal) = -inf, lg2(negative) = NaN, lg2(inf) = inf.
-std::uint32_t lg2(std::uint32_t x);
+// `table` is the hardware's unless a test gives another (to show every entry matters).
+std::uint32_t lg2(std::uint32_t x, const Table& table = kLg2Table);
 // RRO.EX2: an fp32 to the sign and a 7.23 fixed-point magnitude (bits 29..0); NaN becomes
 // 0x40000000 and +-inf, or a magnitude of 128 or more, 0x40800000 (with the sign): the codes ex2
 // reads as NaN and infinity.
 std::uint32_t pre_ex2(std::uint32_t x);
 // MUFU.EX2 of pre_ex2's output.
-std::uint32_t ex2(std::uint32_t p);
+std::uint32_t ex2(std::uint32_t p, const Table& table = kEx2Table);
 // FMUL: fp32 product rounded to nearest even, denormal inputs and results flushed to zero,
 // NaN results the canonical 0x7fffffff.
 std::uint32_t fmul(std::uint32_t a, std::uint32_t b);

@@ -21,7 +21,7 @@
 namespace glint::tesla_sfu {
 
 // 2^x / 2, ln 2 * 2^x / 2, (ln 2)^2 * 2^x scaled: the segments of x in [0, 1).
-const std::array<Coefficients, kSegments> kEx2Table = {{
+const Table kEx2Table = {{
     {0x2000000, 0x58b9, 494}, {0x2059347, 0x59b0, 501}, {0x20b361b, 0x5aaa, 506},
     {0x210e8a2, 0x5ba7, 511}, {0x216ab0f, 0x5ca6, 518}, {0x21c7d86, 0x5da9, 521},
     {0x2226039, 0x5eae, 527}, {0x2285356, 0x5fb6, 532}, {0x22e5709, 0x60c0, 541},
@@ -47,7 +47,7 @@ const std::array<Coefficients, kSegments> kEx2Table = {{
 }};
 
 // log2 m, log2(e) / m / 2, -log2(e) / m^2 scaled: the segments of m in [1, 2).
-const std::array<Coefficients, kSegments> kLg2Table = {{
+const Table kLg2Table = {{
     {0x4, 0xb8a8, -727},       {0x16e797, 0xb5d1, -705},  {0x2d75ad, 0xb310, -685},
     {0x43ace7, 0xb064, -665},  {0x598fe2, 0xadcc, -646},  {0x6f210f, 0xab47, -627},
     {0x8462c9, 0xa8d5, -610},  {0x995750, 0xa674, -592},  {0xae00d8, 0xa424, -576},

@@ -21,11 +21,13 @@ static uint32_t rnd(void) {
 
 int main(void) {
   /* lg2: every one of the 64 segments of every binade of (0, 1] a uq1.15 t reaches (2^-15 .. 1),
-     at the segment's ends and at a random offset; then the special inputs. */
+     at the segment's ends and at a random offset, and of [1, 2) (where the result keeps the most
+     fraction bits: it pins every table entry) at 38 random offsets; then the special inputs. */
   for (int e = 127 - 15; e <= 127; ++e)
     for (uint32_t seg = 0; seg < 64; ++seg) {
-      uint32_t offs[3] = {0, 0x1ffff, rnd() & 0x1ffff};
-      for (int k = 0; k < 3; ++k) {
+      uint32_t offs[40] = {0, 0x1ffff};
+      for (int k = 2; k < 40; ++k) offs[k] = rnd() & 0x1ffff;
+      for (int k = 0; k < (e == 127 ? 40 : 3); ++k) {
         uint32_t x = (uint32_t)e << 23 | seg << 17 | offs[k];
         printf("lg2 %08x %08x\n", x, sfu_lg2(x));
       }
