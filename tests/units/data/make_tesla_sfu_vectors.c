@@ -20,7 +20,7 @@ static uint32_t rnd(void) {
 }
 
 int main(void) {
-  /* lg2: every one of the 64 segments of every binade of (0, 1] a uq1.15 t reaches (2^-15 .. 1),
+  /* lg2: every one of the 64 segments of every binade below 1 a uq1.15 t reaches (from 2^-15),
      at the segment's ends and at a random offset, and of [1, 2) (where the result keeps the most
      fraction bits: it pins every table entry) at 38 random offsets; then the special inputs. */
   for (int e = 127 - 15; e <= 127; ++e)
