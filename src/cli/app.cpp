@@ -1,5 +1,6 @@
 // The glint command line as a function: every subcommand on one CLI11 app, the exit status
 // returned. main.cpp calls it; tests/fuzz/fuzz_options.cpp feeds it argument vectors.
+#include <cctype>
 #include <cstdio>
 #include <string>
 
@@ -31,6 +32,35 @@ bool check_subcommand(CLI::App& app, int argc, char** argv) {
   std::fprintf(stderr, "glint: unknown subcommand '%s' (expected one of: %s; see glint --help)\n",
                word.c_str(), known.c_str());
   return false;
+}
+
+// The subcommand the command line names (its first word that is one), or null.
+CLI::App* named_subcommand(CLI::App& app, int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    if (std::string(argv[i]) == "--") break;
+    if (argv[i][0] == '-') continue;
+    for (CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; }))
+      if (sub->check_name(argv[i])) return sub;
+    return nullptr;
+  }
+  return nullptr;
+}
+
+// CLI11 checks required arguments before it reports arguments it does not know: `glint render
+// --frob` would say "SCENE is required" and hide the typo. The first word that looks like an
+// option (not a negative number) and that neither glint nor the subcommand takes, or "".
+std::string unknown_option(CLI::App& app, CLI::App* sub, int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string word = argv[i];
+    if (word == "--") break;
+    if (word.size() < 2 || word[0] != '-') continue;
+    if (std::isdigit(static_cast<unsigned char>(word[1])) || word[1] == '.') continue;
+    const std::string name = word[1] == '-' ? word.substr(0, word.find('=')) : word.substr(0, 2);
+    if (app.get_option_no_throw(name) != nullptr) continue;
+    if (sub != nullptr && sub->get_option_no_throw(name) != nullptr) continue;
+    return word;
+  }
+  return "";
 }
 
 }  // namespace
@@ -70,9 +100,14 @@ int run_command(int argc, char** argv) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version: printed, exit 0
     // One line in glint's own form, naming the subcommand, rather than CLI11's two ("MESSAGE",
     // then "Run with --help for more information.").
-    std::string where = "glint";
-    if (argc >= 2 && argv[1][0] != '-') where += std::string(" ") + argv[1];
-    std::fprintf(stderr, "%s: %s (see %s --help)\n", where.c_str(), e.what(), where.c_str());
+    CLI::App* sub = named_subcommand(app, argc, argv);
+    const std::string where = sub != nullptr ? "glint " + sub->get_name() : "glint";
+    std::string message = e.what();
+    if (dynamic_cast<const CLI::RequiredError*>(&e) != nullptr) {
+      const std::string unknown = unknown_option(app, sub, argc, argv);
+      if (!unknown.empty()) message = "The following argument was not expected: " + unknown;
+    }
+    std::fprintf(stderr, "%s: %s (see %s --help)\n", where.c_str(), message.c_str(), where.c_str());
     return kExitBadInput;
   }
   return status;

@@ -114,6 +114,21 @@ TEST_F(CliOptions, ParserRefusalsAreOneLineNamingTheSubcommand) {
             "glint sim: The following argument was not expected: --frob (see glint sim --help)\n"},
            {"size " + kPhong, "glint size: --budget is required (see glint size --help)\n"},
            {"", "glint: A subcommand is required (see glint --help)\n"},
+           // An unknown option is named before a missing argument, and the subcommand named
+           // wherever it stands.
+           {"render --frob",
+            "glint render: The following argument was not expected: --frob (see glint render "
+            "--help)\n"},
+           {"--frob eval",
+            "glint eval: The following argument was not expected: --frob (see glint eval "
+            "--help)\n"},
+           {"--frob",
+            "glint: The following argument was not expected: --frob (see glint --help)\n"},
+           {"size " + kPhong + " '--budgte=lsb8<=1'",
+            "glint size: The following argument was not expected: --budgte=lsb8<=1 (see glint "
+            "size --help)\n"},
+           {"size --grid lut:bits=4 -q",
+            "glint size: The following argument was not expected: -q (see glint size --help)\n"},
        }) {
     SCOPED_TRACE(args);
     const CliRun r = glint(args);
