@@ -1,5 +1,6 @@
 // glint rtl: synthesizable Verilog-2005 of one lane of a unit (tau comparator, the unit's
-// pipeline, merge buffer, valid/ready handshakes), a self-checking testbench and its vectors.
+// pipeline, merge buffer, valid/ready handshakes), its timing constraints (SDC), a self-checking
+// testbench and its vectors.
 //
 // The testbench's requests are every input code 0..1.0 of every slot (slot by slot), then, with
 // --vectors, the file's rows in order; what each must give and when comes from the same C++ the
@@ -11,6 +12,7 @@
 
 #include "cli/cli.h"
 #include "cli/rtl_input.h"
+#include "hdl/sdc.h"
 #include "io/output_set.h"
 #include "timing/timing.h"
 #include "units/catalogue.h"
@@ -31,6 +33,7 @@ struct RtlOptions {
   bool seed_given = false;
   bool no_sweep = false;
   bool json = false;
+  double clock_period_ns = hdl::kDefaultClockPeriodNs;
 };
 
 std::vector<hdl::TbVector> tb_vectors(const RtlDesign& d, const RtlOptions& o) {
@@ -93,6 +96,7 @@ int run_rtl(const RtlOptions& o) {
   OutputFile& datapath = out.add("-o", base + "_datapath.v");
   OutputFile& tb = out.add("-o", base + "_tb.v");
   OutputFile& vec = out.add("-o", base + "_tb.vec");
+  OutputFile& sdc = out.add("-o", base + "_lane.sdc");
   // tables=ram: the table writes the testbench loads through the write port.
   const RtlDesign d =
       make_rtl_design(spec, rtl_header(o.input), rtl_input_name(o.input), o.input.chip);
@@ -107,11 +111,13 @@ int run_rtl(const RtlOptions& o) {
                                        vec_name, cfg_name);
   vec.stream() << hdl::testbench_vectors(d.lane, v);
   if (cfg != nullptr) cfg->stream() << hdl::testbench_writes(d.lane);
+  sdc.stream() << hdl::lane_sdc(d.lane, o.clock_period_ns);
   out.commit();
 
   const UnitTiming t = d.unit->timing();
   nlohmann::json files{lane.path(), datapath.path(), tb.path(), vec.path()};
   if (cfg != nullptr) files.push_back(cfg->path());
+  files.push_back(sdc.path());
   nlohmann::json j{{"unit", d.unit->name()},
                    {"spec", d.unit->canonical_spec()},
                    {"files", files},
@@ -123,7 +129,8 @@ int run_rtl(const RtlOptions& o) {
                    {"tb_vectors", v.size()},
                    {"tb_cycles", v.back().retire + 1},
                    {"sink_ready", o.sink_ready},
-                   {"seed", o.seed}};
+                   {"seed", o.seed},
+                   {"clock_period_ns", o.clock_period_ns}};
   if (o.json) {
     print_json(j);
   } else {
@@ -136,6 +143,7 @@ int run_rtl(const RtlOptions& o) {
     if (cfg != nullptr)
       std::cout << fmt::format("  {} ({} table writes)\n", cfg->path(),
                                hdl::testbench_write_count(d.lane));
+    std::cout << fmt::format("  {} (clock {:g} ns)\n", sdc.path(), o.clock_period_ns);
   }
   return kExitOk;
 }
@@ -157,6 +165,7 @@ void add_rtl_command(CLI::App& app, int& status) {
   add_seed_option(sub, o->seed, o->seed_given);
   sub->add_flag("--no-sweep", o->no_sweep,
                 "Leave out the sweep of every input code of every slot (test only the rows)");
+  add_clock_period_option(sub, o->clock_period_ns);
   sub->add_flag("--json", o->json, "Print one JSON document on stdout");
   sub->callback([o, &status] { status = guarded([&] { return run_rtl(*o); }); });
 }

@@ -3,36 +3,26 @@
 // 4, Yosys' `stat -tech cmos`) or a cell library's area (--liberty), flip-flops, and the logic
 // depth (gates on the longest path) into each stage's registers, computed here from Yosys' JSON
 // netlist.
-#include <fcntl.h>
 #include <fmt/format.h>
-#include <spawn.h>
-#include <sys/statvfs.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <cerrno>
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <map>
 #include <regex>
 #include <set>
-#include <sstream>
 #include <unordered_map>
 
 #include "cli/cli.h"
+#include "cli/external_tool.h"
 #include "cli/rtl_input.h"
+#include "cli/synth_sta.h"
 #include "cost/liberty.h"
+#include "hdl/sdc.h"
 #include "io/input_error.h"
 #include "io/output_set.h"
-#include "io/signal_cleanup.h"
 #include "units/catalogue.h"
-
-extern char** environ;
 
 namespace glint::cli {
 namespace {
@@ -43,111 +33,23 @@ struct SynthOptions {
   std::string liberty;
   std::string report;
   bool json = false;
+  double clock_period_ns = hdl::kDefaultClockPeriodNs;
 };
 
-// A private work folder (mkdtemp) and the files in it, removed at the end and by a termination
-// signal's handler (signal_cleanup.h). Yosys's own temporaries (ABC's folders) go in it too
-// (run_yosys), so the end removes them even where Yosys left them.
-class WorkFolder {
- public:
-  WorkFolder() {
-    const char* tmp = std::getenv("TMPDIR");
-    const std::string parent = tmp && *tmp ? tmp : "/tmp";
-    std::string pattern = parent + "/glint-synth.XXXXXX";
-    if (::mkdtemp(pattern.data()) == nullptr)
-      throw OutputError(fmt::format("synth: cannot make a work folder in '{}' (TMPDIR): {}", parent,
-                                    std::strerror(errno)));
-    dir_ = pattern;
-    handles_.push_back(register_cleanup(CleanupKind::kFolder, dir_));
-  }
-  ~WorkFolder() {
-    std::error_code ec;
-    std::filesystem::remove_all(dir_, ec);  // ours, 0700: no one else put links in it
-    for (int h : handles_) release_cleanup(h);
-  }
-  const std::string& path() const { return dir_; }
-  WorkFolder(const WorkFolder&) = delete;
-  WorkFolder& operator=(const WorkFolder&) = delete;
-  // A file in the folder, registered before it exists.
-  std::string file(const std::string& name) {
-    files_.push_back(dir_ + "/" + name);
-    handles_.push_back(register_cleanup(CleanupKind::kFile, files_.back()));
-    return files_.back();
-  }
-
- private:
-  std::string dir_;
-  std::vector<std::string> files_;
-  std::vector<int> handles_;
-};
-
-void write_text(const std::string& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-  out.close();
-  if (!out) throw OutputError("synth: cannot write " + path + ": " + std::strerror(errno));
-}
-
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// The environment for Yosys: this one with TMPDIR set to `tmp` (where ABC makes its folders).
-std::vector<std::string> yosys_environment(const std::string& tmp) {
-  std::vector<std::string> env;
-  for (char** e = environ; *e != nullptr; ++e)
-    if (std::strncmp(*e, "TMPDIR=", 7) != 0) env.emplace_back(*e);
-  env.push_back("TMPDIR=" + tmp);
-  return env;
-}
-
-// Bytes free to an unprivileged writer on the file system of `dir` (the maximum when unknown).
-unsigned long long free_bytes(const std::string& dir) {
-  struct statvfs st {};
-  if (::statvfs(dir.c_str(), &st) != 0) return ~0ULL;
-  return static_cast<unsigned long long>(st.f_bavail) * st.f_frsize;
-}
-
-// Below this, a Yosys that failed in a work folder is taken to have run out of space: its error
-// (often a syntax error in a file it wrote itself, cut short) does not say so.
-constexpr unsigned long long kFullDiskBytes = 1 << 20;
+// The library `--liberty osu018` names: OSU's 0.18 um standard cells as Debian's
+// qflow-tech-osu018 installs them (.ci/bootstrap).
+constexpr const char* kBuiltinLibrary = "osu018";
+constexpr const char* kBuiltinLibraryPath = "/usr/share/qflow/tech/osu018/osu018_stdcells.lib";
 
 // Runs `yosys -q -l LOG -s SCRIPT` with its temporaries in `work`; throws with the log's last
 // lines when it fails, and a clear message when yosys is not installed or its folder is full.
-void run_yosys(const std::string& script, const std::string& log, const std::string& work,
-               bool user_library) {
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
-  std::string a0 = "yosys", a1 = "-q", a2 = "-l", a3 = log, a4 = "-s", a5 = script;
-  char* argv[] = {a0.data(), a1.data(), a2.data(), a3.data(), a4.data(), a5.data(), nullptr};
-  std::vector<std::string> env = yosys_environment(work);
-  std::vector<char*> envp;
-  for (std::string& e : env) envp.push_back(e.data());
-  envp.push_back(nullptr);
-  pid_t pid = -1;
-  int err = 0;
-  int handle = -1;
-  {
-    // Signals held from the start to the registration: the process is never unregistered.
-    SignalShield shield;
-    err = ::posix_spawnp(&pid, "yosys", &actions, nullptr, argv, envp.data());
-    if (err == 0) handle = register_cleanup_process(pid);
-  }
-  posix_spawn_file_actions_destroy(&actions);
-  if (err != 0)
-    throw std::invalid_argument(
-        "synth needs Yosys: `yosys` is not on PATH (Debian package yosys; .ci/bootstrap installs "
-        "it)");
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
-  release_cleanup(handle);
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+void run_yosys(const std::string& script, const std::string& log, const std::string& output,
+               const std::string& work, bool user_library) {
+  const int status = run_tool(
+      "yosys", {"-q", "-l", log, "-s", script}, output, work,
+      "synth needs Yosys: `yosys` is not on PATH (Debian package yosys; .ci/bootstrap installs "
+      "it)");
+  if (status != 0) {
     std::string text = read_text(log);
     if (text.size() > 2000) text = "..." + text.substr(text.size() - 2000);
     // Measured before the work folder goes: what Yosys wrote there still takes its room.
@@ -179,7 +81,7 @@ void run_yosys(const std::string& script, const std::string& log, const std::str
 // liberty file: flip-flops mapped by dfflibmap and logic by ABC onto its cells.
 std::string yosys_script(const std::string& top, const std::vector<std::string>& sources,
                          const std::string& liberty, const std::string& stat,
-                         const std::string& netlist) {
+                         const std::string& netlist, const std::string& sta_netlist) {
   std::string s;
   // The library's cells as blackboxes: the netlist then knows their ports' directions.
   if (!liberty.empty()) s += "read_liberty -lib " + liberty + "\n";
@@ -193,6 +95,13 @@ std::string yosys_script(const std::string& top, const std::vector<std::string>&
   s += "tee -q -o " + stat + " stat " +
        (liberty.empty() ? std::string("-tech cmos") : "-liberty " + liberty) + "\n";
   s += "write_json " + netlist + "\n";
+  if (!liberty.empty()) {
+    // For OpenSTA, after the statistics: constants for undriven bits, one net per port bit,
+    // registers named after the nets they drive (its paths then start and end at RTL names), and
+    // assignments with a plain left-hand side (its Verilog reader takes no concatenation there).
+    s += "setundef -zero\nsplitnets -ports\nopt_clean\nrename -wire\n";
+    s += "write_verilog -noattr -noexpr -nohex -nodec -simple-lhs " + sta_netlist + "\n";
+  }
   return s;
 }
 
@@ -371,10 +280,18 @@ int run_synth(const SynthOptions& o) {
   OutputSet out;
   if (!o.input.vectors.empty()) out.add_input("--vectors", o.input.vectors);
   if (!o.input.scene.empty()) out.add_input("--scene", o.input.scene);
-  if (!o.liberty.empty()) {
-    out.add_input("--liberty", o.liberty);
-    if (::access(o.liberty.c_str(), R_OK) != 0)
-      throw InputError(o.liberty, 0, "file", "cannot be read");
+  // --liberty osu018: the built-in library, unless a file of that name is there.
+  const bool builtin = o.liberty == kBuiltinLibrary && ::access(o.liberty.c_str(), F_OK) != 0;
+  const std::string library_file = builtin ? kBuiltinLibraryPath : o.liberty;
+  if (builtin && ::access(library_file.c_str(), R_OK) != 0)
+    throw std::invalid_argument(
+        fmt::format("--liberty {}: the built-in library {} is not installed (Debian package "
+                    "qflow-tech-osu018; .ci/bootstrap installs it)",
+                    kBuiltinLibrary, library_file));
+  if (!library_file.empty()) {
+    out.add_input("--liberty", library_file);
+    if (::access(library_file.c_str(), R_OK) != 0)
+      throw InputError(library_file, 0, "file", "cannot be read");
   }
   if (o.json) out.claim_stdout("--json");
   OutputFile* report = o.report.empty() ? nullptr : &out.add("--report", o.report);
@@ -390,17 +307,18 @@ int run_synth(const SynthOptions& o) {
   const std::string stat = work.file("stat.txt"), netlist = work.file("netlist.json");
   write_text(lane, d.lane_verilog);
   write_text(datapath, d.datapath_verilog);
-  std::string liberty = o.liberty;
+  std::string liberty = library_file;
   if (!liberty.empty() && liberty.front() != '/') {
     char cwd[4096];
     if (::getcwd(cwd, sizeof cwd) != nullptr) liberty = std::string(cwd) + "/" + liberty;
   }
-  write_text(script, yosys_script(top, {lane, datapath}, liberty, stat, netlist));
+  const std::string sta_netlist = liberty.empty() ? "" : work.file("netlist.v");
+  write_text(script, yosys_script(top, {lane, datapath}, liberty, stat, netlist, sta_netlist));
   if (progress)
     std::fprintf(stderr, "synth: yosys on %s (%s)...\n", d.unit->canonical_spec().c_str(),
                  liberty.empty() ? "generic gates" : liberty.c_str());
   const auto t0 = std::chrono::steady_clock::now();
-  run_yosys(script, log, work.path(), !liberty.empty());
+  run_yosys(script, log, work.file("yosys.out"), work.path(), !liberty.empty());
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (progress) std::fprintf(stderr, "synth: done in %.1f s; reading the netlist\n", seconds);
@@ -426,7 +344,7 @@ int run_synth(const SynthOptions& o) {
     if (std::stol(m[1]) != dr.cells)
       incomplete(stat, fmt::format("{} cells, the netlist has {}", m[1].str(), dr.cells));
   }
-  nlohmann::json j{{"glint_synth_report", 1},
+  nlohmann::json j{{"glint_synth_report", 2},
                    {"unit", d.unit->name()},
                    {"spec", d.unit->canonical_spec()},
                    {"flow", liberty.empty() ? "generic" : "liberty"},
@@ -450,8 +368,49 @@ int run_synth(const SynthOptions& o) {
     j["ge"] = (t + added) / 4;
   } else {
     j["liberty"] = o.liberty;
+    j["liberty_file"] = library_file;
     static const std::regex area(R"(Chip area for (?:top )?module '[^']*':\s+([0-9.eE+-]+))");
-    if (std::regex_search(stat_text, match, area)) j["area"] = std::stod(match[1]);
+    if (!std::regex_search(stat_text, match, area)) incomplete(stat, "no chip area");
+    const double um2 = std::stod(match[1]);
+    j["area_um2"] = um2;
+    const std::string library_text = read_text(liberty);
+    const Nand2 nand2 = liberty_nand2(library_text);
+    if (!nand2.cell.empty()) {
+      j["nand2_cell"] = nand2.cell;
+      j["nand2_area_um2"] = nand2.area;
+      j["nand2_equivalents"] = um2 / nand2.area;
+    }
+    if (progress) std::fprintf(stderr, "synth: OpenSTA on the mapped netlist...\n");
+    StaPath path;
+    try {
+      path = run_sta(work, liberty, sta_netlist, top, hdl::lane_sdc(d.lane, o.clock_period_ns),
+                     o.clock_period_ns);
+    } catch (const std::runtime_error& e) {
+      // A library OpenSTA cannot time (no delay tables, no thresholds: an area-only library such
+      // as tests/rtl/tiny.lib) still gives the area: the report says why there is no timing. Any
+      // other failure is glint's own.
+      const std::string why = e.what();
+      if (why.find(liberty) == std::string::npos) throw;
+      j["timing"] = nullptr;
+      j["timing_unavailable"] = why;
+      path.period_ns = 0;
+    }
+    if (path.period_ns > 0) {
+      const auto point = [&](const PathPoint& p) {
+        std::string stage = p.kind == "register"     ? stage_of(p.name, d.unit->stages())
+                            : p.kind == "input port" ? "lane inputs"
+                                                     : "lane outputs";
+        return nlohmann::json{{"name", p.name}, {"kind", p.kind}, {"stage", stage}};
+      };
+      j["timing"] = {{"clock_period_ns", path.period_ns},
+                     {"slack_ns", path.slack_ns},
+                     {"arrival_ns", path.arrival_ns},
+                     {"setup_ns", path.setup_ns},
+                     {"critical_path_ns", path.min_period_ns()},
+                     {"max_clock_mhz", 1000.0 / path.min_period_ns()},
+                     {"startpoint", point(path.start)},
+                     {"endpoint", point(path.end)}};
+    }
   }
   if (report) report->stream() << j.dump(2) << "\n";
   out.commit();
@@ -459,12 +418,28 @@ int run_synth(const SynthOptions& o) {
     print_json(j);
     return kExitOk;
   }
+  std::string area = fmt::format("{:.0f} GE", j.value("ge", 0.0));
+  if (!liberty.empty()) {
+    area = fmt::format("{:.0f} um2", j["area_um2"].get<double>());
+    if (j.contains("nand2_equivalents"))
+      area += fmt::format(" = {:.0f} {} equivalents", j["nand2_equivalents"].get<double>(),
+                          j["nand2_cell"].get<std::string>());
+  }
   std::cout << fmt::format("{}: {} cells, {} flip-flops, {}, logic depth {} (yosys {:.1f} s)\n",
-                           j["spec"].get<std::string>(), dr.cells, dr.flip_flops,
-                           liberty.empty()      ? fmt::format("{:.0f} GE", j["ge"].get<double>())
-                           : j.contains("area") ? fmt::format("area {}", j["area"].dump())
-                                                : std::string("area ?"),
+                           j["spec"].get<std::string>(), dr.cells, dr.flip_flops, area,
                            dr.max_depth, seconds);
+  if (j.contains("timing_unavailable"))
+    std::cout << "  no timing: " << j["timing_unavailable"].get<std::string>() << "\n";
+  if (j.contains("timing") && !j["timing"].is_null()) {
+    const nlohmann::json& t = j["timing"];
+    std::cout << fmt::format(
+        "  critical path {:.3f} ns ({:.0f} MHz): {} ({}) -> {} ({}); slack {:.3f} ns at a {:g} ns "
+        "clock\n",
+        t["critical_path_ns"].get<double>(), t["max_clock_mhz"].get<double>(),
+        t["startpoint"]["name"].get<std::string>(), t["startpoint"]["stage"].get<std::string>(),
+        t["endpoint"]["name"].get<std::string>(), t["endpoint"]["stage"].get<std::string>(),
+        t["slack_ns"].get<double>(), t["clock_period_ns"].get<double>());
+  }
   for (const auto& s : dr.stages)
     std::cout << fmt::format("  {:<20} {:>6} flip-flops  depth {:>4}\n",
                              s["stage"].get<std::string>(), s["flip_flops"].get<long>(),
@@ -484,7 +459,10 @@ void add_synth_command(CLI::App& app, int& status) {
       ->required();
   add_rtl_input_options(sub, o->input);
   sub->add_option("--liberty", o->liberty,
-                  "Map onto this cell library (dfflibmap, abc -liberty) and report its area");
+                  "Map onto this cell library (dfflibmap, abc -liberty; `osu018`: OSU's 0.18 um "
+                  "cells, installed by .ci/bootstrap) and report its area in um2 and NAND2 "
+                  "equivalents, and OpenSTA's critical path under the lane's SDC");
+  add_clock_period_option(sub, o->clock_period_ns);
   sub->add_option("--report", o->report, "Also write the JSON report to this file");
   sub->add_flag("--json", o->json, "Print the report as one JSON document on stdout");
   sub->callback([o, &status] { status = guarded([&] { return run_synth(*o); }); });

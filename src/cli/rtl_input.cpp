@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "cli/cli.h"
+#include "hdl/sdc.h"
 #include "hdl/verilog.h"
 #include "render/render.h"
 #include "scene/scene.h"
@@ -126,6 +127,13 @@ RtlDesign make_rtl_design(const UnitSpec& spec, const VectorHeader& header,
     throw std::logic_error("rtl: the RAM tables differ between the two elaborations");
   p.ram = std::move(ram);
   return d;
+}
+
+void add_clock_period_option(CLI::App* sub, double& period_ns) {
+  sub->add_option("--clock-period", period_ns,
+                  fmt::format("Clock period of the lane's SDC constraints, in ns (default {:g})",
+                              hdl::kDefaultClockPeriodNs))
+      ->check(CLI::Range(1e-3, 1e6));
 }
 
 }  // namespace glint::cli

@@ -44,6 +44,9 @@ struct RtlDesign {
 // for the driver to load). `input` names the input in a refusal (the file, or --material).
 RtlDesign make_rtl_design(const UnitSpec& spec, const VectorHeader& header,
                           const std::string& input, const Chip& chip);
+// --clock-period NS: the lane's clock in its SDC (hdl/sdc.h), checked in (0, 1e6].
+void add_clock_period_option(CLI::App* sub, double& period_ns);
+
 // The input as an error message names it: the vector file, the scene, or --material.
 std::string rtl_input_name(const RtlInputOptions& o);
 

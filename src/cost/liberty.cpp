@@ -2,6 +2,7 @@
 
 #include <cctype>
 #include <cstddef>
+#include <cstdlib>
 #include <utility>
 #include <vector>
 
@@ -56,9 +57,12 @@ bool holds_register_group(std::string_view body) {
 
 }  // namespace
 
-std::set<std::string> liberty_registers(std::string_view text) {
-  // Each `cell` as a whole word followed by a name group, where it starts and its name.
-  std::vector<std::pair<std::size_t, std::string_view>> cells;
+namespace {
+
+// Every `cell ( NAME )` group of `text` (`cell` as a whole word): its name and its text up to
+// the next cell.
+std::vector<std::pair<std::string_view, std::string_view>> cells_of(std::string_view text) {
+  std::vector<std::pair<std::size_t, std::string_view>> starts;
   constexpr std::string_view kCell = "cell";
   for (std::size_t at = text.find(kCell); at != std::string_view::npos;
        at = text.find(kCell, at + 1)) {
@@ -66,15 +70,87 @@ std::set<std::string> liberty_registers(std::string_view text) {
     const std::size_t after = at + kCell.size();
     if (after < text.size() && is_word(text[after])) continue;
     const auto [name, end] = group_name(text, after);
-    if (!name.empty()) cells.emplace_back(at, name);
+    if (!name.empty()) starts.emplace_back(at, name);
   }
-  std::set<std::string> out;
-  for (std::size_t i = 0; i < cells.size(); ++i) {
-    const std::size_t end = i + 1 < cells.size() ? cells[i + 1].first : text.size();
-    if (holds_register_group(text.substr(cells[i].first, end - cells[i].first)))
-      out.emplace(cells[i].second);
+  std::vector<std::pair<std::string_view, std::string_view>> out;
+  for (std::size_t i = 0; i < starts.size(); ++i) {
+    const std::size_t end = i + 1 < starts.size() ? starts[i + 1].first : text.size();
+    out.emplace_back(starts[i].second, text.substr(starts[i].first, end - starts[i].first));
   }
   return out;
+}
+
+// The value of the first `key : VALUE ;` in `body` (`key` a whole word), quotes removed, or "".
+std::string attribute(std::string_view body, std::string_view key) {
+  for (std::size_t at = body.find(key); at != std::string_view::npos; at = body.find(key, at + 1)) {
+    if (at > 0 && is_word(body[at - 1])) continue;
+    std::size_t i = at + key.size();
+    if (i < body.size() && is_word(body[i])) continue;
+    i = skip_spaces(body, i);
+    if (i >= body.size() || body[i] != ':') continue;
+    const std::size_t end = body.find(';', i);
+    if (end == std::string_view::npos) return "";
+    std::string v(body.substr(i + 1, end - i - 1));
+    std::string out;
+    for (char c : v)
+      if (c != '"') out += c;
+    const std::size_t b = out.find_first_not_of(" \t\r\n");
+    const std::size_t e = out.find_last_not_of(" \t\r\n");
+    return b == std::string::npos ? "" : out.substr(b, e - b + 1);
+  }
+  return "";
+}
+
+// Whether a Liberty function is a 2-input NAND of two different pins: !(A B), !(A&B), !(A*B)
+// or (A B)', with any pin names and spacing.
+bool is_nand2(const std::string& f) {
+  std::string t;
+  for (char c : f)
+    if (!is_space(c) || (!t.empty() && is_word(t.back()))) t += is_space(c) ? ' ' : c;
+  std::string core;
+  if (t.size() > 3 && t.compare(0, 2, "!(") == 0 && t.back() == ')') {
+    core = t.substr(2, t.size() - 3);
+  } else if (t.size() > 4 && t.compare(0, 3, "(!(") == 0 && t.compare(t.size() - 2, 2, "))") == 0) {
+    core = t.substr(3, t.size() - 5);
+  } else if (t.size() > 3 && t.front() == '(' && t.compare(t.size() - 2, 2, ")'") == 0) {
+    core = t.substr(1, t.size() - 3);
+  } else {
+    return false;
+  }
+  std::size_t i = 0;
+  const auto pin = [&] {
+    std::size_t b = i;
+    while (i < core.size() && is_word(core[i])) ++i;
+    return core.substr(b, i - b);
+  };
+  const std::string a = pin();
+  while (i < core.size() && (core[i] == ' ' || core[i] == '&' || core[i] == '*')) ++i;
+  const std::string b = pin();
+  while (i < core.size() && core[i] == ' ') ++i;
+  return !a.empty() && !b.empty() && a != b && i == core.size() &&
+         core.find_first_of("&* ") != std::string::npos;
+}
+
+}  // namespace
+
+std::set<std::string> liberty_registers(std::string_view text) {
+  std::set<std::string> out;
+  for (const auto& [name, body] : cells_of(text))
+    if (holds_register_group(body)) out.emplace(name);
+  return out;
+}
+
+Nand2 liberty_nand2(std::string_view text) {
+  Nand2 best;
+  for (const auto& [name, body] : cells_of(text)) {
+    if (holds_register_group(body) || !is_nand2(attribute(body, "function"))) continue;
+    const std::string area = attribute(body, "area");
+    char* end = nullptr;
+    const double a = std::strtod(area.c_str(), &end);
+    if (area.empty() || *end != '\0' || !(a > 0)) continue;
+    if (best.cell.empty() || a < best.area) best = {std::string(name), a};
+  }
+  return best;
 }
 
 }  // namespace glint

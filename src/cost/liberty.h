@@ -1,5 +1,6 @@
 // What `glint synth --liberty FILE` needs from a Liberty cell library: the names of its
-// sequential cells, so that the flip-flops of a mapped netlist are counted by cell name.
+// sequential cells, so that the flip-flops of a mapped netlist are counted by cell name, and its
+// smallest 2-input NAND, the unit of NAND2 equivalents.
 #pragma once
 
 #include <set>
@@ -13,5 +14,13 @@ namespace glint {
 // libstdc++'s regex recurses once per character a `\s*` matches, and a library with a long run of
 // blanks after `cell` overflowed the stack (SIGSEGV at ~100 000).
 std::set<std::string> liberty_registers(std::string_view text);
+
+// The library's smallest combinational cell whose function is a 2-input NAND (!(A B), !(A&B),
+// (A B)' ...) and its area; an empty cell when it has none.
+struct Nand2 {
+  std::string cell;
+  double area = 0;
+};
+Nand2 liberty_nand2(std::string_view text);
 
 }  // namespace glint

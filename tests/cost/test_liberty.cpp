@@ -57,3 +57,36 @@ TEST(Liberty, LongRunsOfBlanksAndManyCells) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(Liberty, TheSmallestTwoInputNandIsTheUnitOfEquivalents) {
+  const std::string lib = R"lib(library(x) {
+    cell(NAND2X2) { area : 32; pin(Y) { direction : output; function : "(!(A B))"; } }
+    cell(NAND2X1) { area : 24; pin(Y) { direction : output; function : "(!(A B))"; } }
+    cell(NAND3X1) { area : 36; pin(Y) { function : "(!((A B) C))"; } }
+    cell(AND2X1) { area : 20; pin(Y) { function : "(A B)"; } }
+    cell(NANDSELF) { area : 1; pin(Y) { function : "!(A&A)"; } }
+    cell(DFFN) { area : 2; ff(IQ, IQN) { } pin(Q) { function : "!(A B)"; } }
+  })lib";
+  const glint::Nand2 n = glint::liberty_nand2(lib);
+  EXPECT_EQ(n.cell, "NAND2X1");
+  EXPECT_EQ(n.area, 24);
+}
+
+TEST(Liberty, NandFunctionsInEveryNotation) {
+  for (const char* f : {"!(A B)", "!(A&B)", "!(A * B)", "(A*B)'", "(!(IN1  IN2))"}) {
+    const std::string lib =
+        std::string("library(x) { cell(N) { area : 3; pin(Y) { function : \"") + f + "\"; } } }";
+    EXPECT_EQ(glint::liberty_nand2(lib).cell, "N") << f;
+  }
+  for (const char* f : {"!(A+B)", "(A B)", "!(A B C)", "!A", "!(A)"}) {
+    const std::string lib =
+        std::string("library(x) { cell(N) { area : 3; pin(Y) { function : \"") + f + "\"; } } }";
+    EXPECT_EQ(glint::liberty_nand2(lib).cell, "") << f;
+  }
+  const std::string tiny = glint::test::read_file(GLINT_SOURCE_DIR "/tests/rtl/tiny.lib");
+  EXPECT_EQ(glint::liberty_nand2(tiny).cell, "NAND2");
+}
+
+}  // namespace

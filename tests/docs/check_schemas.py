@@ -13,7 +13,7 @@ directions:
   key (optional ones too) appears in at least one real output, so a key glint no longer writes
   cannot stay documented.
 
-`--synth` adds `glint synth` (it needs yosys on PATH; ~3 s). Violations are printed as
+`--synth` adds `glint synth` (it needs yosys on PATH; ~3 s, ~10 s more with OpenSTA and osu018). Violations are printed as
 `FILE.md: key 'PATH': message`; the exit status is 1 when there is any, 0 with a final
 `PASS: N documents, M keys` line. Python 3 standard library only.
 """
@@ -39,6 +39,7 @@ DOC_FILES = [
     "src/cli/synth_report.md",
 ]
 SYNTH_DOC = "src/cli/synth_report.md"
+OSU018 = "/usr/share/qflow/tech/osu018/osu018_stdcells.lib"
 
 BASE_TYPES = {"string", "integer", "number", "boolean", "null", "object", "array"}
 
@@ -416,6 +417,11 @@ class Runner:
             self.json_stdout(SYNTH_DOC, "glint_synth_report",
                              spec + ["--liberty", self.src("tests/rtl/tiny.lib"), "--json"],
                              "glint synth --liberty")
+            # The built-in node, timed by OpenSTA (when both are installed: .ci/bootstrap).
+            if shutil.which("sta") and os.path.exists(OSU018):
+                self.json_stdout(SYNTH_DOC, "glint_synth_report",
+                                 spec + ["--liberty", "osu018", "--json"],
+                                 "glint synth --liberty osu018")
 
 
 def check_versions(docs, checker, outputs):
