@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <iostream>
 #include <memory>
 
@@ -107,13 +108,16 @@ int run_render(const RenderCommandOptions& o) {
   out << "skip fractions: of light x pixel pairs (visible pixels x lights; a light behind the "
          "surface counts as skipped)\n";
   // highlight / core: the extent at 10 % and 50 % of the material's peak, against the reference.
-  out << fmt::format("{:<9} {:>8} {:>9} {:>8} {:>7} {:>10} {:>7} {:>8} {:>9} {:<}\n", "unit",
-                     "max_lsb", "mean_lsb", "psnr_dB", "diff%", "highlight", "core", "skip%LxP",
-                     "area_ge", "spec");
+  // The unit column as wide as its longest label ("lut in=uq1.16 out=uq1.9"), at least 9.
+  std::size_t label_width = 9;
+  for (const UnitRender& u : r.units) label_width = std::max(label_width, u.label.size());
+  out << fmt::format("{:<{}} {:>8} {:>9} {:>8} {:>7} {:>10} {:>7} {:>8} {:>9} {:<}\n", "unit",
+                     label_width, "max_lsb", "mean_lsb", "psnr_dB", "diff%", "highlight", "core",
+                     "skip%LxP", "area_ge", "spec");
   for (const UnitRender& u : r.units) {
     out << fmt::format(
-        "{:<9} {:>8} {:>9.4f} {:>8} {:>6.2f}% {:>9.3f}x {:>6.3f}x {:>7.1f}% {:>9.0f} {}\n", u.label,
-        lsb_text(u.error.max_lsb), u.error.mean_lsb,
+        "{:<{}} {:>8} {:>9.4f} {:>8} {:>6.2f}% {:>9.3f}x {:>6.3f}x {:>7.1f}% {:>9.0f} {}\n",
+        u.label, label_width, lsb_text(u.error.max_lsb), u.error.mean_lsb,
         std::isfinite(u.error.psnr_db) ? fmt::format("{:.2f}", u.error.psnr_db) : "inf",
         100.0 * u.error.differing_fraction, u.error.highlight_ratio, u.error.core_ratio,
         100.0 * r.unit_skipped_fraction(u), u.cost.area_ge, u.spec);
