@@ -380,18 +380,22 @@ Image8 contact_sheet(const std::vector<std::pair<std::string, const Image8*>>& t
   const int cols = std::min(columns, n);
   const int rows = (n + cols - 1) / cols;
   const int cell_h = kLabelHeight + kLabelGap + image_h;
-  int title_h = 0;
-  for (std::size_t i = 0; i < title.size(); ++i)
-    title_h += (i == 0 ? kSheetTitle : kLabelHeight) + 2;
-  if (title_h > 0) title_h += kPad;
   const int grid_w = kPad + cols * (cell_w + kPad);
   const int grid_h = kPad + rows * (cell_h + kPad);
   const int width = std::max(grid_w, footer ? footer->width + 2 * kPad : 0);
-  Image8 sheet(width, title_h + grid_h + (footer ? footer->height + kPad : 0), kBackground);
-  int ty = kPad;
+  // Title lines wrap to the sheet's width: a small render's sheet is narrower than its title.
+  std::vector<std::pair<std::string, int>> lines;  // text, height
   for (std::size_t i = 0; i < title.size(); ++i) {
     const int h = i == 0 ? kSheetTitle : kLabelHeight;
-    draw_text(sheet, kPad, ty, fit_text(title[i], width - 2 * kPad, h), kText, h);
+    for (const std::string& line : wrap(title[i], width - 2 * kPad, h)) lines.emplace_back(line, h);
+  }
+  int title_h = 0;
+  for (const auto& line : lines) title_h += line.second + 2;
+  if (title_h > 0) title_h += kPad;
+  Image8 sheet(width, title_h + grid_h + (footer ? footer->height + kPad : 0), kBackground);
+  int ty = kPad;
+  for (const auto& [text, h] : lines) {
+    draw_text(sheet, kPad, ty, text, kText, h);
     ty += h + 2;
   }
   for (int i = 0; i < n; ++i) {

@@ -127,8 +127,8 @@ Image8 downscale(const Image8& image, int factor);
 // columns there are as many columns as tiles. Throws std::invalid_argument for no tiles, columns
 // < 1 or a null image.
 Image8 contact_sheet(const std::vector<std::pair<std::string, const Image8*>>& tiles, int columns);
-// The same under a title (its first line 18 pixels tall, the others 14, each cut to the sheet's
-// width with an ellipsis) and above a footer image (e.g. a legend), both left-aligned; the sheet
+// The same under a title (its first line 18 pixels tall, the others 14, each word-wrapped to the
+// sheet's width) and above a footer image (e.g. a legend), both left-aligned; the sheet
 // is widened to the footer if need be. Without title and footer it is the sheet above.
 Image8 contact_sheet(const std::vector<std::pair<std::string, const Image8*>>& tiles, int columns,
                      const std::vector<std::string>& title, const Image8* footer);
