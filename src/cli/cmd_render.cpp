@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <iostream>
 #include <memory>
 
@@ -26,6 +27,7 @@ struct RenderCommandOptions {
   int threads = 0;
   Chip chip;
   EpsMeasure eps_measure = EpsMeasure::kLuminance;
+  HeatScale heat_scale = HeatScale::kShared;
   bool json = false;
 };
 
@@ -40,6 +42,7 @@ int run_render(const RenderCommandOptions& o) {
   options.threads = o.threads > 0 ? o.threads : default_threads();
   options.chip = o.chip;
   options.eps_measure = o.eps_measure;
+  options.heat_scale = o.heat_scale;
   options.progress = isatty(STDERR_FILENO);
   if (options_only()) return kExitOk;
   load_text_font();  // a bad GLINT_FONT is refused before any work (the sheet has labels)
@@ -48,11 +51,13 @@ int run_render(const RenderCommandOptions& o) {
   OutputSet outputs;
   outputs.add_input("SCENE", o.scene);
   if (o.json) outputs.claim_stdout("--json");
-  const RenderOutputs files =
-      declare_render_outputs(outputs, o.out_dir, render_unit_labels(options.units), "-o");
+  // The scene before the outputs: the per-light skip masks are named after its lights. Loading
+  // writes nothing, so a bad scene still leaves no output.
+  const Scene scene = load_scene(o.scene);
+  const RenderOutputs files = declare_render_outputs(
+      outputs, o.out_dir, render_unit_labels(options.units), render_light_names(scene), "-o");
   OutputFile* vectors_file =
       o.vectors.empty() ? nullptr : &outputs.add("--write-vectors", o.vectors, true);
-  const Scene scene = load_scene(o.scene);
   std::unique_ptr<VectorWriter> vectors;
   if (vectors_file) {
     vectors = std::make_unique<VectorWriter>(vectors_file->stream(), scene_request_header(scene),
@@ -85,31 +90,37 @@ int run_render(const RenderCommandOptions& o) {
   // The skip's statement is in the pixel measure of the table below; its bound is stated only
   // where the image holds it (it must: skip_guarantee_lsb is a proof, the image a check of it).
   out << fmt::format(
-      "{}: {}x{}, {} lights, {} requests; skipped: {:.1f}% with tau, {:.1f}% with t <= 0; "
-      "skip alone: max {} LSB{}\n",
-      r.scene_name, r.width, r.height, r.lights.size(), r.requests,
+      "{}: {}x{}, {} lights, {} requests; of {} light x pixel pairs skipped: {:.1f}% with tau, "
+      "{:.1f}% with t <= 0; skip alone: max {} LSB{}\n",
+      r.scene_name, r.width, r.height, r.lights.size(), r.requests, total.total(),
       pct(total.facing_away + total.zero + total.tau, total.total()),
       pct(total.facing_away + total.zero, total.total()), lsb_text(r.skip_only_error.max_lsb),
       r.skip_within_guarantee ? fmt::format(", within {} LSB by eps", r.skip_guarantee_lsb)
                               : fmt::format(" (beyond the {} LSB bound from eps: a bug in glint)",
                                             r.skip_guarantee_lsb));
   out << chip_line(r.chip);
+  if (const std::string line = reproduces_line(r); !line.empty()) out << line << '\n';
   out << fmt::format(
       "pixel error: largest channel's 8-bit code difference, {} display; eps on {}\n",
       to_string(r.display),
       r.eps_measure == EpsMeasure::kChannel ? "the largest channel (--eps-measure channel)"
                                             : "luminance c_y (Källberg eq.3)");
+  out << "skip fractions: of light x pixel pairs (visible pixels x lights; a light behind the "
+         "surface counts as skipped)\n";
   // highlight / core: the extent at 10 % and 50 % of the material's peak, against the reference.
-  out << fmt::format("{:<9} {:>8} {:>9} {:>8} {:>7} {:>10} {:>7} {:>7} {:>9} {:<}\n", "unit",
-                     "max_lsb", "mean_lsb", "psnr_dB", "diff%", "highlight", "core", "skip%",
-                     "area_ge", "spec");
+  // The unit column as wide as its longest label ("lut in=uq1.16 out=uq1.9"), at least 9.
+  std::size_t label_width = 9;
+  for (const UnitRender& u : r.units) label_width = std::max(label_width, u.label.size());
+  out << fmt::format("{:<{}} {:>8} {:>9} {:>8} {:>7} {:>10} {:>7} {:>8} {:>9} {:<}\n", "unit",
+                     label_width, "max_lsb", "mean_lsb", "psnr_dB", "diff%", "highlight", "core",
+                     "skip%LxP", "area_ge", "spec");
   for (const UnitRender& u : r.units) {
     out << fmt::format(
-        "{:<9} {:>8} {:>9.4f} {:>8} {:>6.2f}% {:>9.3f}x {:>6.3f}x {:>6.1f}% {:>9.0f} {}\n", u.label,
-        lsb_text(u.error.max_lsb), u.error.mean_lsb,
+        "{:<{}} {:>8} {:>9.4f} {:>8} {:>6.2f}% {:>9.3f}x {:>6.3f}x {:>7.1f}% {:>9.0f} {}\n",
+        u.label, label_width, lsb_text(u.error.max_lsb), u.error.mean_lsb,
         std::isfinite(u.error.psnr_db) ? fmt::format("{:.2f}", u.error.psnr_db) : "inf",
         100.0 * u.error.differing_fraction, u.error.highlight_ratio, u.error.core_ratio,
-        pct(u.skipped, u.stats.vectors), u.cost.area_ge, u.spec);
+        100.0 * r.unit_skipped_fraction(u), u.cost.area_ge, u.spec);
   }
   out << fmt::format("images and report.json in {}\n", o.out_dir);
   return kExitOk;
@@ -133,6 +144,16 @@ void add_render_command(CLI::App& app, int& status) {
   add_threads_option(sub, o->threads);
   add_chip_option(sub, o->chip);
   add_eps_measure_option(sub, o->eps_measure);
+  sub->add_option_function<std::string>(
+         "--heat-scale",
+         [o](const std::string& text) {
+           if (text != "shared" && text != "own")
+             throw CLI::ValidationError("--heat-scale", "'" + text + "' is not one of shared, own");
+           o->heat_scale = text == "shared" ? HeatScale::kShared : HeatScale::kOwn;
+         },
+         "Error maps' full scale: shared = the largest error of any unit, the same colours on "
+         "every map (the default); own = each unit's largest error")
+      ->type_name("shared|own");
   sub->add_flag("--json", o->json, "Print the report on stdout instead of the summary");
   sub->callback([o, &status] { status = guarded([&] { return run_render(*o); }); });
 }

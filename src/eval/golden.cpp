@@ -107,7 +107,7 @@ constexpr Field kStallFields[] = {{"merge_buffer_full", Kind::kUnsigned},
                                   {"unit_busy", Kind::kUnsigned}};
 constexpr Field kAreaFields[] = {{"ge", Kind::kNumber}, {"inventory", Kind::kArray}};
 constexpr Field kCriticalPathFields[] = {{"delay", Kind::kNumber}, {"stage", Kind::kString}};
-// The render report's fixed part (src/render/render_report.md, version 3).
+// The render report's fixed part (src/render/render_report.md, version 4).
 constexpr Field kRenderReportFields[] = {{"glint_render_report", Kind::kUnsigned},
                                          {"scene", Kind::kString},
                                          {"resolution", Kind::kArray},
@@ -123,15 +123,19 @@ constexpr Field kRenderReportFields[] = {{"glint_render_report", Kind::kUnsigned
                                          {"eps_measure", Kind::kString},
                                          {"skip_only_image_error", Kind::kObject},
                                          {"skip_guarantee", Kind::kObject},
+                                         {"heat_scale", Kind::kString},
+                                         {"reproduces", Kind::kAny},
                                          {"units", Kind::kArray},
                                          {"files", Kind::kArray}};
 constexpr Field kRenderUnitFields[] = {{"unit", Kind::kString},
+                                       {"file", Kind::kString},
                                        {"spec", Kind::kString},
                                        {"image_error", Kind::kObject},
                                        {"heatmap_scale_lsb", Kind::kNumber},
                                        {"requests", Kind::kUnsigned},
                                        {"skipped", Kind::kUnsigned},
                                        {"skipped_beyond_t_le_0", Kind::kUnsigned},
+                                       {"skipped_fraction", Kind::kNumber},
                                        {"operations", Kind::kObject},
                                        {"operations_saved", Kind::kObject},
                                        {"area_ge", Kind::kNumber},

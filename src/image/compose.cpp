@@ -26,6 +26,7 @@ constexpr int kMinBarHeight = 64;  // room for three labels however small the ma
 constexpr int kTitleWrap = 160;    // titles wrap to this width
 constexpr int kLabelHeight = 14;   // contact sheet labels
 constexpr int kLabelGap = 4;
+constexpr int kSheetTitle = 18;  // a contact sheet's first title line
 
 void fill_rect(Image8& image, int x, int y, int w, int h, Rgb8 c) {
   const int x0 = std::max(x, 0), y0 = std::max(y, 0);
@@ -224,7 +225,147 @@ Image8 heatmap_with_scale(const std::vector<double>& error_lsb, int width, int h
   return out;
 }
 
+Rgb8 error_colour(double error_lsb, double scale_max) {
+  if (std::isnan(error_lsb)) return kHeatNan;
+  const double e = std::fabs(error_lsb);
+  if (e == 0) return kErrorMapZero;
+  return heat_colour(kErrorMapLow + (1.0 - kErrorMapLow) * std::min(1.0, e / scale_max));
+}
+
+Image8 error_map(const std::vector<double>& error_lsb, const std::vector<std::uint8_t>& object,
+                 int width, int height, double scale_max) {
+  if (width <= 0 || height <= 0) {
+    throw std::invalid_argument("error_map: size " + std::to_string(width) + "x" +
+                                std::to_string(height) + " has no pixels");
+  }
+  const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  if (error_lsb.size() != n || object.size() != n) {
+    throw std::invalid_argument("error_map: " + std::to_string(error_lsb.size()) + " errors and " +
+                                std::to_string(object.size()) + " object flags for " +
+                                std::to_string(width) + "x" + std::to_string(height) + " pixels");
+  }
+  if (!(scale_max > 0) || !std::isfinite(scale_max)) {
+    throw std::invalid_argument("error_map: scale_max must be positive and finite");
+  }
+  Image8 out(width, height, kErrorMapBackground);
+  for (std::size_t i = 0; i < n; ++i) {
+    // An error where no object is (none should be) still shows: only a zero there is background.
+    if (!object[i] && error_lsb[i] == 0) continue;
+    const Rgb8 c = error_colour(error_lsb[i], scale_max);
+    std::copy(c.begin(), c.end(), out.pixels.begin() + static_cast<std::ptrdiff_t>(3 * i));
+  }
+  return out;
+}
+
+namespace {
+
+// A swatch with a frame, `size` pixels square, and its text to the right; returns the width used.
+int draw_swatch(Image8& image, int x, int y, Rgb8 colour, const std::string& text) {
+  fill_rect(image, x, y, kTickHeight, kTickHeight, kFrame);
+  fill_rect(image, x + 1, y + 1, kTickHeight - 2, kTickHeight - 2, colour);
+  return kTickHeight + 4 + draw_text(image, x + kTickHeight + 4, y, text, kText, kTickHeight);
+}
+
+int swatch_width(const std::string& text) {
+  return kTickHeight + 4 + text_width(text, kTickHeight);
+}
+
+}  // namespace
+
+Image8 heat_legend(int width, double scale_max, const std::string& title, const std::string& unit) {
+  if (width < 160) throw std::invalid_argument("heat_legend: width below 160 pixels");
+  if (!(scale_max > 0) || !std::isfinite(scale_max)) {
+    throw std::invalid_argument("heat_legend: scale_max must be positive and finite");
+  }
+  const std::vector<std::string> title_lines = wrap(title, width - 2 * kPad, kTitleHeight);
+  const int swatches_y = kPad + static_cast<int>(title_lines.size()) * (kTitleHeight + 2);
+  const int bar_y = swatches_y + kTickHeight + kPad;
+  const int bar_h = 10;
+  const int height = bar_y + bar_h + kTickLength + 2 + kTickHeight + kPad;
+  Image8 out(width, height, kBackground);
+  int y = kPad;
+  for (const std::string& line : title_lines) {
+    draw_text(out, kPad, y, line, kText, kTitleHeight);
+    y += kTitleHeight + 2;
+  }
+  int x = kPad;
+  x += draw_swatch(out, x, swatches_y, kErrorMapBackground, "no object") + 2 * kPad;
+  draw_swatch(out, x, swatches_y, kErrorMapZero, "object, 0 " + unit);
+  // The bar: column c shows error_colour of its value, 0 at the left end (one column of the zero
+  // colour), scale_max at the right. Labels sit under their ticks; make_ticks spaces them for
+  // text about 4 times as wide as tall.
+  const int bar_x = kPad + 1, bar_w = width - 2 * kPad - 2 - text_width(" " + unit, kTickHeight);
+  fill_rect(out, bar_x - 1, bar_y - 1, bar_w + 2, bar_h + 2, kFrame);
+  for (int c = 0; c < bar_w; ++c) {
+    const double v = static_cast<double>(c) / (bar_w - 1) * scale_max;
+    fill_rect(out, bar_x + c, bar_y, 1, bar_h, error_colour(v, scale_max));
+  }
+  const std::vector<Tick> ticks = make_ticks(scale_max, std::max(kMinBarHeight, bar_w / 4));
+  for (const Tick& t : ticks) {
+    const int col = bar_x + static_cast<int>(std::lround(t.value / scale_max * (bar_w - 1)));
+    fill_rect(out, col, bar_y + bar_h + 1, 1, kTickLength, kFrame);
+    const int w = text_width(t.label, kTickHeight);
+    // The first label starts at its tick, the last ends near it, the others are centred.
+    const int lx = t.value == 0 ? col : t.value == scale_max ? col - w + 1 : col - w / 2;
+    draw_text(out, std::min(lx, width - w - 1), bar_y + bar_h + kTickLength + 2, t.label, kText,
+              kTickHeight);
+  }
+  return out;
+}
+
+Image8 swatch_legend(int width, const std::string& title,
+                     const std::vector<std::pair<Rgb8, std::string>>& items) {
+  if (width < 64) throw std::invalid_argument("swatch_legend: width below 64 pixels");
+  const std::vector<std::string> title_lines = wrap(title, width - 2 * kPad, kTitleHeight);
+  // Lay the swatches out in rows first, to know the height.
+  std::vector<std::pair<int, int>> at;
+  int x = kPad, y = kPad + static_cast<int>(title_lines.size()) * (kTitleHeight + 2);
+  for (const auto& item : items) {
+    const int w = swatch_width(item.second);
+    if (x > kPad && x + w > width - kPad) {
+      x = kPad;
+      y += kTickHeight + 4;
+    }
+    at.emplace_back(x, y);
+    x += w + 2 * kPad;
+  }
+  const int height = (items.empty() ? y : y + kTickHeight) + kPad;
+  Image8 out(width, height, kBackground);
+  int ty = kPad;
+  for (const std::string& line : title_lines) {
+    draw_text(out, kPad, ty, line, kText, kTitleHeight);
+    ty += kTitleHeight + 2;
+  }
+  for (std::size_t i = 0; i < items.size(); ++i)
+    draw_swatch(
+        out, at[i].first, at[i].second, items[i].first,
+        fit_text(items[i].second, width - kPad - at[i].first - kTickHeight - 4, kTickHeight));
+  return out;
+}
+
+Image8 stack_images(const std::vector<const Image8*>& images) {
+  int width = 1, height = 0;
+  for (const Image8* image : images) {
+    if (!image) throw std::invalid_argument("stack_images: a null image");
+    width = std::max(width, image->width);
+    height += image->height;
+  }
+  if (!images.empty()) height += kLabelGap * (static_cast<int>(images.size()) - 1);
+  Image8 out(width, std::max(height, 1), kBackground);
+  int y = 0;
+  for (const Image8* image : images) {
+    blit(out, *image, 0, y);
+    y += image->height + kLabelGap;
+  }
+  return out;
+}
+
 Image8 contact_sheet(const std::vector<std::pair<std::string, const Image8*>>& tiles, int columns) {
+  return contact_sheet(tiles, columns, {}, nullptr);
+}
+
+Image8 contact_sheet(const std::vector<std::pair<std::string, const Image8*>>& tiles, int columns,
+                     const std::vector<std::string>& title, const Image8* footer) {
   if (tiles.empty()) throw std::invalid_argument("contact_sheet: no tiles");
   if (columns <= 0) {
     throw std::invalid_argument("contact_sheet: " + std::to_string(columns) + " columns");
@@ -239,10 +380,27 @@ Image8 contact_sheet(const std::vector<std::pair<std::string, const Image8*>>& t
   const int cols = std::min(columns, n);
   const int rows = (n + cols - 1) / cols;
   const int cell_h = kLabelHeight + kLabelGap + image_h;
-  Image8 sheet(kPad + cols * (cell_w + kPad), kPad + rows * (cell_h + kPad), kBackground);
+  const int grid_w = kPad + cols * (cell_w + kPad);
+  const int grid_h = kPad + rows * (cell_h + kPad);
+  const int width = std::max(grid_w, footer ? footer->width + 2 * kPad : 0);
+  // Title lines wrap to the sheet's width: a small render's sheet is narrower than its title.
+  std::vector<std::pair<std::string, int>> lines;  // text, height
+  for (std::size_t i = 0; i < title.size(); ++i) {
+    const int h = i == 0 ? kSheetTitle : kLabelHeight;
+    for (const std::string& line : wrap(title[i], width - 2 * kPad, h)) lines.emplace_back(line, h);
+  }
+  int title_h = 0;
+  for (const auto& line : lines) title_h += line.second + 2;
+  if (title_h > 0) title_h += kPad;
+  Image8 sheet(width, title_h + grid_h + (footer ? footer->height + kPad : 0), kBackground);
+  int ty = kPad;
+  for (const auto& [text, h] : lines) {
+    draw_text(sheet, kPad, ty, text, kText, h);
+    ty += h + 2;
+  }
   for (int i = 0; i < n; ++i) {
     const int cell_x = kPad + (i % cols) * (cell_w + kPad);
-    const int cell_y = kPad + (i / cols) * (cell_h + kPad);
+    const int cell_y = title_h + kPad + (i / cols) * (cell_h + kPad);
     const Image8& image = *tiles[static_cast<std::size_t>(i)].second;
     // Centred across the cell, top-aligned under the label: labels stay on one line per row.
     const std::string label =
@@ -251,6 +409,7 @@ Image8 contact_sheet(const std::vector<std::pair<std::string, const Image8*>>& t
               kLabelHeight);
     blit(sheet, image, cell_x + (cell_w - image.width) / 2, cell_y + kLabelHeight + kLabelGap);
   }
+  if (footer) blit(sheet, *footer, kPad, title_h + grid_h);
   return sheet;
 }
 

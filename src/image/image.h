@@ -89,6 +89,31 @@ void fill_rect(Image8& image, double x0, double y0, double x1, double y1, Rgb8 c
 Image8 heatmap_with_scale(const std::vector<double>& error_lsb, int width, int height,
                           double scale_max, const std::string& title);
 
+// Error maps that tell "no error" from "no object": a pixel showing no object is
+// kErrorMapBackground, an object's pixel without error kErrorMapZero (a dark slate no error colour
+// takes), and an error e > 0 LSB is heat_colour(kErrorMapLow + (1 - kErrorMapLow) * e / scale_max)
+// (clamped), so that even 1 LSB on a large scale is a visible purple, not near-black. NaN is
+// kHeatNan.
+inline constexpr Rgb8 kErrorMapBackground{0, 0, 0};
+inline constexpr Rgb8 kErrorMapZero{40, 52, 80};
+inline constexpr double kErrorMapLow = 0.2;
+Rgb8 error_colour(double error_lsb, double scale_max);
+// A width x height map of error_lsb (row-major); `object` (same size) nonzero where a pixel shows
+// an object. No colour bar: the map is the size of the image it measures (heat_legend draws the
+// scale). Throws std::invalid_argument as heatmap_with_scale does.
+Image8 error_map(const std::vector<double>& error_lsb, const std::vector<std::uint8_t>& object,
+                 int width, int height, double scale_max);
+// A horizontal colour bar `width` pixels wide for error_map's colours: the title, then swatches
+// for "no object" and "0", then the bar from 1 LSB... to scale_max with round tick labels, the top
+// labelled with `unit`. Throws std::invalid_argument for a width < 160 or a bad scale_max.
+Image8 heat_legend(int width, double scale_max, const std::string& title,
+                   const std::string& unit = "LSB");
+// A legend of colour swatches, each with its text, under a title, wrapped to `width` pixels.
+Image8 swatch_legend(int width, const std::string& title,
+                     const std::vector<std::pair<Rgb8, std::string>>& items);
+// Images one above the other, left-aligned, 4 pixels apart, on the sheets' background.
+Image8 stack_images(const std::vector<const Image8*>& images);
+
 // The image reduced by an integer factor: each output pixel the rounded mean of its factor x
 // factor block (edge blocks over the pixels they have), in the encoded values (a thumbnail, not a
 // photometric resampling). factor 1 returns a copy. Throws std::invalid_argument for factor < 1.
@@ -102,5 +127,10 @@ Image8 downscale(const Image8& image, int factor);
 // columns there are as many columns as tiles. Throws std::invalid_argument for no tiles, columns
 // < 1 or a null image.
 Image8 contact_sheet(const std::vector<std::pair<std::string, const Image8*>>& tiles, int columns);
+// The same under a title (its first line 18 pixels tall, the others 14, each word-wrapped to the
+// sheet's width) and above a footer image (e.g. a legend), both left-aligned; the sheet
+// is widened to the footer if need be. Without title and footer it is the sheet above.
+Image8 contact_sheet(const std::vector<std::pair<std::string, const Image8*>>& tiles, int columns,
+                     const std::vector<std::string>& title, const Image8* footer);
 
 }  // namespace glint

@@ -12,6 +12,7 @@
 #include "eval/parallel.h"
 #include "io/input_error.h"
 #include "render/image_error.h"
+#include "render/render_sheet.h"
 #include "scene/tracer.h"
 #include "units/catalogue.h"
 #include "units/lane_cost.h"
@@ -19,8 +20,9 @@
 namespace glint {
 namespace {
 
-// How a pixel's requests went, for the skip mask: computed by at least one light, else skipped by
-// tau for at least one light, else skipped by t <= 0 (or facing away) for every light.
+// How a pixel's requests went: computed by at least one light, else skipped by tau for at least
+// one light, else skipped by t <= 0 (or facing away) for every light. Per light (the per-light
+// masks) the same classes for that light's pair alone.
 enum class PixelSkip : std::uint8_t { kBackground, kZero, kTau, kComputed };
 
 void add_scaled(Rgb& acc, const Rgb& colour, double s) {
@@ -58,21 +60,6 @@ std::vector<std::uint32_t> used_materials(const Scene& scene) {
   return {used.begin(), used.end()};
 }
 
-constexpr int kSheetTileWidth = 640;
-
-// The largest value of each factor x factor block of a width x height map.
-std::vector<double> block_max(const std::vector<std::uint8_t>& map, int width, int height,
-                              int factor) {
-  const int w = (width + factor - 1) / factor, h = (height + factor - 1) / factor;
-  std::vector<double> out(static_cast<std::size_t>(w) * h, 0.0);
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) {
-      double& m = out[static_cast<std::size_t>(y / factor) * w + x / factor];
-      m = std::max(m, static_cast<double>(map[static_cast<std::size_t>(y) * width + x]));
-    }
-  return out;
-}
-
 // The requests of one image row, made on its own thread and joined in raster order.
 struct RowRequests {
   std::vector<VectorRow> rows;
@@ -97,6 +84,9 @@ class SceneRenderer {
         tracer_(scene) {
     out_.reference = out_.reference_specular = out_.skip_only = out_.skip_mask =
         Image8(width_, height_);
+    masked_lights_ = std::min(lights_, kMaxLightSkipMasks);
+    out_.light_skip_masks.assign(masked_lights_, Image8(width_, height_));
+    object_.assign(static_cast<std::size_t>(width_) * height_, 0);
     image_.assign(units_, Image8(width_, height_));
     specular_.assign(units_, Image8(width_, height_));
     error_.assign(units_, std::vector<std::uint8_t>(static_cast<std::size_t>(width_) * height_));
@@ -127,6 +117,8 @@ class SceneRenderer {
 
   // Each unit's per-pixel error in LSBs (its largest channel), row-major.
   const std::vector<std::vector<std::uint8_t>>& error_lsb() const { return error_; }
+  // Nonzero where a pixel shows an object, row-major.
+  const std::vector<std::uint8_t>& object() const { return object_; }
 
  private:
   static std::vector<UnitSpec> unit_specs(const RenderOptions& o) {
@@ -142,6 +134,8 @@ class SceneRenderer {
     samples_.resize(pixels_);
     diffuse_.assign(pixels_, Rgb{});
     skip_.assign(pixels_, PixelSkip::kBackground);
+    computed_lights_.assign(pixels_, 0);
+    light_skip_.assign(masked_lights_ * pixels_, PixelSkip::kBackground);
     peak_.assign(pixels_, 0.0);
     per_row_.resize(static_cast<std::size_t>(rows_in_tile_));
     parallel_for(per_row_.size(), options_.threads, [&](std::size_t r) {
@@ -173,6 +167,8 @@ class SceneRenderer {
     const Rgb& a = scene_.ambient;
     diffuse_[p] = Rgb{a.r * mat.diffuse.r, a.g * mat.diffuse.g, a.b * mat.diffuse.b};
     skip_[p] = PixelSkip::kZero;
+    for (std::size_t l = 0; l < masked_lights_; ++l)
+      light_skip_[l * pixels_ + p] = PixelSkip::kZero;
     for (std::size_t l = 0; l < lights_; ++l) {
       const Rgb& i = scene_.lights[l].intensity;
       peak_[p] += c_y(i, mat.specular);
@@ -229,14 +225,19 @@ class SceneRenderer {
       const MaterialParams& params = slots.params[slots.slot(row)];
       SkipCounts& counts = out_.skips[static_cast<std::size_t>(row.light)][samples_[p].material];
       const bool tau_skip = params.always_skip || row.t <= params.tau;
+      const auto l = static_cast<std::size_t>(row.light);
+      PixelSkip* light_skip = l < masked_lights_ ? &light_skip_[l * pixels_ + p] : nullptr;
       if (row.t <= 0) {
         ++counts.zero;
       } else if (tau_skip) {
         ++counts.tau;
         if (skip_[p] == PixelSkip::kZero) skip_[p] = PixelSkip::kTau;
+        if (light_skip) *light_skip = PixelSkip::kTau;
       } else {
         ++counts.computed;
+        ++computed_lights_[p];
         skip_[p] = PixelSkip::kComputed;
+        if (light_skip) *light_skip = PixelSkip::kComputed;
       }
       const Rgb colour = request_colour(k);
       add_scaled(specular_light_[0][p], colour, results_.reference[k]);
@@ -263,7 +264,6 @@ class SceneRenderer {
   int y_of(std::size_t p) const { return y0_ + static_cast<int>(p / width_); }
 
   void compose_reference() {
-    static constexpr Rgb8 kZeroColour{20, 30, 110}, kTauColour{90, 170, 255};
     ref8_.resize(pixels_);
     ref_highlight_.resize(pixels_);
     for (std::size_t p = 0; p < pixels_; ++p) {
@@ -276,21 +276,28 @@ class SceneRenderer {
       out_.skip_only.set(x, y, skip_only);
       skip_acc_.add(ref, skip_only, ref_highlight_[p], highlight(1, p));
       const auto grey = static_cast<std::uint8_t>((ref[0] * 54 + ref[1] * 183 + ref[2] * 19) >> 8);
-      switch (skip_[p]) {
-        case PixelSkip::kBackground:
-          out_.skip_mask.set(x, y, {0, 0, 0});
-          break;
-        case PixelSkip::kZero:
-          out_.skip_mask.set(x, y, kZeroColour);
-          break;
-        case PixelSkip::kTau:
-          out_.skip_mask.set(x, y, kTauColour);
-          break;
-        case PixelSkip::kComputed:
-          out_.skip_mask.set(x, y, {grey, grey, grey});
-          break;
-      }
+      const bool object = skip_[p] != PixelSkip::kBackground;
+      object_[static_cast<std::size_t>(y) * width_ + x] = object ? 1 : 0;
+      out_.skip_mask.set(
+          x, y,
+          object ? combined_skip_colour(lights_ - computed_lights_[p], lights_, grey) : Rgb8{});
+      for (std::size_t l = 0; l < masked_lights_; ++l)
+        out_.light_skip_masks[l].set(x, y, skip_colour(light_skip_[l * pixels_ + p], grey));
     }
+  }
+
+  static Rgb8 skip_colour(PixelSkip s, std::uint8_t grey) {
+    switch (s) {
+      case PixelSkip::kZero:
+        return kSkipZeroColour;
+      case PixelSkip::kTau:
+        return kSkipTauColour;
+      case PixelSkip::kComputed:
+        return {grey, grey, grey};
+      case PixelSkip::kBackground:
+        break;
+    }
+    return {0, 0, 0};
   }
 
   void compose_unit(std::size_t u) {
@@ -313,9 +320,19 @@ class SceneRenderer {
     out_.skip_guarantee_lsb = skip_guarantee_lsb(scene_.display, scene_.eps, slot_map.skip_ratio);
     out_.skip_within_guarantee = out_.skip_only_error.max_lsb <= out_.skip_guarantee_lsb;
     const std::vector<UnitStats> stats = ev_.stats();
+    const std::vector<std::string> labels = render_unit_labels(unit_specs(options_));
+    const std::vector<std::string> stems = render_file_stems(labels);
+    // The shared scale: the largest error of any unit (at least 1 LSB), so that a colour means the
+    // same error on every map; --heat-scale own gives each unit its own, which shows a 1-LSB
+    // unit's pattern beside a 60-LSB one at the cost of comparing colours.
+    double shared_scale = 1;
+    for (std::size_t u = 0; u < units_; ++u)
+      shared_scale = std::max(shared_scale, acc_[u].result().max_lsb);
+    out_.heat_scale = options_.heat_scale;
     for (std::size_t u = 0; u < units_; ++u) {
       UnitRender r;
-      r.label = stats[u].name;
+      r.label = labels[u];
+      r.file = stems[u];
       r.spec = stats[u].spec;
       r.image = std::move(image_[u]);
       r.specular = std::move(specular_[u]);
@@ -324,12 +341,10 @@ class SceneRenderer {
       r.cost = unit_cost(*ev_.units()[u]);
       r.skipped = stats[u].skipped;
       r.computed = stats[u].vectors - stats[u].skipped;
-      // Each heat map on its own scale (at least 1 LSB): a shared one would paint a 1-LSB unit
-      // black beside a 60-LSB one. The scale is drawn in and reported.
-      r.heatmap_scale = std::max(1.0, r.error.max_lsb);
+      r.heatmap_scale =
+          options_.heat_scale == HeatScale::kShared ? shared_scale : std::max(1.0, r.error.max_lsb);
       const std::vector<double> lsb(error_[u].begin(), error_[u].end());
-      r.heatmap =
-          heatmap_with_scale(lsb, width_, height_, r.heatmap_scale, r.label + " error, 8-bit LSB");
+      r.heatmap = error_map(lsb, object_, width_, height_, r.heatmap_scale);
       out_.units.push_back(std::move(r));
     }
     const SlotMap& slots = ev_.slots();
@@ -374,12 +389,24 @@ class SceneRenderer {
   std::vector<Rgb> diffuse_;                      // ambient + diffuse, shared by every image
   std::vector<std::vector<Rgb>> specular_light_;  // [source][pixel], linear
   std::vector<PixelSkip> skip_;
+  std::size_t masked_lights_ = 0;               // lights with a skip mask of their own
+  std::vector<PixelSkip> light_skip_;           // [light][pixel] of the masked lights
+  std::vector<std::uint32_t> computed_lights_;  // lights computed per pixel
+  std::vector<std::uint8_t> object_;            // whole image: nonzero where an object shows
   std::vector<double> peak_;  // the pixel material's peak specular luminance under every light
   std::vector<Rgb8> ref8_;
   std::vector<ImageErrorAccumulator::Highlight> ref_highlight_;
 };
 
 }  // namespace
+
+std::vector<std::string> render_light_names(const Scene& scene) {
+  std::vector<std::string> names;
+  for (std::size_t l = 0; l < scene.lights.size(); ++l)
+    names.push_back(scene.lights[l].name.empty() ? fmt::format("light {}", l)
+                                                 : scene.lights[l].name);
+  return names;
+}
 
 VectorHeader scene_request_header(const Scene& scene, std::vector<std::int32_t>* header_of) {
   VectorHeader h = scene_vector_header(scene);
@@ -418,47 +445,18 @@ RenderResult render_scene(const Scene& scene, const RenderOptions& options) {
   out.height = scene.camera.height;
   std::set<std::string> lobes;
   for (const SceneMaterial& m : scene.materials) out.materials.push_back(m.name);
-  for (std::size_t l = 0; l < scene.lights.size(); ++l)
-    out.lights.push_back(scene.lights[l].name.empty() ? fmt::format("light {}", l)
-                                                      : scene.lights[l].name);
+  out.lights = render_light_names(scene);
   for (std::uint32_t m : used_materials(scene)) {
     out.used_materials.push_back(scene.materials[m].name);
     lobes.insert(to_string(scene.materials[m].lobe));
   }
   out.lobes.assign(lobes.begin(), lobes.end());
 
+  out.eps = scene.eps;
+  out.reproduces = scene.reproduces;
   SceneRenderer renderer(scene, options, out);
   renderer.run();
-  const std::vector<std::vector<std::uint8_t>>& error_lsb = renderer.error_lsb();
-
-  // Full-size tiles would make a 1080p sheet 5760 pixels wide and 350 MB in memory: tiles are
-  // reduced to at most kSheetTileWidth pixels (error maps by the largest error of each block, so
-  // a one-pixel error still shows), the files keep full size.
-  const int factor = (out.width + kSheetTileWidth - 1) / kSheetTileWidth;
-  std::vector<Image8> thumbs;
-  thumbs.reserve(3 + 3 * out.units.size());
-  const auto thumb = [&](const Image8& image) -> const Image8* {
-    thumbs.push_back(factor > 1 ? downscale(image, factor) : image);
-    return &thumbs.back();
-  };
-  std::vector<std::pair<std::string, const Image8*>> tiles{
-      {"reference", thumb(out.reference)},
-      {"reference specular", thumb(out.reference_specular)},
-      {"skip mask (light blue: tau, dark: t<=0)", thumb(out.skip_mask)}};
-  for (std::size_t u = 0; u < out.units.size(); ++u) {
-    const UnitRender& r = out.units[u];
-    tiles.emplace_back(r.label, thumb(r.image));
-    tiles.emplace_back(r.label + " specular", thumb(r.specular));
-    if (factor > 1) {
-      thumbs.push_back(heatmap_with_scale(block_max(error_lsb[u], out.width, out.height, factor),
-                                          thumbs.back().width, thumbs.back().height,
-                                          r.heatmap_scale, r.label + " error, 8-bit LSB"));
-      tiles.emplace_back(r.label + " error", &thumbs.back());
-    } else {
-      tiles.emplace_back(r.label + " error", &r.heatmap);
-    }
-  }
-  out.contact_sheet = contact_sheet(tiles, 3);
+  compose_sheet(out, renderer.error_lsb(), renderer.object());
   return out;
 }
 

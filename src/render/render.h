@@ -10,6 +10,7 @@
 #include <functional>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,11 +24,13 @@ namespace glint {
 class OutputSet;
 class OutputFile;
 
-// Version 3: image errors' mean_lsb is the mean of the pixels' largest channel (2: of every
-// channel); display, eps_measure, skip_guarantee and slots[].pixel_weight added; request-level
-// weighted errors in the scene's display encoding (2: linear, times c_y). Version 2 stated the
-// chip (chip; the colour stage gone).
-inline constexpr int kRenderReportVersion = 3;
+// Version 4: skip.fractions_of, units[].skipped_fraction (every skip fraction of light x pixel
+// pairs), units[].file, heat_scale, skip_masks, reproduces; units[].unit labelled by the keys
+// that tell repeated units apart. Version 3: image errors' mean_lsb is the mean of the pixels'
+// largest channel (2: of every channel); display, eps_measure, skip_guarantee and
+// slots[].pixel_weight added; request-level weighted errors in the scene's display encoding (2:
+// linear, times c_y). Version 2 stated the chip (chip; the colour stage gone).
+inline constexpr int kRenderReportVersion = 4;
 
 // The header of a scene's shading requests: the lights, and only the materials objects use (units
 // are elaborated for what the scene shows, not for what its file defines). header_of, if given,
@@ -35,11 +38,21 @@ inline constexpr int kRenderReportVersion = 3;
 VectorHeader scene_request_header(const Scene& scene,
                                   std::vector<std::int32_t>* header_of = nullptr);
 
+// The heat maps' full scale: one for every unit (the largest error of any, so that colours compare
+// across units), or each unit's own largest error.
+enum class HeatScale { kShared, kOwn };
+const char* to_string(HeatScale s);
+
+// Per-light skip masks are written for the scene's first kMaxLightSkipMasks lights (each costs 3
+// bytes per pixel until written).
+inline constexpr std::size_t kMaxLightSkipMasks = 8;
+
 struct RenderOptions {
   std::vector<UnitSpec> units;  // empty: every unit at its defaults
   int threads = 1;
   Chip chip;                                        // --chip (units/chip.h)
   EpsMeasure eps_measure = EpsMeasure::kLuminance;  // --eps-measure (reference/pixel_error.h)
+  HeatScale heat_scale = HeatScale::kShared;        // --heat-scale
   int tile_rows = 16;     // rows ray-cast and evaluated together (memory: one tile's requests)
   bool progress = false;  // a progress line on stderr
   // Receives every tile's requests in raster order (pixel, then light), e.g. for a vector file.
@@ -80,7 +93,9 @@ struct SkipCounts {
 };
 
 struct UnitRender {
-  std::string label, spec;
+  // label: the unit's name, with the keys that tell it from units of the same name ("hast d=2");
+  // file: its images' file-name stem (render_file_stems).
+  std::string label, file, spec;
   Image8 image, specular, heatmap;
   double heatmap_scale = 1;  // LSBs at the top of the heat map's colour bar
   ImageError error;
@@ -94,7 +109,15 @@ struct RenderResult {
   std::string scene_name;
   int width = 0, height = 0;
   std::uint64_t requests = 0;
-  Image8 reference, reference_specular, skip_mask;
+  double eps = 1e-3;
+  std::optional<SceneReproduces> reproduces;
+  HeatScale heat_scale = HeatScale::kShared;
+  // skip_mask: each visible pixel coloured by the fraction of its lights skipped (facing away,
+  // t <= 0 or tau); light_skip_masks: one per light (the first kMaxLightSkipMasks), each pixel by
+  // how that light's pair went (Källberg & Larsson's Fig.1 view); legend: the masks' colours and
+  // the heat maps' scales.
+  Image8 reference, reference_specular, skip_mask, legend;
+  std::vector<Image8> light_skip_masks;
   // The reference with Källberg's skip alone (every request at t <= tau gives 0): the image cost
   // of the threshold itself.
   Image8 skip_only;
@@ -118,6 +141,12 @@ struct RenderResult {
   Image8 contact_sheet;
 
   SkipCounts skip_total() const;
+  // The scene's reproduced quantity as glint measures it on this render (nullopt: no reference,
+  // or "tau" on a scene of more than one slot).
+  std::optional<double> reproduced_value() const;
+  // The unit's skipped share of the light x pixel pairs, the one denominator of every skip
+  // fraction: the pairs facing away (no request) plus the requests its comparator skipped.
+  double unit_skipped_fraction(const UnitRender& unit) const;
   std::vector<std::string> t_inputs() const;  // "r.v" and/or "n.h": the cosines the scene needs
   nlohmann::json to_json() const;             // the render report (report.json)
 };
@@ -134,12 +163,25 @@ std::uint64_t render_bytes(std::uint64_t pixels, std::size_t units);
 
 RenderResult render_scene(const Scene& scene, const RenderOptions& options);
 
+// The contact sheet's title: scene, resolution, lights, eps, tau, chip; then reproduces_line.
+std::vector<std::string> render_title(const RenderResult& result);
+// "reproduces Källberg & Larsson 2014 Fig. 1: tau 0.87 in the paper, 0.8710 here" (empty when
+// the scene names no figure).
+std::string reproduces_line(const RenderResult& result);
+
 // The file names write_render uses, in contact-sheet order.
 std::vector<std::string> render_file_names(const RenderResult& result);
 // The same before rendering: the labels render_scene gives the units of `specs` (every unit at its
-// defaults when empty; std::invalid_argument for an unknown unit), and their files.
+// defaults when empty; std::invalid_argument for an unknown unit): the unit's name, followed by
+// the keys whose values differ among the units of that name ("hast d=2", "hast d=4"; name.1,
+// name.2 when their specs are the same); their files' stems (filesystem-safe and unique: spaces
+// to '_', any character but [A-Za-z0-9._=-] to '-'); and the files, given the lights' names.
 std::vector<std::string> render_unit_labels(const std::vector<UnitSpec>& specs);
-std::vector<std::string> render_file_names(const std::vector<std::string>& labels);
+std::vector<std::string> render_file_stems(const std::vector<std::string>& labels);
+std::vector<std::string> render_file_names(const std::vector<std::string>& labels,
+                                           const std::vector<std::string>& lights);
+// The lights' names as the scene gives them ("light N" when unnamed).
+std::vector<std::string> render_light_names(const Scene& scene);
 
 // The render's files as outputs of an OutputSet (io/output_set.h), declared before rendering:
 // `dir` made if missing (removed again if the run fails), every file checked and its temporary
@@ -149,6 +191,7 @@ struct RenderOutputs {
 };
 RenderOutputs declare_render_outputs(OutputSet& outputs, const std::string& dir,
                                      const std::vector<std::string>& labels,
+                                     const std::vector<std::string>& lights,
                                      const std::string& option = "-o");
 // Writes every image as PNG and report.json into the declared outputs (the names must be the
 // result's: std::logic_error otherwise); the caller commits them with its other outputs.

@@ -8,6 +8,7 @@
 #include "io/output_set.h"
 #include "render/render.h"
 #include "units/catalogue.h"
+#include "units/key_table.h"
 
 namespace glint {
 namespace {
@@ -19,6 +20,16 @@ nlohmann::json finite_or_null(double v) {
 
 double fraction(std::uint64_t part, std::uint64_t whole) {
   return whole ? static_cast<double>(part) / static_cast<double>(whole) : 0.0;
+}
+
+nlohmann::json reproduces_json(const RenderResult& r) {
+  if (!r.reproduces) return nullptr;
+  const std::optional<double> glint = r.reproduced_value();
+  return {{"paper", r.reproduces->paper},
+          {"figure", r.reproduces->figure},
+          {"quantity", r.reproduces->quantity},
+          {"paper_value", r.reproduces->value},
+          {"glint_value", glint ? nlohmann::json(*glint) : nlohmann::json(nullptr)}};
 }
 
 }  // namespace
@@ -69,14 +80,49 @@ SkipCounts RenderResult::skip_total() const {
   return t;
 }
 
-std::vector<std::string> render_file_names(const std::vector<std::string>& labels) {
-  std::vector<std::string> names{"reference.png", "reference_specular.png", "skip_mask.png",
-                                 "skip_only.png"};
+double RenderResult::unit_skipped_fraction(const UnitRender& unit) const {
+  const SkipCounts total = skip_total();
+  return fraction(total.facing_away + unit.skipped, total.total());
+}
+
+const char* to_string(HeatScale s) {
+  return s == HeatScale::kShared ? "shared" : "own";
+}
+
+std::vector<std::string> render_file_stems(const std::vector<std::string>& labels) {
+  std::vector<std::string> stems;
   for (const std::string& label : labels) {
-    names.push_back(label + ".png");
-    names.push_back(label + "_specular.png");
-    names.push_back(label + "_error.png");
+    std::string stem;
+    for (const char c : label) {
+      const bool safe = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||
+                        (c >= '0' && c <= '9') || c == '.' || c == '_' || c == '=' || c == '-';
+      stem += c == ' ' ? '_' : safe ? c : '-';
+    }
+    stems.push_back(stem);
   }
+  // Unique whatever the labels: a repeated stem gets ".2", ".3", ... after its first.
+  for (std::size_t i = 0; i < stems.size(); ++i) {
+    int k = 1;
+    for (std::size_t j = 0; j < i; ++j)
+      if (stems[j] == stems[i] || stems[j] == stems[i] + "." + std::to_string(k)) ++k;
+    if (k > 1) stems[i] += "." + std::to_string(k);
+  }
+  return stems;
+}
+
+std::vector<std::string> render_file_names(const std::vector<std::string>& labels,
+                                           const std::vector<std::string>& lights) {
+  std::vector<std::string> names{"reference.png", "reference_specular.png", "skip_mask.png"};
+  const std::vector<std::string> light_stems = render_file_stems(lights);
+  for (std::size_t l = 0; l < std::min(lights.size(), kMaxLightSkipMasks); ++l)
+    names.push_back("skip_mask_" + light_stems[l] + ".png");
+  names.push_back("skip_only.png");
+  for (const std::string& stem : render_file_stems(labels)) {
+    names.push_back(stem + ".png");
+    names.push_back(stem + "_specular.png");
+    names.push_back(stem + "_error.png");
+  }
+  names.push_back("legend.png");
   names.push_back("contact_sheet.png");
   names.push_back("report.json");
   return names;
@@ -85,15 +131,67 @@ std::vector<std::string> render_file_names(const std::vector<std::string>& label
 std::vector<std::string> render_file_names(const RenderResult& r) {
   std::vector<std::string> labels;
   for (const UnitRender& u : r.units) labels.push_back(u.label);
-  return render_file_names(labels);
+  return render_file_names(labels, r.lights);
 }
 
-std::vector<std::string> render_unit_labels(const std::vector<UnitSpec>& specs) {
-  std::vector<std::string> names;
-  if (specs.empty()) return unit_labels(unit_names());
+std::vector<std::string> render_unit_labels(const std::vector<UnitSpec>& given) {
+  std::vector<UnitSpec> specs = given;
+  if (specs.empty())
+    for (const std::string& name : unit_names()) specs.push_back(UnitSpec{name, {}});
   // unit_info refuses an unknown name: a label becomes a file name, so only the catalogue's.
-  for (const UnitSpec& s : specs) names.push_back(unit_info(s.name).name);
-  return unit_labels(names);
+  for (UnitSpec& s : specs) s.name = unit_info(s.name).name;
+  // A key's value in a spec: as given, else the catalogue's default.
+  const auto value = [](const UnitSpec& spec, const std::string& key) {
+    for (const auto& [k, v] : spec.keys)
+      if (k == key) return v;
+    for (const UnitKey& k : unit_info(spec.name).keys)
+      if (k.key == key) return k.default_value;
+    return std::string();
+  };
+  std::vector<std::string> labels;
+  for (const UnitSpec& spec : specs) {
+    std::vector<const UnitSpec*> same;
+    std::vector<std::string> keys;
+    for (const UnitSpec& other : specs) {
+      if (other.name != spec.name) continue;
+      same.push_back(&other);
+      for (const auto& kv : other.keys)
+        if (std::find(keys.begin(), keys.end(), kv.first) == keys.end()) keys.push_back(kv.first);
+    }
+    std::string label = spec.name;
+    for (const std::string& key : keys) {
+      const std::string v = value(spec, key);
+      if (std::any_of(same.begin(), same.end(),
+                      [&](const UnitSpec* o) { return value(*o, key) != v; }))
+        label += " " + key + "=" + v;
+    }
+    labels.push_back(label);
+  }
+  // Units whose keys do not tell them apart (the same spec twice) keep name.1, name.2, ...
+  return unit_labels(labels);
+}
+
+std::optional<double> RenderResult::reproduced_value() const {
+  if (!reproduces) return std::nullopt;
+  if (reproduces->quantity == "tau") {
+    if (slots.size() != 1) return std::nullopt;
+    return slots[0]["tau"].get<double>();
+  }
+  const SkipCounts total = skip_total();
+  return fraction(total.facing_away + total.zero + total.tau, total.total());
+}
+
+std::string reproduces_line(const RenderResult& r) {
+  if (!r.reproduces) return "";
+  const SceneReproduces& p = *r.reproduces;
+  const std::optional<double> v = r.reproduced_value();
+  const bool percent = p.quantity != "tau";
+  const auto show = [percent](double x) {
+    return percent ? fmt::format("{:.1f}%", 100.0 * x) : fmt::format("{:.4g}", x);
+  };
+  return fmt::format("reproduces {} {}: {} {} in the paper, {} here", p.paper, p.figure, p.quantity,
+                     show(p.value),
+                     v ? show(*v) : std::string("not measurable (more than one slot)"));
 }
 
 nlohmann::json RenderResult::to_json() const {
@@ -123,12 +221,14 @@ nlohmann::json RenderResult::to_json() const {
     for (const auto& [kind, n] : u.cost.ops_per_request)
       executed[kind] = executed.value(kind, 0.0) + n * static_cast<double>(u.stats.vectors);
     units_json.push_back({{"unit", u.label},
+                          {"file", u.file},
                           {"spec", u.spec},
                           {"image_error", u.error.to_json()},
                           {"heatmap_scale_lsb", u.heatmap_scale},
                           {"requests", u.stats.vectors},
                           {"skipped", u.skipped},
                           {"skipped_beyond_t_le_0", beyond},
+                          {"skipped_fraction", unit_skipped_fraction(u)},
                           {"operations", executed},
                           {"operations_saved", saved},
                           {"area_ge", u.cost.area_ge},
@@ -146,7 +246,10 @@ nlohmann::json RenderResult::to_json() const {
           {"materials", used_materials},
           {"chip", chip},
           {"slots", slots},
-          {"skip", {{"total", total.to_json()}, {"per_light_material", per_pair}}},
+          {"skip",
+           {{"fractions_of", "light x pixel pairs"},
+            {"total", total.to_json()},
+            {"per_light_material", per_pair}}},
           {"display", to_string(display)},
           {"eps_measure", to_string(eps_measure)},
           {"skip_only_image_error", skip_only_error.to_json()},
@@ -154,16 +257,19 @@ nlohmann::json RenderResult::to_json() const {
            {{"bound_lsb", skip_guarantee_lsb},
             {"holds", skip_within_guarantee},
             {"channel_over_tau_weight", skip_ratio}}},
+          {"heat_scale", to_string(heat_scale)},
+          {"reproduces", reproduces_json(*this)},
           {"units", units_json},
           {"files", render_file_names(*this)}};
 }
 
 RenderOutputs declare_render_outputs(OutputSet& outputs, const std::string& dir,
                                      const std::vector<std::string>& labels,
+                                     const std::vector<std::string>& lights,
                                      const std::string& option) {
   outputs.make_folder(option, dir);
   RenderOutputs out;
-  for (const std::string& name : render_file_names(labels))
+  for (const std::string& name : render_file_names(labels, lights))
     out.files.emplace_back(name, &outputs.add(option + " (" + name + ")",
                                               (std::filesystem::path(dir) / name).string()));
   return out;
@@ -176,13 +282,15 @@ void write_render(const RenderResult& r, const RenderOutputs& outputs) {
         return names;
       }())
     throw std::logic_error("write_render: the declared files are not the render's");
-  std::vector<const Image8*> images{&r.reference, &r.reference_specular, &r.skip_mask,
-                                    &r.skip_only};
+  std::vector<const Image8*> images{&r.reference, &r.reference_specular, &r.skip_mask};
+  for (const Image8& mask : r.light_skip_masks) images.push_back(&mask);
+  images.push_back(&r.skip_only);
   for (const UnitRender& u : r.units) {
     images.push_back(&u.image);
     images.push_back(&u.specular);
     images.push_back(&u.heatmap);
   }
+  images.push_back(&r.legend);
   images.push_back(&r.contact_sheet);
   for (std::size_t i = 0; i < images.size(); ++i) {
     const std::vector<std::uint8_t> png = encode_png(*images[i]);
@@ -196,7 +304,8 @@ void write_render(const RenderResult& r, const std::string& dir) {
   std::vector<std::string> labels;
   for (const UnitRender& u : r.units) labels.push_back(u.label);
   OutputSet outputs;
-  const RenderOutputs files = declare_render_outputs(outputs, dir, labels, "render folder");
+  const RenderOutputs files =
+      declare_render_outputs(outputs, dir, labels, r.lights, "render folder");
   write_render(r, files);
   outputs.commit();
 }

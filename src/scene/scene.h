@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -81,6 +82,17 @@ struct Plane {
   std::uint32_t material = 0;
 };
 
+// A paper's figure the scene reproduces, and the paper's number for one quantity glint also
+// measures on the render (render_report.md: reproduces), so that both are shown side by side.
+struct SceneReproduces {
+  std::string paper, figure;
+  std::string quantity;  // one of kReproducibleQuantities
+  double value = 0;      // the paper's figure for it
+};
+// "tau": the scene's threshold (it must have exactly one slot); "skipped_fraction_tau": the
+// share of light x pixel pairs skipped with tau.
+inline constexpr const char* kReproducibleQuantities[] = {"tau", "skipped_fraction_tau"};
+
 struct Scene {
   std::string file;   // the path it was loaded from (for messages and reports)
   std::string name;   // "name" in the file, else the file's stem
@@ -96,6 +108,7 @@ struct Scene {
   std::vector<Mesh> meshes;
   std::vector<Sphere> spheres;
   std::vector<Plane> planes;
+  std::optional<SceneReproduces> reproduces;  // "reproduces" in the file
 };
 
 // Loads and validates a scene; OBJ paths are relative to the scene file's folder. Throws

@@ -120,6 +120,24 @@ SceneMaterial read_material(const Node& node, std::set<std::string>& names) {
   return m;
 }
 
+SceneReproduces read_reproduces(const Node& node) {
+  node.expect_object({"paper", "figure", "quantity", "value"});
+  SceneReproduces r;
+  r.paper = node.at("paper").string();
+  r.figure = node.at("figure").string();
+  const Node quantity = node.at("quantity");
+  r.quantity = quantity.string();
+  std::string known;
+  bool found = false;
+  for (const char* q : kReproducibleQuantities) {
+    found = found || r.quantity == q;
+    known += (known.empty() ? "" : " or ") + std::string("\"") + q + "\"";
+  }
+  if (!found) quantity.fail("unknown quantity " + quote_input(r.quantity) + " (" + known + ")");
+  r.value = node.at("value").number();
+  return r;
+}
+
 }  // namespace
 
 Scene load_scene(const std::string& path) {
@@ -129,7 +147,7 @@ Scene load_scene(const std::string& path) {
   if (!doc.is_object()) root.fail(std::string("must be a JSON object, not ") + doc.type_name());
   check_version(root);
   root.expect_object({"glint_scene", "name", "eps", "display", "camera", "ambient", "background",
-                      "lights", "materials", "objects"});
+                      "lights", "materials", "objects", "reproduces"});
   Scene scene;
   scene.file = path;
   scene.name = std::filesystem::path(path).stem().string();
@@ -160,6 +178,7 @@ Scene load_scene(const std::string& path) {
     scene.materials.push_back(read_material(materials[i], material_names));
   }
   read_objects(root.at("objects"), scene);
+  if (const auto r = root.find("reproduces")) scene.reproduces = read_reproduces(*r);
   return scene;
 }
 

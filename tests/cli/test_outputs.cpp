@@ -442,7 +442,7 @@ TEST_F(CliOutputs, SignalDuringARenderLeavesNothing) {
                       Spawn{work_, -1, {}, {}}, out, err);
     Reaper reaper{pid};
     // Every output declared first: the new folders and temporaries appear at once.
-    ASSERT_TRUE(wait_for([&] { return temporaries(work_).size() == 10; }))
+    ASSERT_TRUE(wait_for([&] { return temporaries(work_).size() == 13; }))
         << temporaries(work_).size();
     std::this_thread::sleep_for(std::chrono::milliseconds(200));  // into the rendering
     ASSERT_EQ(::kill(pid, sig), 0);

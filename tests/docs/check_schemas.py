@@ -388,6 +388,12 @@ class Runner:
         if self.run(["render", self.src("traces/scenes/small.json"), "-o", "render"]) is not None:
             self.json_file(render_doc, "glint_render_report",
                            os.path.join(self.work, "render", "report.json"), "glint render")
+        # The teapot reproduces a paper's figure (reproduces.*); one unit keeps it quick.
+        if self.run(["render", self.src("traces/scenes/teapot.json"), "-o", "teapot", "--unit",
+                     "lut"]) is not None:
+            self.json_file(render_doc, "glint_render_report",
+                           os.path.join(self.work, "teapot", "report.json"),
+                           "glint render (teapot)")
         # The shipped goldens, as glint regress reads them.
         for path in sorted(glob.glob(self.src("traces/golden/*.json"))):
             self.json_file("src/eval/golden.md", "golden", path,

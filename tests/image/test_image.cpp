@@ -541,6 +541,58 @@ TEST(ContactSheet, DifferentSizesLongLabels) {
   EXPECT_GT(count_differences(sheet, plain), 20);
 }
 
+TEST(ContactSheet, TitleAboveAndFooterBelow) {
+  const Image8 a(40, 30, {200, 0, 0}), footer(300, 20, {0, 200, 0});
+  const Image8 plain = contact_sheet({{"a", &a}}, 3);
+  const Image8 sheet = contact_sheet({{"a", &a}}, 3, {"title", "second line"}, &footer);
+  // Title lines of 18 and 14 pixels (each + 2) and a gap of 8; the footer 8 below the grid.
+  const int title = 18 + 2 + 14 + 2 + 8;
+  EXPECT_EQ(sheet.height, title + plain.height + footer.height + 8);
+  EXPECT_EQ(sheet.width, 300 + 2 * 8);  // widened to the footer
+  EXPECT_EQ(sheet.at(8, title + 8 + 18), a.at(0, 0));
+  EXPECT_EQ(sheet.at(8, title + plain.height), footer.at(0, 0));
+  // The title is drawn.
+  int lit = 0;
+  for (int x = 0; x < sheet.width; ++x) lit += sheet.at(x, 8 + 9) != sheet.at(0, 0) ? 1 : 0;
+  EXPECT_GT(lit, 5);
+}
+
+// ---- error_map, heat_legend ----
+
+TEST(ErrorMap, NoObjectZeroAndErrorsAllDistinct) {
+  const std::vector<double> error{0, 0, 1, 40, kNaN, 2};
+  const std::vector<std::uint8_t> object{0, 1, 1, 1, 1, 0};
+  const Image8 map = error_map(error, object, 3, 2, 40.0);
+  EXPECT_EQ(map.width, 3);  // no colour bar: the size of the image measured
+  EXPECT_EQ(map.height, 2);
+  EXPECT_EQ(map.at(0, 0), kErrorMapBackground);
+  EXPECT_EQ(map.at(1, 0), kErrorMapZero);
+  EXPECT_NE(kErrorMapZero, kErrorMapBackground);
+  // 1 LSB of 40 is not near-black: the ramp starts at kErrorMapLow, above the zero colour.
+  EXPECT_EQ(map.at(2, 0), heat_colour(kErrorMapLow + (1 - kErrorMapLow) / 40));
+  EXPECT_NE(map.at(2, 0), kErrorMapZero);
+  EXPECT_EQ(map.at(0, 1), heat_colour(1.0));
+  EXPECT_EQ(map.at(1, 1), kHeatNan);
+  EXPECT_EQ(map.at(2, 1), error_colour(2, 40));  // an error shows even where no object is
+  EXPECT_THROW(error_map(error, object, 2, 2, 40.0), std::invalid_argument);
+  EXPECT_THROW(error_map(error, {1}, 3, 2, 40.0), std::invalid_argument);
+  EXPECT_THROW(error_map(error, object, 3, 2, 0.0), std::invalid_argument);
+}
+
+TEST(HeatLegend, BarRunsFromZeroToTheScale) {
+  const Image8 legend = heat_legend(400, 30, "error, 8-bit LSB");
+  EXPECT_EQ(legend.width, 400);
+  // Somewhere a row holds the zero colour at its left end and the top colour further right.
+  bool found = false;
+  for (int y = 0; y < legend.height && !found; ++y) {
+    if (legend.at(9, y) != kErrorMapZero) continue;
+    for (int x = 10; x < legend.width; ++x) found = found || legend.at(x, y) == heat_colour(1.0);
+  }
+  EXPECT_TRUE(found);
+  EXPECT_THROW(heat_legend(100, 30, "t"), std::invalid_argument);
+  EXPECT_THROW(heat_legend(400, 0, "t"), std::invalid_argument);
+}
+
 TEST(ContactSheet, RejectsBadArguments) {
   const Image8 image(4, 4);
   EXPECT_THROW(contact_sheet({}, 2), std::invalid_argument);

@@ -31,8 +31,10 @@ RenderResult render(const Scene& scene, int threads, int tile_rows = 16,
 
 std::vector<std::vector<std::uint8_t>> all_png(const RenderResult& r) {
   std::vector<std::vector<std::uint8_t>> out{
-      encode_png(r.reference), encode_png(r.reference_specular), encode_png(r.skip_mask),
-      encode_png(r.skip_only), encode_png(r.contact_sheet)};
+      encode_png(r.reference), encode_png(r.reference_specular),
+      encode_png(r.skip_mask), encode_png(r.skip_only),
+      encode_png(r.legend),    encode_png(r.contact_sheet)};
+  for (const Image8& mask : r.light_skip_masks) out.push_back(encode_png(mask));
   for (const UnitRender& u : r.units) {
     out.push_back(encode_png(u.image));
     out.push_back(encode_png(u.specular));
@@ -223,9 +225,9 @@ TEST(RenderSheet, LargeImagesAreReducedOnTheSheet) {
   o.units = {parse_unit_spec("schlick")};
   const RenderResult r = render_scene(scene, o);
   EXPECT_EQ(r.units[0].image.width, 1290);
-  // Factor 3: tiles of 430 pixels; the heat map's legend makes its cell the widest.
-  const int cell = r.units[0].heatmap.width - 1290 + 430;
-  EXPECT_EQ(r.contact_sheet.width, 3 * cell + 4 * 8);
+  EXPECT_EQ(r.units[0].heatmap.width, 1290);  // the scale is in legend.png, not beside the map
+  // Factor 3: tiles of 430 pixels, every one.
+  EXPECT_EQ(r.contact_sheet.width, 3 * 430 + 4 * 8);
 }
 
 TEST(Downscale, BlockMeanRounded) {

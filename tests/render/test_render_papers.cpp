@@ -48,6 +48,10 @@ TEST(KallbergFig1, TeapotTauAndSkippedFraction) {
   const RenderResult r = render(scene, {"pow"});
   ASSERT_EQ(r.slots.size(), 1u);
   EXPECT_NEAR(r.slots[0]["tau"].get<double>(), 0.87, 0.005);
+  // The scene says so itself (its "reproduces"), and the render states both numbers.
+  ASSERT_TRUE(r.reproduces.has_value());
+  EXPECT_EQ(r.reproduces->figure, "Fig. 1");
+  EXPECT_NEAR(r.reproduced_value().value(), r.reproduces->value, 0.005);
   const SkipCounts c = r.skip_total();
   ASSERT_GT(c.total(), 5000u);
   // Källberg's right image is almost entirely blue: most requests skipped with tau, while the
@@ -102,16 +106,20 @@ TEST(KallbergSkip, ImageDifferenceWithinOneLsb) {
   }
 }
 
-// Hast Fig.3: at tau = 0.92 the highlight shrinks as d grows from 2 to 5.
+// Hast Fig.3 (traces/scenes/hast_fig3.json: the teapot in Blinn-Phong at Hast's s = 75, the curve
+// whose highlight ends near 0.92): at tau = 0.92 the highlight shrinks as d grows from 2 to 5.
 TEST(HastFig3, HighlightShrinksWithD) {
-  Scene scene = teapot(128, 96);
-  for (SceneMaterial& m : scene.materials) {
-    m.lobe = Lobe::kBlinn;
-    m.shininess = 75;  // Hast's s = 75, the curve whose highlight ends near 0.92
-  }
+  Scene scene = load_scene(std::string(GLINT_SOURCE_DIR) + "/traces/scenes/hast_fig3.json");
+  scene.camera.width = 128;
+  scene.camera.height = 96;
+  ASSERT_EQ(scene.materials[0].lobe, Lobe::kBlinn);
+  ASSERT_EQ(scene.materials[0].shininess, 75);
   const RenderResult r = render(scene, {"hast:d=2,root=0.92", "hast:d=3,root=0.92",
                                         "hast:d=4,root=0.92", "hast:d=5,root=0.92"});
   ASSERT_EQ(r.units.size(), 4u);
+  // Where Hast reads the end of the highlight (0.92), eps = 1e-3 puts Källberg's threshold.
+  EXPECT_NEAR(r.reproduced_value().value(), r.reproduces->value, 0.01);
+  EXPECT_EQ(r.units[0].label, "hast d=2");
   for (std::size_t i = 1; i < r.units.size(); ++i) {
     EXPECT_LT(r.units[i].error.core_pixels, r.units[i - 1].error.core_pixels) << r.units[i].spec;
     EXPECT_LT(r.units[i].error.highlight_pixels, r.units[i - 1].error.highlight_pixels)
