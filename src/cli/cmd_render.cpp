@@ -12,6 +12,7 @@
 #include "io/output_set.h"
 #include "io/vectors.h"
 #include "render/render.h"
+#include "scene/mesh_summary.h"
 #include "scene/scene.h"
 #include "units/catalogue.h"
 
@@ -94,6 +95,7 @@ int run_render(const RenderCommandOptions& o) {
                               : fmt::format(" (beyond the {} LSB bound from eps: a bug in glint)",
                                             r.skip_guarantee_lsb));
   out << chip_line(r.chip);
+  out << meshes_text(r.meshes);
   out << fmt::format(
       "pixel error: largest channel's 8-bit code difference, {} display; eps on {}\n",
       to_string(r.display),

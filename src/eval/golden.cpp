@@ -107,7 +107,7 @@ constexpr Field kStallFields[] = {{"merge_buffer_full", Kind::kUnsigned},
                                   {"unit_busy", Kind::kUnsigned}};
 constexpr Field kAreaFields[] = {{"ge", Kind::kNumber}, {"inventory", Kind::kArray}};
 constexpr Field kCriticalPathFields[] = {{"delay", Kind::kNumber}, {"stage", Kind::kString}};
-// The render report's fixed part (src/render/render_report.md, version 3).
+// The render report's fixed part (src/render/render_report.md, version 4).
 constexpr Field kRenderReportFields[] = {{"glint_render_report", Kind::kUnsigned},
                                          {"scene", Kind::kString},
                                          {"resolution", Kind::kArray},
@@ -117,6 +117,7 @@ constexpr Field kRenderReportFields[] = {{"glint_render_report", Kind::kUnsigned
                                          {"lights", Kind::kArray},
                                          {"materials", Kind::kArray},
                                          {"chip", Kind::kObject},
+                                         {"meshes", Kind::kArray},
                                          {"slots", Kind::kArray},
                                          {"skip", Kind::kObject},
                                          {"display", Kind::kString},

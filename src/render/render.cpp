@@ -12,6 +12,7 @@
 #include "eval/parallel.h"
 #include "io/input_error.h"
 #include "render/image_error.h"
+#include "scene/mesh_summary.h"
 #include "scene/tracer.h"
 #include "units/catalogue.h"
 #include "units/lane_cost.h"
@@ -414,6 +415,7 @@ RenderResult render_scene(const Scene& scene, const RenderOptions& options) {
   }
   RenderResult out;
   out.scene_name = scene.name;
+  out.meshes = meshes_json(scene);
   out.width = scene.camera.width;
   out.height = scene.camera.height;
   std::set<std::string> lobes;

@@ -27,7 +27,7 @@ class OutputFile;
 // channel); display, eps_measure, skip_guarantee and slots[].pixel_weight added; request-level
 // weighted errors in the scene's display encoding (2: linear, times c_y). Version 2 stated the
 // chip (chip; the colour stage gone).
-inline constexpr int kRenderReportVersion = 3;
+inline constexpr int kRenderReportVersion = 4;
 
 // The header of a scene's shading requests: the lights, and only the materials objects use (units
 // are elaborated for what the scene shows, not for what its file defines). header_of, if given,
@@ -115,6 +115,7 @@ struct RenderResult {
   std::vector<std::string> lobes;  // lobes present in the scene's visible materials
   nlohmann::json slots;            // the slots the units were elaborated for
   nlohmann::json chip;             // the chip they are built on (eval/chip_report.h)
+  nlohmann::json meshes;           // each mesh's format and normals (scene/mesh_summary.h)
   Image8 contact_sheet;
 
   SkipCounts skip_total() const;

@@ -145,6 +145,7 @@ nlohmann::json RenderResult::to_json() const {
           {"lights", lights},
           {"materials", used_materials},
           {"chip", chip},
+          {"meshes", meshes},
           {"slots", slots},
           {"skip", {{"total", total.to_json()}, {"per_light_material", per_pair}}},
           {"display", to_string(display)},
