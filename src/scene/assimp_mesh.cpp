@@ -1,7 +1,8 @@
 #include "scene/assimp_mesh.h"
 
+#include <assimp/BaseImporter.h>
 #include <assimp/DefaultIOSystem.h>
-#include <assimp/postprocess.h>
+#include <assimp/importerdesc.h>
 #include <assimp/scene.h>
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <sstream>
 #include <vector>
 
@@ -141,6 +143,91 @@ bool finite(const aiVector3D& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
+// A node's accumulated transform in double: points by the matrix, normals by its inverse
+// transpose (the cofactor matrix, up to a factor that normalising removes, and the sign of the
+// determinant, kept so that a mirroring node keeps normals outwards).
+struct Affine {
+  double m[3][4] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}};
+
+  static Affine of(const aiMatrix4x4& a) {
+    Affine t;
+    const ai_real* r[3] = {a[0], a[1], a[2]};
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 4; ++j) t.m[i][j] = r[i][j];
+    return t;
+  }
+  Affine then(const Affine& child) const {  // this * child
+    Affine t;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 4; ++j) {
+        double v = j == 3 ? m[i][3] : 0;
+        for (int k = 0; k < 3; ++k) v += m[i][k] * child.m[k][j];
+        t.m[i][j] = v;
+      }
+    return t;
+  }
+  Vec3 point(Vec3 p) const {
+    return {m[0][0] * p.x + m[0][1] * p.y + m[0][2] * p.z + m[0][3],
+            m[1][0] * p.x + m[1][1] * p.y + m[1][2] * p.z + m[1][3],
+            m[2][0] * p.x + m[2][1] * p.y + m[2][2] * p.z + m[2][3]};
+  }
+  Vec3 normal(Vec3 n) const {
+    const Vec3 c0{m[1][1] * m[2][2] - m[1][2] * m[2][1], m[1][2] * m[2][0] - m[1][0] * m[2][2],
+                  m[1][0] * m[2][1] - m[1][1] * m[2][0]};
+    const Vec3 c1{m[0][2] * m[2][1] - m[0][1] * m[2][2], m[0][0] * m[2][2] - m[0][2] * m[2][0],
+                  m[0][1] * m[2][0] - m[0][0] * m[2][1]};
+    const Vec3 c2{m[0][1] * m[1][2] - m[0][2] * m[1][1], m[0][2] * m[1][0] - m[0][0] * m[1][2],
+                  m[0][0] * m[1][1] - m[0][1] * m[1][0]};
+    const double det = m[0][0] * c0.x + m[0][1] * c0.y + m[0][2] * c0.z;
+    const Vec3 out = c0 * n.x + c1 * n.y + c2 * n.z;
+    return det < 0 ? -out : out;
+  }
+};
+
+struct Instance {
+  unsigned mesh;
+  Affine transform;
+};
+
+constexpr int kMaxNodeDepth = 64;
+constexpr std::size_t kMaxInstances = 65536;
+
+// Appends the meshes of `node` and its children, depth first, each with its accumulated
+// transform; counts their triangles and vertices against the limits as it goes.
+void collect(const aiScene& scene, const aiNode& node, const Affine& parent, int depth,
+             std::vector<Instance>& out, const std::vector<std::uint64_t>& mesh_triangles,
+             std::uint64_t& triangles, std::uint64_t& vertices, std::size_t max_triangles,
+             const ObjLimits& limits, const std::string& path) {
+  if (depth > kMaxNodeDepth)
+    throw InputError(path, 0, "mesh", "nodes nested deeper than " + std::to_string(kMaxNodeDepth));
+  const Affine here = parent.then(Affine::of(node.mTransformation));
+  for (unsigned i = 0; i < node.mNumMeshes; ++i) {
+    const unsigned m = node.mMeshes[i];
+    if (m >= scene.mNumMeshes) throw InputError(path, 0, "mesh", "a node names no mesh");
+    if (out.size() == kMaxInstances)
+      throw InputError(path, 0, "mesh",
+                       "more than " + std::to_string(kMaxInstances) + " mesh instances");
+    triangles += mesh_triangles[m];
+    vertices += scene.mMeshes[m]->mNumVertices;
+    if (triangles > max_triangles) {
+      throw InputError(path, 0, "f",
+                       std::to_string(triangles) + " triangles, more than the scene's remaining " +
+                           "limit of " + std::to_string(max_triangles));
+    }
+    if (vertices > limits.max_vertices) {
+      throw InputError(path, 0, "vertex",
+                       "more than " + std::to_string(limits.max_vertices) +
+                           " vertices (the limit per mesh file)");
+    }
+    out.push_back({m, here});
+  }
+  for (unsigned c = 0; c < node.mNumChildren; ++c) {
+    if (node.mChildren[c] == nullptr) continue;
+    collect(scene, *node.mChildren[c], here, depth + 1, out, mesh_triangles, triangles, vertices,
+            max_triangles, limits, path);
+  }
+}
+
 }  // namespace
 
 const char* to_string(MeshFormat format) {
@@ -181,74 +268,99 @@ Mesh load_assimp_mesh(const std::string& path, MeshFormat format, std::size_t ma
   if (format == MeshFormat::kPly) check_ply_header(path, max_triangles, limits);
   if (format == MeshFormat::kStl) check_stl_header(path, max_triangles);
 
+  // Only the importer of the file's format reads it: Importer::ReadFile falls back to every
+  // other importer whose signature matches when the extension's one declines (a .gltf holding PLY
+  // text went to the PLY reader, past glint's PLY header check, and hung). No post-processing
+  // step either: Debian's Assimp keeps its assertions, and its triangulation aborts the process
+  // on faces a hostile PLY makes. glint splits polygons, applies node transforms and checks
+  // indices itself, below. (Both found by fuzz_mesh in its first minute.)
   Assimp::Importer importer;
-  importer.SetIOHandler(new FolderIo(path, limits.max_bytes));  // the importer owns it
-  // Points and lines are dropped at import; polygons are split into triangles, and every node's
-  // transform is applied (one mesh in the file's coordinates, as an OBJ gives).
-  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
-                              aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-  const aiScene* scene =
-      importer.ReadFile(path, aiProcess_Triangulate | aiProcess_SortByPType |
-                                  aiProcess_PreTransformVertices | aiProcess_ValidateDataStructure);
-  if (scene == nullptr) {
-    std::string why = importer.GetErrorString();
-    if (why.empty()) why = "unknown error";
+  Assimp::BaseImporter* reader = nullptr;
+  const char* wanted = format == MeshFormat::kPly   ? "Stanford Polygon Library (PLY) Importer"
+                       : format == MeshFormat::kStl ? "Stereolithography (STL) Importer"
+                                                    : "glTF2 Importer";
+  for (std::size_t i = 0; i < importer.GetImporterCount(); ++i) {
+    const aiImporterDesc* d = importer.GetImporterInfo(i);
+    if (d != nullptr && std::strcmp(d->mName, wanted) == 0) reader = importer.GetImporter(i);
+  }
+  if (reader == nullptr)
+    throw InputError(path, 0, "mesh", std::string("this Assimp has no ") + wanted);
+  FolderIo io(path, limits.max_bytes);
+  const std::unique_ptr<aiScene> owned(reader->ReadFile(&importer, path, &io));
+  const aiScene* scene = owned.get();
+  if (scene == nullptr || scene->mRootNode == nullptr) {
+    std::string why = reader->GetErrorText();
+    if (why.empty()) why = "no scene";
     throw InputError(path, 0, "mesh",
                      "Assimp cannot read it as " + std::string(to_string(format)) + ": " + why);
   }
 
-  std::uint64_t triangles = 0, vertices = 0;
-  bool all_normals = format != MeshFormat::kStl;
+  // Every mesh every node reaches, with the node's transform (a glTF's node tree; PLY and STL
+  // have one node). Triangles counted per instance, before anything is allocated for them.
+  std::vector<std::uint64_t> mesh_triangles(scene->mNumMeshes, 0);
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
-    const aiMesh& mesh = *scene->mMeshes[m];
-    for (unsigned f = 0; f < mesh.mNumFaces; ++f) triangles += mesh.mFaces[f].mNumIndices == 3;
-    vertices += mesh.mNumVertices;
-    all_normals = all_normals && mesh.HasNormals();
+    const aiMesh* mesh = scene->mMeshes[m];
+    if (mesh == nullptr || (mesh->mNumVertices > 0 && mesh->mVertices == nullptr) ||
+        (mesh->mNumFaces > 0 && mesh->mFaces == nullptr))
+      throw InputError(path, 0, "mesh", "mesh " + std::to_string(m + 1) + " is incomplete");
+    for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+      const unsigned n = mesh->mFaces[f].mNumIndices;
+      if (n >= 3) mesh_triangles[m] += n - 2;
+    }
   }
-  if (triangles > max_triangles) {
-    throw InputError(path, 0, "f",
-                     std::to_string(triangles) + " triangles, more than the scene's remaining " +
-                         "limit of " + std::to_string(max_triangles));
-  }
-  if (vertices > limits.max_vertices) {
-    throw InputError(path, 0, "vertex",
-                     std::to_string(vertices) + " vertices, more than the limit of " +
-                         std::to_string(limits.max_vertices) + " per mesh file");
-  }
+  std::vector<Instance> instances;
+  std::uint64_t triangles = 0, vertices = 0;
+  collect(*scene, *scene->mRootNode, Affine(), 0, instances, mesh_triangles, triangles, vertices,
+          max_triangles, limits, path);
   if (triangles == 0) throw InputError(path, 0, "f", "no triangles (a mesh needs faces)");
+  bool all_normals = format != MeshFormat::kStl;
+  for (const Instance& i : instances)
+    all_normals = all_normals && scene->mMeshes[i.mesh]->HasNormals();
 
-  // Vertices and faces numbered through the file's meshes, 1-based in messages.
+  // Vertices numbered through each of the file's meshes, 1-based in messages.
   std::vector<Vec3> positions, normals;
   std::vector<std::array<std::uint32_t, 3>> faces;
   positions.reserve(vertices);
   faces.reserve(triangles);
-  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
-    const aiMesh& mesh = *scene->mMeshes[m];
+  for (const Instance& instance : instances) {
+    const aiMesh& mesh = *scene->mMeshes[instance.mesh];
+    const std::string which =
+        scene->mNumMeshes == 1 ? "" : "mesh " + std::to_string(instance.mesh + 1) + ", ";
+    const Affine& t = instance.transform;
     const auto base = static_cast<std::uint32_t>(positions.size());
     for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
-      const std::string where = "vertex " + std::to_string(positions.size() + 1);
+      const std::string where = which + "vertex " + std::to_string(v + 1);
       const aiVector3D& p = mesh.mVertices[v];
       if (!finite(p)) throw InputError(path, 0, "vertex", where + ": a coordinate is not finite");
-      positions.push_back({p.x, p.y, p.z});
+      const Vec3 q = t.point({p.x, p.y, p.z});
+      if (!(std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z)))
+        throw InputError(path, 0, "vertex", where + ": not finite after its node's transform");
+      positions.push_back(q);
       if (!all_normals) continue;
       const aiVector3D& n = mesh.mNormals[v];
-      if (!finite(n) || (n.x == 0 && n.y == 0 && n.z == 0))
+      const Vec3 m = t.normal({n.x, n.y, n.z});
+      if (!finite(n) || !(std::isfinite(m.x) && std::isfinite(m.y) && std::isfinite(m.z)) ||
+          length(m) == 0)
         throw InputError(path, 0, "normal", where + ": its normal is zero or not finite");
-      normals.push_back(normalize(Vec3{n.x, n.y, n.z}));
+      normals.push_back(normalize(m));
     }
     for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
       const aiFace& face = mesh.mFaces[f];
-      if (face.mNumIndices != 3) continue;
-      std::array<std::uint32_t, 3> tri{};
-      for (unsigned k = 0; k < 3; ++k) {
+      if (face.mNumIndices < 3) continue;  // points and lines
+      if (face.mIndices == nullptr)
+        throw InputError(path, 0, "f", which + "face " + std::to_string(f + 1) + ": no indices");
+      for (unsigned k = 0; k < face.mNumIndices; ++k) {
         if (face.mIndices[k] >= mesh.mNumVertices) {
-          throw InputError(
-              path, 0, "f",
-              "face " + std::to_string(faces.size() + 1) + ": vertex index out of range");
+          throw InputError(path, 0, "f",
+                           which + "face " + std::to_string(f + 1) +
+                               ": vertex index out of range (the mesh has " +
+                               std::to_string(mesh.mNumVertices) + " vertices)");
         }
-        tri[k] = base + face.mIndices[k];
       }
-      faces.push_back(tri);
+      // Polygons as fans from their first corner, as OBJ's are.
+      for (unsigned k = 2; k < face.mNumIndices; ++k)
+        faces.push_back(
+            {base + face.mIndices[0], base + face.mIndices[k - 1], base + face.mIndices[k]});
     }
   }
 
