@@ -2,6 +2,7 @@
 
 #include <assimp/BaseImporter.h>
 #include <assimp/DefaultIOSystem.h>
+#include <assimp/MemoryIOWrapper.h>
 #include <assimp/importerdesc.h>
 #include <assimp/scene.h>
 
@@ -17,6 +18,10 @@
 #include <vector>
 
 #include "io/input_error.h"
+#include "io/json_text.h"
+#include "scene/gltf_check.h"
+#include "scene/obj_mesh.h"
+#include "scene/ply_mesh.h"
 #include "scene/smooth_normals.h"
 
 namespace fs = std::filesystem;
@@ -44,8 +49,12 @@ std::string head(const std::string& path, std::size_t n) {
 // own folder, each within the byte limit, so a mesh cannot make glint read elsewhere.
 class FolderIo : public Assimp::DefaultIOSystem {
  public:
-  FolderIo(const std::string& path, std::uint64_t max_bytes)
-      : folder_(fs::absolute(path).lexically_normal().parent_path()), max_bytes_(max_bytes) {}
+  // `replacement`, when not empty, is served for `path` itself (a reduced glTF, gltf_check.h).
+  FolderIo(const std::string& path, std::uint64_t max_bytes, std::string replacement = "")
+      : main_(fs::absolute(path).lexically_normal()),
+        folder_(main_.parent_path()),
+        max_bytes_(max_bytes),
+        replacement_(std::move(replacement)) {}
 
   bool Exists(const char* file) const override {
     return allowed(file) && DefaultIOSystem::Exists(file);
@@ -53,6 +62,10 @@ class FolderIo : public Assimp::DefaultIOSystem {
   Assimp::IOStream* Open(const char* file, const char* mode) override {
     if (!allowed(file) || std::strchr(mode, 'w') != nullptr) return nullptr;
     std::error_code ec;
+    if (!replacement_.empty() && fs::absolute(file, ec).lexically_normal() == main_) {
+      return new Assimp::MemoryIOStream(reinterpret_cast<const std::uint8_t*>(replacement_.data()),
+                                        replacement_.size(), false);
+    }
     const std::uintmax_t size = fs::file_size(file, ec);
     if (ec || size > max_bytes_) return nullptr;
     return DefaultIOSystem::Open(file, mode);
@@ -65,64 +78,61 @@ class FolderIo : public Assimp::DefaultIOSystem {
     return !ec && p.parent_path() == folder_ && fs::is_regular_file(p, ec);
   }
 
-  fs::path folder_;
+  fs::path main_, folder_;
   std::uint64_t max_bytes_;
+  std::string replacement_;
 };
 
-bool all_digits(const std::string& s) {
-  return !s.empty() && s.size() <= 19 &&
-         std::all_of(s.begin(), s.end(), [](char c) { return c >= '0' && c <= '9'; });
+std::uint32_t le32(const std::string& b, std::size_t at) {
+  std::uint32_t v = 0;
+  for (int i = 3; i >= 0; --i) v = v << 8 | static_cast<unsigned char>(b[at + i]);
+  return v;
 }
 
-// A PLY header read to glint's rules before Assimp sees the file: Assimp 5.2's PLY reader never
-// returns from some malformed headers (a count that is not a number), and it allocates for the
-// declared counts, so those are held to the limits first. Errors name the header's line.
-void check_ply_header(const std::string& path, std::size_t max_triangles, const ObjLimits& limits) {
-  std::istringstream header(head(path, 64 * 1024));
-  std::string line;
-  std::uint64_t number = 0;
+// The glTF Assimp is given: the document reduced by reduce_gltf (gltf_check.h), and for a .glb
+// its header and chunk lengths checked against the file's size first (a JSON chunk claiming
+// 4 GiB in a file of 1 KiB made Assimp allocate 4 GiB: fuzz_mesh), its BIN chunk kept as it is.
+std::string reduced_gltf(const std::string& path, MeshFormat format, std::uint64_t max_bytes) {
+  const std::string folder = fs::absolute(path).lexically_normal().parent_path().string();
+  // A .gltf is JSON alone, held to a scene file's 64 MiB; a .glb holds its buffer too.
+  const std::string bytes =
+      read_text_file(path, format == MeshFormat::kGltf ? kSceneMaxFileBytes : max_bytes,
+                     format == MeshFormat::kGltf ? "glTF file" : "binary glTF file");
+  if (format == MeshFormat::kGltf) return reduce_gltf(bytes, -1, folder, path);
+  const std::uint64_t size = bytes.size();
   const auto fail = [&](const std::string& what) {
-    throw InputError(path, number, "header", what);
+    throw InputError(path, 0, "header", "not a binary glTF 2.0 file: " + what);
   };
-  while (std::getline(header, line)) {
-    ++number;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    std::istringstream in(line);
-    std::vector<std::string> words;
-    for (std::string w; in >> w;) words.push_back(w);
-    if (number == 1) {
-      if (line != "ply") fail("a PLY file starts with the line \"ply\"");
-      continue;
-    }
-    const std::string keyword = words.empty() ? "" : words[0];
-    if (keyword == "end_header") return;
-    if (keyword == "comment" || keyword == "obj_info") continue;
-    if (keyword == "format") {
-      if (words.size() != 3 || (words[1] != "ascii" && words[1] != "binary_little_endian" &&
-                                words[1] != "binary_big_endian"))
-        fail("expected \"format ascii|binary_little_endian|binary_big_endian 1.0\"");
-      continue;
-    }
-    if (keyword == "property") {
-      if (!(words.size() == 3 || (words.size() == 5 && words[1] == "list")))
-        fail("expected \"property TYPE NAME\" or \"property list TYPE TYPE NAME\"");
-      continue;
-    }
-    if (keyword != "element") fail("unknown header line " + quote_input(line));
-    if (words.size() != 3 || !all_digits(words[2]))
-      fail("expected \"element NAME COUNT\", COUNT a whole number");
-    const std::uint64_t count = std::stoull(words[2]);
-    if (words[1] == "vertex" && count > limits.max_vertices) {
-      fail("more than " + std::to_string(limits.max_vertices) +
-           " vertices (the limit per mesh file)");
-    }
-    if (words[1] == "face" && count > max_triangles) {
-      fail("more than " + std::to_string(max_triangles) +
-           " faces (what is left of the scene's limit of " + std::to_string(kSceneMaxTriangles) +
-           " triangles)");
-    }
+  if (size < 20 || bytes.compare(0, 4, "glTF") != 0) fail("it does not start with glTF");
+  if (le32(bytes, 4) != 2) fail("version " + std::to_string(le32(bytes, 4)) + ", not 2");
+  if (le32(bytes, 8) != size)
+    fail("its header says " + std::to_string(le32(bytes, 8)) + " bytes, the file has " +
+         std::to_string(size));
+  if (bytes.compare(16, 4, "JSON") != 0) fail("its first chunk is not JSON");
+  const std::uint64_t json_bytes = le32(bytes, 12);
+  if (json_bytes + 20 > size)
+    fail("its JSON chunk of " + std::to_string(json_bytes) + " bytes runs past the file's end");
+  std::int64_t bin_bytes = -1;
+  std::string bin;
+  const std::uint64_t at = 20 + json_bytes;
+  if (at + 8 <= size && bytes.compare(at + 4, 4, std::string("BIN\0", 4)) == 0) {
+    const std::uint64_t n = le32(bytes, at);
+    if (at + 8 + n > size)
+      fail("its BIN chunk of " + std::to_string(n) + " bytes runs past the end");
+    bin_bytes = static_cast<std::int64_t>(n);
+    bin = bytes.substr(at, 8 + n);
   }
-  fail("no \"end_header\" line in the first 64 KiB");
+  std::string json = reduce_gltf(bytes.substr(20, json_bytes), bin_bytes, folder, path);
+  while (json.size() % 4 != 0) json += ' ';
+  std::string out = "glTF";
+  const auto put = [&](std::uint64_t v) {
+    for (int i = 0; i < 4; ++i) out += static_cast<char>(v >> (8 * i) & 0xff);
+  };
+  put(2);
+  put(12 + 8 + json.size() + bin.size());
+  put(json.size());
+  out += "JSON" + json + bin;
+  return out;
 }
 
 // A binary STL's triangle count (bytes 80..83) against the limit and the file's size.
@@ -262,11 +272,15 @@ MeshFormat mesh_format(const std::string& path) {
                        ": glint reads " + kFormats + ", by the file's extension" + hint);
 }
 
-Mesh load_assimp_mesh(const std::string& path, MeshFormat format, std::size_t max_triangles,
-                      const ObjLimits& limits, double crease_degrees) {
+Mesh load_mesh_file(const std::string& path, MeshFormat format, std::size_t max_triangles,
+                    const ObjLimits& limits, double crease_degrees) {
+  if (format == MeshFormat::kObj) return load_obj_mesh(path, max_triangles, limits, crease_degrees);
+  if (format == MeshFormat::kPly) return load_ply_mesh(path, max_triangles, limits, crease_degrees);
   check_file_bytes(path, limits.max_bytes, "mesh file");
-  if (format == MeshFormat::kPly) check_ply_header(path, max_triangles, limits);
   if (format == MeshFormat::kStl) check_stl_header(path, max_triangles);
+  std::string replacement;
+  if (format == MeshFormat::kGltf || format == MeshFormat::kGlb)
+    replacement = reduced_gltf(path, format, limits.max_bytes);
 
   // Only the importer of the file's format reads it: Importer::ReadFile falls back to every
   // other importer whose signature matches when the extension's one declines (a .gltf holding PLY
@@ -276,16 +290,15 @@ Mesh load_assimp_mesh(const std::string& path, MeshFormat format, std::size_t ma
   // indices itself, below. (Both found by fuzz_mesh in its first minute.)
   Assimp::Importer importer;
   Assimp::BaseImporter* reader = nullptr;
-  const char* wanted = format == MeshFormat::kPly   ? "Stanford Polygon Library (PLY) Importer"
-                       : format == MeshFormat::kStl ? "Stereolithography (STL) Importer"
-                                                    : "glTF2 Importer";
+  const char* wanted =
+      format == MeshFormat::kStl ? "Stereolithography (STL) Importer" : "glTF2 Importer";
   for (std::size_t i = 0; i < importer.GetImporterCount(); ++i) {
     const aiImporterDesc* d = importer.GetImporterInfo(i);
     if (d != nullptr && std::strcmp(d->mName, wanted) == 0) reader = importer.GetImporter(i);
   }
   if (reader == nullptr)
     throw InputError(path, 0, "mesh", std::string("this Assimp has no ") + wanted);
-  FolderIo io(path, limits.max_bytes);
+  FolderIo io(path, limits.max_bytes, std::move(replacement));
   const std::unique_ptr<aiScene> owned(reader->ReadFile(&importer, path, &io));
   const aiScene* scene = owned.get();
   if (scene == nullptr || scene->mRootNode == nullptr) {

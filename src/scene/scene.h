@@ -2,11 +2,11 @@
 //
 // A scene is a camera, lights (point or directional, RGB intensity, no fall-off: the papers'
 // Phong model, so a light's tau depends on its colour only), materials (diffuse and specular
-// colour, a lobe with its shininess or roughness) and objects: meshes (OBJ through tinyobjloader;
-// PLY, glTF 2.0 and STL through Assimp) with smooth per-vertex normals, from the file or generated
-// (scene/smooth_normals.h), Bezier patch sets, built-in spheres and planes. Every mistake a user
-// can make in a scene raises InputError naming the scene file (or the OBJ file) and the field, e.g.
-// "scenes/x.json: field 'materials[2].shininess': must be finite and > 0".
+// colour, a lobe with its shininess or roughness) and objects: meshes (OBJ through tinyobjloader,
+// glTF 2.0 and STL through Assimp, PLY by glint) with smooth per-vertex normals, from the file or
+// generated (scene/smooth_normals.h), Bezier patch sets, built-in spheres and planes. Every mistake
+// a user can make in a scene raises InputError naming the scene file (or the OBJ file) and the
+// field, e.g. "scenes/x.json: field 'materials[2].shininess': must be finite and > 0".
 #pragma once
 
 #include <array>

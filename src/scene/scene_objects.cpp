@@ -7,7 +7,6 @@
 #include "io/input_error.h"
 #include "scene/assimp_mesh.h"
 #include "scene/bezier.h"
-#include "scene/obj_mesh.h"
 #include "scene/transform.h"
 
 namespace fs = std::filesystem;
@@ -100,9 +99,7 @@ class ObjectReader {
         crease->fail("must be an angle in degrees in [0, 180], not " + std::to_string(degrees));
     }
     const MeshFormat format = mesh_format(path);
-    Mesh mesh = format == MeshFormat::kObj
-                    ? load_obj_mesh(path, triangles_left(), ObjLimits{}, degrees)
-                    : load_assimp_mesh(path, format, triangles_left(), ObjLimits{}, degrees);
+    Mesh mesh = load_mesh_file(path, format, triangles_left(), ObjLimits{}, degrees);
     if (crease && mesh.normal_source == NormalSource::kFile) {
       crease->fail(
           "the mesh file has its own normals; a crease angle applies only to a mesh "

@@ -1,11 +1,12 @@
-// Mesh files through Assimp (scene/assimp_mesh.h): PLY, glTF 2.0 (.gltf, .glb) and STL. The
-// input's first byte picks the format (its value mod 4: PLY, glTF, glb, STL), the second the
-// crease angle (its value mod 181, in degrees) for generated normals; the rest is the file,
-// written as mesh.<ext> in a temporary folder of this process ($TMPDIR, else /dev/shm). A loaded
-// mesh must hold glint's invariants: every face's indices within its vertices, every position
-// finite, every normal finite and of unit length, at most the harness's triangle limit.
-// InputError is a refusal (exit 2); anything else is a finding. Work per input is bounded by the
-// limits below (a 1 MiB file of at most 100 000 triangles and vertices).
+// Mesh files other than OBJ (scene/assimp_mesh.h): PLY (glint's own reader, scene/ply_mesh.h),
+// glTF 2.0 (.gltf, .glb) and STL (Assimp). The input's first byte picks the format (its value
+// mod 4: PLY, glTF, glb, STL), the second the crease angle (its value mod 181, in degrees) for
+// generated normals; the rest is the file, written as mesh.<ext> in a temporary folder of this
+// process ($TMPDIR, else /dev/shm). A loaded mesh must hold glint's invariants: every face's
+// indices within its vertices, every position finite, every normal finite and of unit length, at
+// most the harness's triangle limit. InputError is a refusal (exit 2); anything else is a finding.
+// Work per input is bounded by the limits below (a 1 MiB file of at most 100 000 triangles and
+// vertices).
 #include <unistd.h>
 
 #include <cmath>
@@ -69,11 +70,11 @@ int mesh(const std::uint8_t* data, std::size_t size) {
   }
   Mesh m;
   try {
-    m = load_assimp_mesh(path.string(), format, kMaxTriangles, kLimits, crease);
+    m = load_mesh_file(path.string(), format, kMaxTriangles, kLimits, crease);
   } catch (const InputError&) {
     return 0;
   } catch (const std::exception& e) {
-    fail(std::string("load_assimp_mesh threw something other than InputError: ") + e.what());
+    fail(std::string("load_mesh_file threw something other than InputError: ") + e.what());
   }
   if (m.faces.empty() || m.faces.size() > kMaxTriangles) fail("a loaded mesh's triangle count");
   if (m.normals.size() != m.positions.size()) fail("a loaded mesh without a normal per vertex");

@@ -48,9 +48,7 @@ std::string write(const TempDir& dir, const std::string& name, const std::string
 }
 
 Mesh load(const std::string& path, double crease = kSceneDefaultCreaseDegrees) {
-  const MeshFormat f = mesh_format(path);
-  return f == MeshFormat::kObj ? load_obj_mesh(path, 1000, ObjLimits{}, crease)
-                               : load_assimp_mesh(path, f, 1000, ObjLimits{}, crease);
+  return load_mesh_file(path, mesh_format(path), 1000, ObjLimits{}, crease);
 }
 
 std::optional<InputError> error_of(const std::function<void()>& f) {
@@ -286,17 +284,17 @@ TEST(MeshImport, LimitsAreCheckedBeforeAssimpReads) {
   TempDir dir;
   const MeshData m = cube();
   const std::string ply = write(dir, "m.ply", test::to_ply_binary(m));
-  EXPECT_EQ(load_assimp_mesh(ply, MeshFormat::kPly, 12).faces.size(), 12u);
-  expect_error([&] { load_assimp_mesh(ply, MeshFormat::kPly, 11); }, ply, "header",
+  EXPECT_EQ(load_mesh_file(ply, MeshFormat::kPly, 12).faces.size(), 12u);
+  expect_error([&] { load_mesh_file(ply, MeshFormat::kPly, 11); }, ply, "header",
                "more than 11 faces");
   expect_error(
       [&] {
-        load_assimp_mesh(ply, MeshFormat::kPly, 100, ObjLimits{1000000, 7});
+        load_mesh_file(ply, MeshFormat::kPly, 100, ObjLimits{1000000, 7});
       },
       ply, "header", "more than 7 vertices");
-  EXPECT_EQ(error_of([&] { load_assimp_mesh(ply, MeshFormat::kPly, 11); })->line(), 7u);
+  EXPECT_EQ(error_of([&] { load_mesh_file(ply, MeshFormat::kPly, 11); })->line(), 7u);
   const std::string stl = write(dir, "m.stl", test::to_stl_binary(m));
-  expect_error([&] { load_assimp_mesh(stl, MeshFormat::kStl, 11); }, stl, "f",
+  expect_error([&] { load_mesh_file(stl, MeshFormat::kStl, 11); }, stl, "f",
                "the header declares 12 triangles");
   // A header that claims 2^32 - 1 triangles in a file of a few bytes.
   std::string huge = test::to_stl_binary(m);
@@ -304,22 +302,55 @@ TEST(MeshImport, LimitsAreCheckedBeforeAssimpReads) {
   const std::string huge_path = write(dir, "huge.stl", huge);
   expect_error([&] { load(huge_path); }, huge_path, "f", "the header declares 4294967295");
   const std::string glb = write(dir, "m.glb", test::to_glb(m));
-  expect_error([&] { load_assimp_mesh(glb, MeshFormat::kGlb, 11); }, glb, "f",
+  expect_error([&] { load_mesh_file(glb, MeshFormat::kGlb, 11); }, glb, "f",
                "12 triangles, more than");
   const auto size = test::to_glb(m).size();
   expect_error(
       [&] {
-        load_assimp_mesh(glb, MeshFormat::kGlb, 100, ObjLimits{size - 1, 100});
+        load_mesh_file(glb, MeshFormat::kGlb, 100, ObjLimits{size - 1, 100});
       },
       glb, "file", "more than the limit of");
 }
 
-TEST(MeshImport, BrokenFilesGiveAssimpsErrorNamingTheFile) {
+TEST(MeshImport, BrokenFilesGiveErrorsNamingTheFileAndElement) {
   TempDir dir;
   const MeshData m = cube();
   std::string glb = test::to_glb(m);
   const std::string cut = write(dir, "cut.glb", glb.substr(0, glb.size() / 2));
-  expect_error([&] { load(cut); }, cut, "mesh", "Assimp cannot read it as glb");
+  expect_error([&] { load(cut); }, cut, "header", "its header says");
+  std::string huge_json = glb;
+  huge_json.replace(12, 4, "\x9c\xff\xff\xff");  // a JSON chunk of 4 GiB
+  const std::string claim = write(dir, "claim.glb", huge_json);
+  expect_error([&] { load(claim); }, claim, "header", "runs past the file's end");
+  std::string v1 = glb;
+  v1[4] = 1;
+  const std::string old = write(dir, "v1.glb", v1);
+  expect_error([&] { load(old); }, old, "header", "version 1, not 2");
+  // A glb whose JSON is broken, and glTF documents that name what is not there: glint's checks
+  // before Assimp (gltf_check.h), naming the JSON path.
+  std::string bad_json = glb;
+  bad_json[20] = ']';
+  const std::string broken = write(dir, "broken.glb", bad_json);
+  expect_error([&] { load(broken); }, broken, "json", "");
+  const auto gltf_error = [&](const std::string& from, const std::string& to,
+                              const std::string& needle) {
+    std::string text = test::to_gltf_embedded(m);
+    const auto at = text.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    text.replace(at, from.size(), to);
+    const std::string p = write(dir, "bad.gltf", text);
+    SCOPED_TRACE(to);
+    expect_error([&] { load(p); }, p, "gltf", needle);
+  };
+  gltf_error("\"POSITION\"", "\"POSPTION\"",
+             "meshes[0].primitives[0].attributes.POSITION: missing");
+  gltf_error("\"mode\":4", "\"mode\":2", "points and lines are not read");
+  gltf_error("\"indices\":1", "\"indices\":7",
+             "meshes[0].primitives[0].indices: must be a whole number in 0..1");
+  gltf_error("\"count\":8", "\"count\":9", "accessors[0]: its 9 elements run past the end");
+  gltf_error("\"nodes\":[{\"mesh\":0}]", "\"nodes\":[{\"mesh\":0,\"children\":[0]}]",
+             "nodes[0]: is in a cycle");
+  gltf_error("\"version\":\"2.0\"", "\"version\":\"1.0\"", "asset.version");
   // PLY headers are read by glint first (Assimp 5.2 never returns from the first of these).
   const std::string junk = write(dir, "junk.ply", "ply\nformat ascii 1.0\nelement vertex x\n");
   expect_error([&] { load(junk); }, junk, "header", "COUNT a whole number");
@@ -329,8 +360,7 @@ TEST(MeshImport, BrokenFilesGiveAssimpsErrorNamingTheFile) {
   const std::string odd = write(dir, "odd.ply", "ply\nformat ascii 1.0\nvertices 3\n");
   expect_error([&] { load(odd); }, odd, "header", "unknown header line 'vertices 3'");
   const std::string truncated = write(dir, "short.ply", test::to_ply_binary(m).substr(0, 200));
-  // Cut in its faces: Assimp reads what is left as indices, which glint checks.
-  expect_error([&] { load(truncated); }, truncated, "f", "face 1: vertex index out of range");
+  expect_error([&] { load(truncated); }, truncated, "vertex", "the file ends inside it");
   // Face indices beyond the vertices.
   MeshData wild = m;
   wild.faces[3] = {0, 1, 99};
@@ -342,13 +372,15 @@ TEST(MeshImport, BrokenFilesGiveAssimpsErrorNamingTheFile) {
   std::filesystem::create_directories(dir.path() / "sub");
   write(dir, "outside.bin", test::gltf_buffer(m));
   const std::string escape = write(dir, "sub/escape.gltf", test::gltf_json(m, "../outside.bin"));
-  expect_error([&] { load(escape); }, escape, "mesh", "Assimp cannot read it as gltf");
+  expect_error([&] { load(escape); }, escape, "gltf",
+               "buffers[0].uri: must name a file in the mesh file's own folder");
   // A zero normal in the file.
   MeshData zero = m;
   zero.normals.assign(m.positions.size(), {0, 0, 1});
   zero.normals[5] = {0, 0, 0};
   const std::string zpath = write(dir, "zero.ply", test::to_ply_ascii(zero));
   expect_error([&] { load(zpath); }, zpath, "normal", "vertex 6: its normal is zero");
+  EXPECT_EQ(error_of([&] { load(zpath); })->line(), 18u);  // ASCII PLY errors name the line
 }
 
 // ---- In a scene --------------------------------------------------------------------------------
