@@ -2,11 +2,12 @@
 # Shared by the .ci scripts: package lists, the configure-and-build step, and timed phases.
 
 # What building and running glint needs (Debian packages). gtkwave: vcd2fst for --vcd t.fst;
-# yosys: glint synth; qflow-tech-osu018 and opensta: its built-in node (OSU 0.18 um cells) and
-# their timing; verilator: the RTL co-simulations; ninja-build and ccache: the builds.
+# libassimp-dev: PLY, glTF and STL meshes; yosys: glint synth; qflow-tech-osu018 and opensta:
+# its built-in node (OSU 0.18 um cells) and their timing; verilator: the RTL co-simulations;
+# ninja-build and ccache: the builds.
 GLINT_PACKAGES=(g++ cmake ninja-build ccache pkg-config libsystemc-dev libfmt-dev libcli11-dev
-  nlohmann-json3-dev libtinyobjloader-dev libstb-dev fonts-dejavu-core libfast-float-dev gtkwave
-  yosys qflow-tech-osu018 opensta)
+  nlohmann-json3-dev libtinyobjloader-dev libassimp-dev libstb-dev fonts-dejavu-core
+  libfast-float-dev gtkwave yosys qflow-tech-osu018 opensta)
 # What the test suite and the benchmarks need on top: GoogleTest, Google Benchmark, RapidCheck,
 # MPFR (the 200-bit oracle), GNU parallel (the sharded-sweep test), Verilator, Python 3 (the
 # documentation checks), Valgrind (the instruction counts of tests/bench/instructions.py); clang,

@@ -13,6 +13,7 @@
 #include "io/output_set.h"
 #include "io/vectors.h"
 #include "render/render.h"
+#include "scene/mesh_summary.h"
 #include "scene/scene.h"
 #include "units/catalogue.h"
 
@@ -100,6 +101,7 @@ int run_render(const RenderCommandOptions& o) {
                                             r.skip_guarantee_lsb));
   out << chip_line(r.chip);
   if (const std::string line = reproduces_line(r); !line.empty()) out << line << '\n';
+  out << meshes_text(r.meshes);
   out << fmt::format(
       "pixel error: largest channel's 8-bit code difference, {} display; eps on {}\n",
       to_string(r.display),

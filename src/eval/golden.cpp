@@ -117,6 +117,7 @@ constexpr Field kRenderReportFields[] = {{"glint_render_report", Kind::kUnsigned
                                          {"lights", Kind::kArray},
                                          {"materials", Kind::kArray},
                                          {"chip", Kind::kObject},
+                                         {"meshes", Kind::kArray},
                                          {"slots", Kind::kArray},
                                          {"skip", Kind::kObject},
                                          {"display", Kind::kString},

@@ -13,6 +13,7 @@
 #include "io/input_error.h"
 #include "render/image_error.h"
 #include "render/render_sheet.h"
+#include "scene/mesh_summary.h"
 #include "scene/tracer.h"
 #include "units/catalogue.h"
 #include "units/lane_cost.h"
@@ -441,6 +442,7 @@ RenderResult render_scene(const Scene& scene, const RenderOptions& options) {
   }
   RenderResult out;
   out.scene_name = scene.name;
+  out.meshes = meshes_json(scene);
   out.width = scene.camera.width;
   out.height = scene.camera.height;
   std::set<std::string> lobes;

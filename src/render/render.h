@@ -25,8 +25,8 @@ class OutputSet;
 class OutputFile;
 
 // Version 4: skip.fractions_of, units[].skipped_fraction (every skip fraction of light x pixel
-// pairs), units[].file, heat_scale, skip_masks, reproduces; units[].unit labelled by the keys
-// that tell repeated units apart. Version 3: image errors' mean_lsb is the mean of the pixels'
+// pairs), units[].file, heat_scale, skip_masks, reproduces, meshes[] (each mesh file and its
+// normals); units[].unit labelled by the keys that tell repeated units apart. Version 3: image errors' mean_lsb is the mean of the pixels'
 // largest channel (2: of every channel); display, eps_measure, skip_guarantee and
 // slots[].pixel_weight added; request-level weighted errors in the scene's display encoding (2:
 // linear, times c_y). Version 2 stated the chip (chip; the colour stage gone).
@@ -138,6 +138,7 @@ struct RenderResult {
   std::vector<std::string> lobes;  // lobes present in the scene's visible materials
   nlohmann::json slots;            // the slots the units were elaborated for
   nlohmann::json chip;             // the chip they are built on (eval/chip_report.h)
+  nlohmann::json meshes;           // each mesh's format and normals (scene/mesh_summary.h)
   Image8 contact_sheet;
 
   SkipCounts skip_total() const;

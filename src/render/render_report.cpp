@@ -245,6 +245,7 @@ nlohmann::json RenderResult::to_json() const {
           {"lights", lights},
           {"materials", used_materials},
           {"chip", chip},
+          {"meshes", meshes},
           {"slots", slots},
           {"skip",
            {{"fractions_of", "light x pixel pairs"},

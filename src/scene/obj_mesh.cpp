@@ -8,6 +8,7 @@
 
 #include "io/input_error.h"
 #include "scene/mesh_file.h"
+#include "scene/smooth_normals.h"
 
 namespace glint {
 
@@ -37,7 +38,8 @@ bool finite(Vec3 v) {
 
 }  // namespace
 
-Mesh load_obj_mesh(const std::string& path, std::size_t max_triangles, const ObjLimits& limits) {
+Mesh load_obj_mesh(const std::string& path, std::size_t max_triangles, const ObjLimits& limits,
+                   double crease_degrees) {
   check_file_bytes(path, limits.max_bytes, "OBJ file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, 0, "file", "cannot open the OBJ file");
@@ -72,6 +74,19 @@ Mesh load_obj_mesh(const std::string& path, std::size_t max_triangles, const Obj
   }
   if (triangles == 0) throw InputError(path, 0, "f", "no faces (a mesh needs triangles)");
 
+  // The file's normals only when every face vertex names one: a mesh half with normals and half
+  // without is smoothed whole, so that the report's one word for it is true.
+  bool all_normals = true;
+  for (const auto& shape : shapes)
+    for (const tinyobj::index_t& ix : shape.mesh.indices) all_normals &= ix.normal_index != -1;
+  std::vector<Vec3> positions;  // without normals: every v, for smooth_normals
+  std::vector<std::array<std::uint32_t, 3>> plain_faces;
+  if (!all_normals) {
+    positions.reserve(n_positions);
+    for (std::size_t v = 0; v < n_positions; ++v) positions.push_back(triple(attrib.vertices, v));
+    plain_faces.reserve(triangles);
+  }
+
   Mesh mesh;
   mesh.faces.reserve(triangles);
   std::unordered_map<std::uint64_t, std::uint32_t> vertex_of;  // (v << 32 | vn) -> vertex
@@ -91,18 +106,17 @@ Mesh load_obj_mesh(const std::string& path, std::size_t max_triangles, const Obj
                            where + ": vertex index out of range (the file has " +
                                std::to_string(n_positions) + " vertices)");
         }
-        if (ix.normal_index == -1) {
-          throw InputError(path, 0, "vn",
-                           where +
-                               ": a vertex without a normal index; glint needs `f v//vn` "
-                               "(it does not invent normals)");
-        }
-        if (ix.normal_index < 0 || static_cast<std::size_t>(ix.normal_index) >= n_normals) {
+        if (ix.normal_index != -1 &&
+            (ix.normal_index < 0 || static_cast<std::size_t>(ix.normal_index) >= n_normals)) {
           throw InputError(path, 0, "f",
                            where + ": normal index out of range (the file has " +
                                std::to_string(n_normals) + " normals)");
         }
         const auto v = static_cast<std::uint32_t>(ix.vertex_index);
+        if (!all_normals) {
+          corners.push_back(v);
+          continue;
+        }
         const auto vn = static_cast<std::uint32_t>(ix.normal_index);
         const auto [it, added] = vertex_of.emplace(
             std::uint64_t{v} << 32 | vn, static_cast<std::uint32_t>(mesh.positions.size()));
@@ -119,11 +133,14 @@ Mesh load_obj_mesh(const std::string& path, std::size_t max_triangles, const Obj
         corners.push_back(it->second);
       }
       offset += count;
+      auto& into = all_normals ? mesh.faces : plain_faces;
       for (std::size_t k = 2; k < corners.size(); ++k) {
-        mesh.faces.push_back({corners[0], corners[k - 1], corners[k]});
+        into.push_back({corners[0], corners[k - 1], corners[k]});
       }
     }
   }
+  if (!all_normals) mesh = smooth_normals(positions, plain_faces, crease_degrees, path);
+  mesh.format = "obj";
   return mesh;
 }
 

@@ -5,8 +5,8 @@
 #include <string>
 
 #include "io/input_error.h"
+#include "scene/assimp_mesh.h"
 #include "scene/bezier.h"
-#include "scene/obj_mesh.h"
 #include "scene/transform.h"
 
 namespace fs = std::filesystem;
@@ -39,7 +39,8 @@ class ObjectReader {
     const Node type = node.at("type");
     const std::string kind = type.string();
     if (kind == "mesh") {
-      node.expect_object({"type", "name", "file", "material", "scale", "rotate", "translate"});
+      node.expect_object(
+          {"type", "name", "file", "material", "crease_angle", "scale", "rotate", "translate"});
       add_mesh(node, read_mesh(node));
     } else if (kind == "bezier") {
       node.expect_object(
@@ -90,7 +91,20 @@ class ObjectReader {
 
   Mesh read_mesh(const Node& node) const {
     const std::string path = file(node);
-    Mesh mesh = load_obj_mesh(path, triangles_left());
+    const auto crease = node.find("crease_angle");
+    double degrees = kSceneDefaultCreaseDegrees;
+    if (crease) {
+      degrees = crease->number();
+      if (!(degrees >= 0 && degrees <= 180))
+        crease->fail("must be an angle in degrees in [0, 180], not " + std::to_string(degrees));
+    }
+    const MeshFormat format = mesh_format(path);
+    Mesh mesh = load_mesh_file(path, format, triangles_left(), ObjLimits{}, degrees);
+    if (crease && mesh.normal_source == NormalSource::kFile) {
+      crease->fail(
+          "the mesh file has its own normals; a crease angle applies only to a mesh "
+          "whose normals glint generates (remove it, or the file's normals)");
+    }
     mesh.name = fs::path(path).stem().string();
     return mesh;
   }
@@ -106,6 +120,8 @@ class ObjectReader {
                std::to_string(kSceneMaxTriangles));
     }
     Mesh mesh = tessellate_bezier(patches, static_cast<int>(s), path);
+    mesh.format = "bpt";
+    mesh.normal_source = NormalSource::kPatches;
     mesh.name = fs::path(path).stem().string();
     return mesh;
   }
@@ -142,6 +158,18 @@ class ObjectReader {
 };
 
 }  // namespace
+
+const char* to_string(NormalSource source) {
+  switch (source) {
+    case NormalSource::kFile:
+      return "file";
+    case NormalSource::kGenerated:
+      return "generated";
+    case NormalSource::kPatches:
+      return "patches";
+  }
+  return "?";
+}
 
 void read_objects(const Node& objects, Scene& scene) {
   const std::size_t n = objects.array_size(1, kSceneMaxObjects, "objects");

@@ -394,6 +394,34 @@ class Runner:
             self.json_file(render_doc, "glint_render_report",
                            os.path.join(self.work, "teapot", "report.json"),
                            "glint render (teapot)")
+        # render: a tiny scene of meshes, for meshes[] (normals from the file, generated with a
+        # crease angle, and from patches).
+        with open(os.path.join(self.work, "tet.stl"), "w", encoding="utf-8") as f:
+            f.write("solid t\n" + "".join(
+                "facet normal 0 0 0\nouter loop\n" + "".join(f"vertex {v}\n" for v in tri) +
+                "endloop\nendfacet\n" for tri in (("0 0 0", "0 1 0", "1 0 0"),
+                                                    ("0 0 0", "0 0 1", "0 1 0"),
+                                                    ("0 0 0", "1 0 0", "0 0 1"),
+                                                    ("1 0 0", "0 1 0", "0 0 1"))) + "endsolid t\n")
+        with open(os.path.join(self.work, "meshes.json"), "w", encoding="utf-8") as f:
+            json.dump({"glint_scene": 1,
+                       "camera": {"position": [0, 2, 6], "look_at": [0, 0, 0], "fov_y": 40,
+                                  "resolution": [16, 12]},
+                       "lights": [{"name": "l", "type": "point", "position": [2, 4, 3]}],
+                       "materials": [{"name": "m", "specular": [1, 1, 1], "lobe": "phong",
+                                      "shininess": 20}],
+                       "objects": [
+                           {"type": "mesh", "file": self.src("traces/scenes/torus.obj"),
+                            "material": "m"},
+                           {"type": "mesh", "file": "tet.stl", "material": "m",
+                            "crease_angle": 80, "translate": [-2, 0, 0]},
+                           {"type": "bezier", "file": self.src("traces/scenes/teapot.bpt"),
+                            "subdivisions": 1, "material": "m", "scale": 0.3,
+                            "translate": [2, 0, 0]}]}, f)
+        if self.run(["render", "meshes.json", "-o", "render_meshes", "--unit", "pow"]) is not None:
+            self.json_file(render_doc, "glint_render_report",
+                           os.path.join(self.work, "render_meshes", "report.json"),
+                           "glint render (meshes)")
         # The shipped goldens, as glint regress reads them.
         for path in sorted(glob.glob(self.src("traces/golden/*.json"))):
             self.json_file("src/eval/golden.md", "golden", path,

@@ -25,6 +25,7 @@ int golden(const std::uint8_t* data, std::size_t size);
 int report(const std::uint8_t* data, std::size_t size);
 int options(const std::uint8_t* data, std::size_t size);
 int font(const std::uint8_t* data, std::size_t size);
+int mesh(const std::uint8_t* data, std::size_t size);
 
 // Reports a finding on stderr and aborts (libFuzzer then saves the input as a crash).
 [[noreturn]] void fail(const std::string& what);

@@ -55,5 +55,6 @@ GLINT_REPLAY(golden)
 GLINT_REPLAY(report)
 GLINT_REPLAY(options)
 GLINT_REPLAY(font)
+GLINT_REPLAY(mesh)
 
 }  // namespace

@@ -452,11 +452,20 @@ TEST_F(ObjScene, TransformMovesPointsAndNormals) {
   EXPECT_EQ(n.z, 0);
 }
 
-TEST_F(ObjScene, MeshWithoutNormalsIsAnError) {
-  expect_error(scene_with_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"), "vn", "without a normal",
-               obj_path());
-  expect_error(scene_with_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1\n"), "vn",
-               "does not invent normals", obj_path());
+TEST_F(ObjScene, MeshWithoutNormalsGetsGeneratedOnes) {
+  // No face vertex names a normal, or only some do: every normal is generated (smooth_normals.h).
+  for (const char* text : {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+                           "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1\n",
+                           "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 -1\nvn 1 0 0\n"
+                           "f 1 2 3\nf 1//1 3//1 4//1\n"}) {
+    SCOPED_TRACE(text);
+    const Scene s = load_scene(scene_with_obj(text));
+    const Mesh& m = s.meshes[0];
+    EXPECT_EQ(m.normal_source, NormalSource::kGenerated);
+    EXPECT_EQ(m.crease_degrees, kSceneDefaultCreaseDegrees);
+    EXPECT_EQ(m.normals[0].z, 1);  // the first face's own, unshared at a 90-degree fold
+  }
+  EXPECT_EQ(load_scene(scene_with_obj(kQuadObj)).meshes[0].normal_source, NormalSource::kFile);
 }
 
 TEST_F(ObjScene, IndexOutOfRange) {
