@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
@@ -12,6 +13,7 @@
 #include "io/output_set.h"
 #include "io/vectors.h"
 #include "render/render.h"
+#include "render/render_html.h"
 #include "scene/scene.h"
 #include "units/catalogue.h"
 
@@ -27,6 +29,7 @@ struct RenderCommandOptions {
   Chip chip;
   EpsMeasure eps_measure = EpsMeasure::kLuminance;
   bool json = false;
+  bool html = false;
 };
 
 std::string lsb_text(double v) {
@@ -50,6 +53,9 @@ int run_render(const RenderCommandOptions& o) {
   if (o.json) outputs.claim_stdout("--json");
   const RenderOutputs files =
       declare_render_outputs(outputs, o.out_dir, render_unit_labels(options.units), "-o");
+  OutputFile* page =
+      o.html ? &outputs.add("--html", (std::filesystem::path(o.out_dir) / "report.html").string())
+             : nullptr;
   OutputFile* vectors_file =
       o.vectors.empty() ? nullptr : &outputs.add("--write-vectors", o.vectors, true);
   const Scene scene = load_scene(o.scene);
@@ -70,6 +76,11 @@ int run_render(const RenderCommandOptions& o) {
     refuse_size(o.scene, e);  // more slots or contract work than a run may take
   }
   write_render(r, files);
+  if (page) {
+    HtmlRunInfo run = html_run_info();
+    run.figures.emplace_back("eps", fmt::format("{}", scene.eps));
+    write_render_html(r.to_json(), files, *page, run);
+  }
   if (vectors) vectors->commit();  // flushes into its output
   outputs.commit();
   if (o.json) {
@@ -111,7 +122,8 @@ int run_render(const RenderCommandOptions& o) {
         100.0 * u.error.differing_fraction, u.error.highlight_ratio, u.error.core_ratio,
         pct(u.skipped, u.stats.vectors), u.cost.area_ge, u.spec);
   }
-  out << fmt::format("images and report.json in {}\n", o.out_dir);
+  out << fmt::format("images and report.json{} in {}\n", o.html ? " (and report.html)" : "",
+                     o.out_dir);
   return kExitOk;
 }
 
@@ -134,6 +146,9 @@ void add_render_command(CLI::App& app, int& status) {
   add_chip_option(sub, o->chip);
   add_eps_measure_option(sub, o->eps_measure);
   sub->add_flag("--json", o->json, "Print the report on stdout instead of the summary");
+  sub->add_flag("--html", o->html,
+                "Also write report.html into the folder: one page, offline, with the images, "
+                "sortable tables and the command to reproduce");
   sub->callback([o, &status] { status = guarded([&] { return run_render(*o); }); });
 }
 
