@@ -198,7 +198,7 @@ HtmlTable json_table(const std::string& id, const nlohmann::json& rows, int dept
   std::vector<std::vector<std::pair<std::string, const nlohmann::json*>>> leaves;
   for (const nlohmann::json& row : rows) {
     leaves.emplace_back();
-    flatten(row, "", depth, leaves.back());
+    flatten(row, "", depth + 1, leaves.back());  // the row itself is not a level
     for (const auto& [name, value] : leaves.back())
       if (std::find(t.headings.begin(), t.headings.end(), name) == t.headings.end())
         t.headings.push_back(name);

@@ -128,7 +128,7 @@ std::string render_html(const nlohmann::json& report,
       u.erase("description");
       unit_fields.push_back(std::move(u));
     }
-  HtmlTable all = json_table("unit_fields", unit_fields, 3);
+  HtmlTable all = json_table("unit_fields", unit_fields, 2);
   all.caption = "Every unit's figures (report.json units[], description left out)";
   page.table(all);
   page.open_details("report.json");
