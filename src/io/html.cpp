@@ -82,6 +82,7 @@ table.sortable thead th { cursor: pointer; background: #f0f0f0; user-select: non
 th[aria-sort=ascending]::after { content: " \25B2"; } th[aria-sort=descending]::after { content: " \25BC"; }
 caption { text-align: left; font-weight: bold; padding: 4px 0; }
 pre { background: #f6f6f6; padding: 8px; overflow-x: auto; white-space: pre-wrap; word-break: break-all; }
+.wide { overflow-x: auto; }
 .gallery { display: flex; flex-wrap: wrap; gap: 12px; }
 .gallery figure { flex: 0 1 420px; min-width: 240px; } .gallery img { width: 100%; }
 figure { margin: 0; } figcaption { font-size: 12px; color: #555; }
@@ -240,7 +241,8 @@ void HtmlPage::figures(const std::string& id,
 }
 
 void HtmlPage::table(const HtmlTable& t) {
-  body_ += "<table class=\"sortable\" id=\"" + html_escape(t.id) + "\">";
+  // Wide tables (long specs) scroll on their own rather than widening the page.
+  body_ += "<div class=\"wide\"><table class=\"sortable\" id=\"" + html_escape(t.id) + "\">";
   if (!t.caption.empty()) body_ += "<caption>" + html_escape(t.caption) + "</caption>";
   body_ += "\n<thead><tr>";
   for (const std::string& h : t.headings) body_ += "<th>" + html_escape(h) + "</th>";
@@ -254,7 +256,7 @@ void HtmlPage::table(const HtmlTable& t) {
     }
     body_ += "</tr>\n";
   }
-  body_ += "</tbody></table>\n";
+  body_ += "</tbody></table></div>\n";
 }
 
 void HtmlPage::gallery(const std::vector<std::pair<std::string, std::string>>& pngs) {

@@ -136,15 +136,20 @@ std::string sweep_html(const nlohmann::json& report, const HtmlRunInfo& run) {
 std::string size_html(const nlohmann::json& document, const std::vector<nlohmann::json>& reports,
                       const HtmlRunInfo& run) {
   const nlohmann::json& best = document.at("best");
-  std::string inputs;
-  for (const nlohmann::json& in : document.at("inputs"))
+  std::string inputs, measures;
+  for (const nlohmann::json& in : document.at("inputs")) {
     inputs += (inputs.empty() ? "" : ", ") + text(in, "path");
+    const nlohmann::json pm = in.value("pixel_measure", nlohmann::json::object());
+    measures += fmt::format("{}{} display, eps on {} ({})", measures.empty() ? "" : "; ",
+                            text(pm, "display"), text(pm, "eps_measure"), text(in, "path"));
+  }
   HtmlPage page("glint size: " + json_cell(document.at("budget")).text);
   std::vector<std::pair<std::string, std::string>> kv{
       {"budget", json_cell(document.at("budget")).text},
       {"objective", text(document, "objective")},
       {"inputs", inputs},
       {"chip", text(document, "chip")},
+      {"pixel measure", "largest channel of light x specular, " + measures},
       {"configurations", text(document, "configurations")},
       {"meeting the budget", text(document, "meeting")},
       {"choice", best.is_null() ? std::string("none meets the budget") : text(best, "spec")}};
