@@ -9,7 +9,8 @@ an output folder and a vector file named so too) in a scratch folder, then:
 page     parses each page with Python's html.parser: every element closed in order, the hostile
          names only as text (never as markup), the tables' rows and cells against the JSON
          reports, every embedded PNG byte for byte the file the render wrote, the command to
-         reproduce splitting back into the argv that was run; a bad --html path writes nothing.
+         reproduce splitting back into the argv that was run; merge's page of two shards holds
+         the unsharded sweep's rows; a bad --html path writes nothing.
 browser  opens each page in headless Chromium (ctest label `browser`): the page's own self-test
          (#selftest) reports in the dumped DOM that every table has its rows, a click sorts a
          table both ways and every image decoded; a screenshot of the render page shows the
@@ -184,6 +185,16 @@ def check_pages(pages, out):
     for name in ("area", "throughput", "area_latency"):
         flagged = sum(r["pareto"][name] for r in report["results"])
         assert len(page.tables["front_" + name]) == flagged, f"front {name}"
+
+    # Merge: the page of two shards joined holds the unsharded sweep's rows.
+    shards = []
+    for k in range(2):
+        shards.append(os.path.join(out, f"shard{k}.json"))
+        run(argv[:argv.index("-o")] + ["--shard", f"{k}/2", "-o", shards[-1]])
+    merged = os.path.join(out, "merged.html")
+    run([GLINT, "merge"] + shards + ["--html", merged])
+    _, merged_page = read_page(merged)
+    assert merged_page.tables["configurations"] == page.tables["configurations"], "merge page"
 
     # Size: a row per family, the fronts of its input.
     path, argv, doc = pages["size"]
