@@ -69,7 +69,14 @@ function glintSelfTest() {
   out.push('selftest ' + (ok ? 'pass' : 'FAIL'));
   document.getElementById('selftest').textContent = out.join('\n') + '\n';
 }
-window.addEventListener('load', function () { if (location.hash === '#selftest') glintSelfTest(); });
+window.addEventListener('load', function () {
+  // An image shown larger than it is keeps its pixels square and sharp: a blur would hide what
+  // a pixel holds.
+  Array.prototype.forEach.call(document.images, function (im) {
+    if (im.naturalWidth < im.clientWidth) im.style.imageRendering = 'pixelated';
+  });
+  if (location.hash === '#selftest') glintSelfTest();
+});
 )JS";
 
 constexpr const char* kStyle = R"CSS(
