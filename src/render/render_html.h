@@ -21,6 +21,7 @@ std::string render_html(const nlohmann::json& report,
 
 // Writes the page into `page` from the files write_render has just written into `files` (every
 // .png among them, read back from its temporary, so images a render adds appear by themselves).
+// Each PNG must be whole in its temporary once write_render returns; its stream is flushed here.
 void write_render_html(const nlohmann::json& report, const RenderOutputs& files, OutputFile& page,
                        const HtmlRunInfo& run);
 
