@@ -15,6 +15,15 @@ std::string text(const nlohmann::json& j, const char* key) {
   return j.is_object() && j.contains(key) ? json_cell(j.at(key)).text : std::string("-");
 }
 
+// An array of strings (grids, budget conditions) joined by `separator`.
+std::string listed(const nlohmann::json& j, const char* key, const char* separator) {
+  const nlohmann::json v = j.is_object() ? j.value(key, nlohmann::json()) : nlohmann::json();
+  if (!v.is_array()) return json_cell(v).text;
+  std::string out;
+  for (const nlohmann::json& e : v) out += (out.empty() ? "" : separator) + json_cell(e).text;
+  return out;
+}
+
 // The rows (all, or those `keep` accepts) in the CSV's columns (measures.h): the same names the
 // CSV, the JSON and a size budget use.
 template <typename Keep>
@@ -47,7 +56,7 @@ std::vector<std::pair<std::string, std::string>> sweep_figures(const nlohmann::j
        fmt::format("{} ({}, {} {})", text(input, "path"), text(input, "kind"), text(input, "rows"),
                    input.value("kind", "") == "scene" ? "requests" : "rows")},
       {"configurations", text(report, "configurations")},
-      {"grids", json_cell(report.value("grids", nlohmann::json())).text},
+      {"grids", listed(report, "grids", "; ")},
       {"error measure",
        fmt::format("{} at {} bits", text(report, "error_measure"), text(report, "display_bits"))},
       {"chip", text(report.value("chip", nlohmann::json()), "spec")},
@@ -143,9 +152,9 @@ std::string size_html(const nlohmann::json& document, const std::vector<nlohmann
     measures += fmt::format("{}{} display, eps on {} ({})", measures.empty() ? "" : "; ",
                             text(pm, "display"), text(pm, "eps_measure"), text(in, "path"));
   }
-  HtmlPage page("glint size: " + json_cell(document.at("budget")).text);
+  HtmlPage page("glint size: " + listed(document, "budget", ","));
   std::vector<std::pair<std::string, std::string>> kv{
-      {"budget", json_cell(document.at("budget")).text},
+      {"budget", listed(document, "budget", ",")},
       {"objective", text(document, "objective")},
       {"inputs", inputs},
       {"chip", text(document, "chip")},
