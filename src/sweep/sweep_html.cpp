@@ -68,7 +68,7 @@ std::vector<std::pair<std::string, std::string>> sweep_figures(const nlohmann::j
   return kv;
 }
 
-// The plots and the fronts of one sweep report, headed by `what`.
+// The plots and the fronts of one sweep report; the tables' ids start with `id_prefix`.
 void fronts(HtmlPage& page, const nlohmann::json& report, const std::string& id_prefix) {
   for (const SweepPlot& plot : sweep_plots(report, false)) page.raw_svg(plot.svg, plot.name);
   for (const Objective& o : kObjectives) {
