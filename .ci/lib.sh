@@ -11,9 +11,10 @@ GLINT_PACKAGES=(g++ cmake ninja-build ccache pkg-config libsystemc-dev libfmt-de
 # What the test suite and the benchmarks need on top: GoogleTest, Google Benchmark, RapidCheck,
 # MPFR (the 200-bit oracle), GNU parallel (the sharded-sweep test), Verilator, Python 3 (the
 # documentation checks), Valgrind (the instruction counts of tests/bench/instructions.py); clang,
-# its sanitizer and libFuzzer runtimes and llvm-symbolizer for the sanitizer and fuzz build.
+# its sanitizer and libFuzzer runtimes and llvm-symbolizer for the sanitizer and fuzz build;
+# Chromium, headless, for the HTML pages' test in a browser (html.browser).
 GLINT_TEST_PACKAGES=(libgtest-dev libgmock-dev libbenchmark-dev librapidcheck-dev libmpfr-dev
-  parallel verilator python3 valgrind clang libclang-rt-dev llvm)
+  parallel verilator python3 valgrind clang libclang-rt-dev llvm chromium)
 
 # ccache keys on paths relative to the checkout (BASEDIR) and leaves the build folder out of the
 # key of objects with debug information (NOHASHDIR), so a clone elsewhere on the machine still hits.

@@ -2,7 +2,9 @@
 // returned. main.cpp calls it; tests/fuzz/fuzz_options.cpp feeds it argument vectors.
 #include <cctype>
 #include <cstdio>
+#include <filesystem>
 #include <string>
+#include <vector>
 
 #include "cli/cli.h"
 #include "io/output_set.h"
@@ -17,6 +19,7 @@ namespace glint::cli {
 namespace {
 
 bool g_options_only = false;
+std::vector<std::string> g_command_line;
 
 // The first word after `glint` names a subcommand unless it is an option. CLI11 would report an
 // unknown one as "The following argument was not expected: WORD" (or only "A subcommand is
@@ -73,6 +76,15 @@ bool options_only() {
   return g_options_only;
 }
 
+HtmlRunInfo html_run_info() {
+  HtmlRunInfo info;
+  info.argv = g_command_line;
+  std::error_code ec;  // a folder removed under the run: the command alone
+  info.cwd = std::filesystem::current_path(ec).string();
+  info.version = GLINT_VERSION;
+  return info;
+}
+
 namespace {
 
 int run_command(int argc, char** argv) {
@@ -116,6 +128,7 @@ int run_command(int argc, char** argv) {
 }  // namespace
 
 int run(int argc, char** argv) {
+  g_command_line.assign(argv, argv + argc);
   const int status = run_command(argc, argv);
   // Every command's standard output (text, --json, help) is whole or the run fails: a write
   // error there is a failed output, as for a file (exit 2; an internal error keeps its 3).

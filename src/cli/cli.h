@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "io/html.h"
 #include "reference/pixel_error.h"
 #include "units/catalogue.h"
 #include "units/chip.h"
@@ -26,6 +27,10 @@ inline constexpr int kExitBadInput = 2;
 // returns the exit status. Messages go to stderr, results to stdout, which is flushed and checked
 // at the end: a failed write there is reported and makes the status 2 (io/standard_output.h).
 int run(int argc, char** argv);
+
+// The run as a report page states it (--html): the command line run() was given, the working
+// folder and glint's version.
+HtmlRunInfo html_run_info();
 
 // Options only (the options fuzzer, tests/fuzz/fuzz_options.cpp): every subcommand checks its
 // option values as in a real run and stops before it reads an input file or writes anything;

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
@@ -13,6 +14,7 @@
 #include "io/output_set.h"
 #include "io/vectors.h"
 #include "render/render.h"
+#include "render/render_html.h"
 #include "scene/mesh_summary.h"
 #include "scene/scene.h"
 #include "units/catalogue.h"
@@ -30,6 +32,7 @@ struct RenderCommandOptions {
   EpsMeasure eps_measure = EpsMeasure::kLuminance;
   HeatScale heat_scale = HeatScale::kShared;
   bool json = false;
+  bool html = false;
 };
 
 std::string lsb_text(double v) {
@@ -57,6 +60,9 @@ int run_render(const RenderCommandOptions& o) {
   const Scene scene = load_scene(o.scene);
   const RenderOutputs files = declare_render_outputs(
       outputs, o.out_dir, render_unit_labels(options.units), render_light_names(scene), "-o");
+  OutputFile* page =
+      o.html ? &outputs.add("--html", (std::filesystem::path(o.out_dir) / "report.html").string())
+             : nullptr;
   OutputFile* vectors_file =
       o.vectors.empty() ? nullptr : &outputs.add("--write-vectors", o.vectors, true);
   std::unique_ptr<VectorWriter> vectors;
@@ -76,6 +82,11 @@ int run_render(const RenderCommandOptions& o) {
     refuse_size(o.scene, e);  // more slots or contract work than a run may take
   }
   write_render(r, files);
+  if (page) {
+    HtmlRunInfo run = html_run_info();
+    run.figures.emplace_back("eps", fmt::format("{}", scene.eps));
+    write_render_html(r.to_json(), files, *page, run);
+  }
   if (vectors) vectors->commit();  // flushes into its output
   outputs.commit();
   if (o.json) {
@@ -124,7 +135,8 @@ int run_render(const RenderCommandOptions& o) {
         100.0 * u.error.differing_fraction, u.error.highlight_ratio, u.error.core_ratio,
         100.0 * r.unit_skipped_fraction(u), u.cost.area_ge, u.spec);
   }
-  out << fmt::format("images and report.json in {}\n", o.out_dir);
+  out << fmt::format("images and report.json{} in {}\n", o.html ? " (and report.html)" : "",
+                     o.out_dir);
   return kExitOk;
 }
 
@@ -157,6 +169,9 @@ void add_render_command(CLI::App& app, int& status) {
          "every map (the default); own = each unit's largest error")
       ->type_name("shared|own");
   sub->add_flag("--json", o->json, "Print the report on stdout instead of the summary");
+  sub->add_flag("--html", o->html,
+                "Also write report.html into the folder: one page, offline, with the images, "
+                "sortable tables and the command to reproduce");
   sub->callback([o, &status] { status = guarded([&] { return run_render(*o); }); });
 }
 

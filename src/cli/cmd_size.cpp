@@ -11,7 +11,9 @@
 #include "cli/cli.h"
 #include "eval/parallel.h"
 #include "image/image.h"
+#include "io/output_set.h"
 #include "sweep/size.h"
+#include "sweep/sweep_html.h"
 
 namespace glint::cli {
 namespace {
@@ -22,6 +24,7 @@ constexpr int kExitNoneMeets = 1;
 struct SizeOptions {
   std::vector<std::string> vectors, scenes, grids;
   std::string budget, objective = "area";
+  std::string html;
   int display_bits = 8;
   Chip chip;
   EpsMeasure eps_measure = EpsMeasure::kLuminance;
@@ -74,7 +77,11 @@ int run_size_command(const SizeOptions& o) {
   if (options_only()) return kExitOk;
   // A scene's renders (contact sheets, made even with --no-image, which renders once for the
   // requests) draw text: a bad font is refused before any work.
-  if (!o.scenes.empty()) load_text_font();
+  if (!o.scenes.empty() || !o.html.empty()) load_text_font();  // --html: the plots' text too
+  // The page, declared before any work as every output is (io/output_set.h).
+  OutputSet set;
+  for (const SweepInput& in : inputs) set.add_input(in.scene ? "--scene" : "VECTORS", in.path);
+  OutputFile* page = o.html.empty() ? nullptr : &set.add("--html", o.html);
   SweepSettings settings;
   settings.display_bits = o.display_bits;
   settings.chip = o.chip;
@@ -107,6 +114,8 @@ int run_size_command(const SizeOptions& o) {
     run.document["winner_differs"] = best_spec(run) != best_spec(*loadable);
   }
   if (progress) std::fprintf(stderr, "\n");
+  if (page) page->stream() << size_html(run.document, run.reports, html_run_info());
+  set.commit();
   if (o.json) {
     print_json(run.document);
   } else {
@@ -181,6 +190,9 @@ void add_size_command(CLI::App& app, int& status) {
   sub->add_flag("--no-image", o->no_image,
                 "With --scene: leave out the image-level error (request-level errors only)");
   sub->add_flag("--json", o->json, "Print the choice as one JSON document on stdout");
+  sub->add_option("--html", o->html,
+                  "Also write one HTML page here: the choice per family and overall, the Pareto "
+                  "plots per input, the command to reproduce; opens offline");
   sub->callback([o, sub, &status] {
     o->widen_limit_given =
         sub->count("--widen-rounds") > 0 || sub->count("--widen-configurations") > 0;

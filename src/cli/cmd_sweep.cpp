@@ -13,6 +13,7 @@
 #include "image/image.h"
 #include "sweep/outputs.h"
 #include "sweep/sweep.h"
+#include "sweep/sweep_html.h"
 
 namespace glint::cli {
 namespace {
@@ -20,7 +21,7 @@ namespace {
 struct SweepCommandOptions {
   std::string vectors, scene;
   std::vector<std::string> grids;
-  std::string out, csv, plot, shard;
+  std::string out, csv, plot, shard, html;
   std::string error_measure = "max_lsb";
   int display_bits = 8;
   Chip chip;
@@ -60,11 +61,12 @@ int run_sweep_command(const SweepCommandOptions& o) {
   if (options_only()) return kExitOk;
   // Plots and a scene's renders (contact sheets, made even with --no-image, which renders once
   // for the requests) draw text: a bad font is refused before any work.
-  if (!o.plot.empty() || !o.scene.empty()) load_text_font();
+  if (!o.plot.empty() || !o.html.empty() || !o.scene.empty()) load_text_font();
   OutputSet set;
   set.add_input(o.vectors.empty() ? "--scene" : "VECTORS", job.input.path);
   if (o.json) set.claim_stdout("--json");
   const SweepOutputFiles files = declare_sweep_outputs(set, outputs);
+  OutputFile* page = o.html.empty() ? nullptr : &set.add("--html", o.html);
   if (isatty(STDERR_FILENO))
     job.progress = [](const std::string& line) { std::fprintf(stderr, "\r%s", line.c_str()); };
 
@@ -75,6 +77,7 @@ int run_sweep_command(const SweepCommandOptions& o) {
     refuse_chip(o.chip, e);  // the input needs more slots than the chip holds
   }
   if (job.progress) std::fprintf(stderr, "\n");
+  if (page) page->stream() << sweep_html(report, html_run_info());
   return emit_sweep_report(report, files, set, o.json);
 }
 
@@ -112,6 +115,9 @@ void add_sweep_command(CLI::App& app, int& status) {
   sub->add_option("--csv", o->csv, "Also write the CSV table here");
   sub->add_option("--plot", o->plot,
                   "Write error_vs_area and error_vs_throughput as .svg and .png into this folder");
+  sub->add_option("--html", o->html,
+                  "Also write one HTML page here: plots, fronts and every configuration as "
+                  "sortable tables, the command to reproduce; opens offline");
   sub->add_option("--error-measure", o->error_measure,
                   "The error of the Pareto fronts and plots: max_lsb (default), bound_lsb, "
                   "mismatch_fraction, max_abs, weighted.max_lsb, image.max_lsb, ...")

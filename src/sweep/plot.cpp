@@ -234,17 +234,19 @@ void draw(Canvas& c, const nlohmann::json& report, const PlotKind& kind, SweepPl
 
 }  // namespace
 
-std::vector<SweepPlot> sweep_plots(const nlohmann::json& report) {
+std::vector<SweepPlot> sweep_plots(const nlohmann::json& report, bool png) {
   std::vector<SweepPlot> out;
   for (const PlotKind& kind : kPlots) {
     SweepPlot plot;
     plot.name = kind.name;
     SvgCanvas svg(kWidth, kHeight, kWhite);
     draw(svg, report, kind, plot);
-    ImageCanvas png(kWidth, kHeight, kWhite);
-    draw(png, report, kind, plot);
     plot.svg = svg.finish();
-    plot.png = png.image();
+    if (png) {
+      ImageCanvas image(kWidth, kHeight, kWhite);
+      draw(image, report, kind, plot);
+      plot.png = image.image();
+    }
     out.push_back(std::move(plot));
   }
   return out;

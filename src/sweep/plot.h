@@ -20,7 +20,8 @@ struct SweepPlot {
   std::size_t front = 0;   // of them on the front
 };
 
-// Both plots of a report whose rows carry "error" and "pareto" (report.h's mark_pareto).
-std::vector<SweepPlot> sweep_plots(const nlohmann::json& report);
+// Both plots of a report whose rows carry "error" and "pareto" (report.h's mark_pareto); without
+// `png`, the SVG alone (an HTML page inlines it).
+std::vector<SweepPlot> sweep_plots(const nlohmann::json& report, bool png = true);
 
 }  // namespace glint
