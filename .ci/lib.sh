@@ -2,16 +2,18 @@
 # Shared by the .ci scripts: package lists, the configure-and-build step, and timed phases.
 
 # What building and running glint needs (Debian packages). gtkwave: vcd2fst for --vcd t.fst;
-# yosys: glint synth; verilator: the RTL co-simulations; ninja-build and ccache: the builds.
+# yosys: glint synth; verilator: the RTL co-simulations; ninja-build and ccache: the builds;
+# libspng-dev: the PNG encoder.
 GLINT_PACKAGES=(g++ cmake ninja-build ccache pkg-config libsystemc-dev libfmt-dev libcli11-dev
-  nlohmann-json3-dev libtinyobjloader-dev libstb-dev fonts-dejavu-core libfast-float-dev gtkwave
-  yosys)
+  nlohmann-json3-dev libtinyobjloader-dev libstb-dev libspng-dev fonts-dejavu-core
+  libfast-float-dev gtkwave yosys)
 # What the test suite and the benchmarks need on top: GoogleTest, Google Benchmark, RapidCheck,
-# MPFR (the 200-bit oracle), GNU parallel (the sharded-sweep test), Verilator, Python 3 (the
-# documentation checks), Valgrind (the instruction counts of tests/bench/instructions.py); clang,
-# its sanitizer and libFuzzer runtimes and llvm-symbolizer for the sanitizer and fuzz build.
+# MPFR (the 200-bit oracle), libpng (png_speed's comparison of encoders), GNU parallel (the
+# sharded-sweep test), Verilator, Python 3 (the documentation checks), Valgrind (the instruction
+# counts of tests/bench/instructions.py); clang, its sanitizer and libFuzzer runtimes and
+# llvm-symbolizer for the sanitizer and fuzz build.
 GLINT_TEST_PACKAGES=(libgtest-dev libgmock-dev libbenchmark-dev librapidcheck-dev libmpfr-dev
-  parallel verilator python3 valgrind clang libclang-rt-dev llvm)
+  libpng-dev parallel verilator python3 valgrind clang libclang-rt-dev llvm)
 
 # ccache keys on paths relative to the checkout (BASEDIR) and leaves the build folder out of the
 # key of objects with debug information (NOHASHDIR), so a clone elsewhere on the machine still hits.

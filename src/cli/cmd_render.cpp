@@ -61,6 +61,10 @@ int run_render(const RenderCommandOptions& o) {
       for (std::size_t i = 0; i < n; ++i) vectors->write(rows[i]);
     };
   }
+  // Every PNG is encoded as its rows are made, straight into its output (memory: the error maps,
+  // not the images).
+  options.images = RenderImages::kStream;
+  options.png_sinks = render_png_sinks(files);
   RenderResult r;
   try {
     r = render_scene(scene, options);

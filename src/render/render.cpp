@@ -60,6 +60,11 @@ std::vector<std::uint32_t> used_materials(const Scene& scene) {
 
 constexpr int kSheetTileWidth = 640;
 
+// Contact-sheet tiles are the images reduced by this factor (at most kSheetTileWidth wide).
+int sheet_factor(int width) {
+  return (width + kSheetTileWidth - 1) / kSheetTileWidth;
+}
+
 // The largest value of each factor x factor block of a width x height map.
 std::vector<double> block_max(const std::vector<std::uint8_t>& map, int width, int height,
                               int factor) {
@@ -80,8 +85,28 @@ struct RowRequests {
   std::vector<std::uint32_t> facing_away;  // light * materials + material of each pair skipped
 };
 
+// The heat map of a unit's error map, reduced for the contact sheet as the images are (by the
+// largest error of each block, so a one-pixel error still shows).
+Image8 error_thumb(const std::vector<std::uint8_t>& error, int width, int height, int factor,
+                   double scale, const std::string& title) {
+  const int w = (width + factor - 1) / factor, h = (height + factor - 1) / factor;
+  return heatmap_with_scale(block_max(error, width, height, factor), w, h, scale, title);
+}
+
+// Image slots composed a tile of rows at a time: the reference's four, then each unit's image and
+// specular term. Their files (render_file_names) interleave each unit's heat map.
+constexpr std::size_t kReferenceSlots = 4;
+std::size_t slot_file(std::size_t slot) {
+  return slot < kReferenceSlots ? slot : kReferenceSlots + 3 * ((slot - 4) / 2) + (slot - 4) % 2;
+}
+std::size_t heatmap_file(std::size_t unit) {
+  return kReferenceSlots + 3 * unit + 2;
+}
+
 // Renders a scene a tile of rows at a time. Every stage writes only its own outputs (a row, a
 // source of specular light, a unit's images), so the bytes never depend on the thread count.
+// Images are composed a tile (strip) at a time, then copied into whole images (kKeep) or
+// PNG-encoded at once and reduced for the contact sheet (kStream).
 class SceneRenderer {
  public:
   SceneRenderer(const Scene& scene, const RenderOptions& options, RenderResult& out)
@@ -94,19 +119,38 @@ class SceneRenderer {
         header_(request_header(scene, options, &header_of_)),
         ev_(header_, unit_specs(options), 8, options.chip),
         units_(ev_.units().size()),
-        tracer_(scene) {
-    out_.reference = out_.reference_specular = out_.skip_only = out_.skip_mask =
-        Image8(width_, height_);
-    image_.assign(units_, Image8(width_, height_));
-    specular_.assign(units_, Image8(width_, height_));
-    error_.assign(units_, std::vector<std::uint8_t>(static_cast<std::size_t>(width_) * height_));
+        tracer_(scene),
+        mode_(options.images),
+        factor_(sheet_factor(width_)) {
+    out_.images = mode_;
+    if (mode_ == RenderImages::kKeep) {
+      out_.reference = out_.reference_specular = out_.skip_only = out_.skip_mask =
+          Image8(width_, height_);
+      image_.assign(units_, Image8(width_, height_));
+      specular_.assign(units_, Image8(width_, height_));
+    }
+    if (mode_ != RenderImages::kNone) {
+      strip_.resize(kReferenceSlots + 2 * units_);
+      error_.assign(units_, std::vector<std::uint8_t>(static_cast<std::size_t>(width_) * height_));
+    }
+    if (mode_ == RenderImages::kStream) {
+      if (options.png_sinks.size() != kReferenceSlots + 3 * units_ + 1)
+        throw std::logic_error("render: kStream needs one PNG sink per image file");
+      thumb_.resize(strip_.size());
+      for (std::size_t slot = 0; slot < strip_.size(); ++slot)
+        writer_.emplace_back(width_, height_, options.png_sinks[slot_file(slot)]);
+    }
     acc_.resize(units_);
     for (std::size_t u = 0; u < units_; ++u) ulp_.push_back(ev_.units()[u]->out_format().ulp());
     out_.skips.assign(lights_, std::vector<SkipCounts>(scene.materials.size()));
   }
 
   void run() {
-    const int tile_rows = std::min(options_.tile_rows, height_);
+    // Streamed tiles are whole blocks of the contact sheet's reduction (but the last).
+    const int tile_rows = std::min(mode_ == RenderImages::kStream
+                                       ? (options_.tile_rows + factor_ - 1) / factor_ * factor_
+                                       : options_.tile_rows,
+                                   height_);
     for (int y0 = 0; y0 < height_; y0 += tile_rows) {
       y0_ = y0;
       rows_in_tile_ = std::min(height_, y0 + tile_rows) - y0;
@@ -116,8 +160,16 @@ class SceneRenderer {
       ev_.add_batch(requests_.data(), requests_.size(), results_, options_.threads);
       out_.requests += requests_.size();
       accumulate_specular();
-      compose_reference();
-      parallel_for(units_, options_.threads, [&](std::size_t u) { compose_unit(u); });
+      compose_reference_pixels();
+      for (Image8& strip : strip_)
+        if (strip.height != rows_in_tile_) strip = Image8(width_, rows_in_tile_);
+      parallel_for(1 + units_, options_.threads, [&](std::size_t task) {
+        if (task == 0) {
+          compose_reference();
+        } else {
+          compose_unit(task - 1);
+        }
+      });
       if (options_.progress)
         std::fprintf(stderr, "\rrender: %d/%d rows", y0 + rows_in_tile_, height_);
     }
@@ -125,8 +177,34 @@ class SceneRenderer {
     finish();
   }
 
-  // Each unit's per-pixel error in LSBs (its largest channel), row-major.
-  const std::vector<std::vector<std::uint8_t>>& error_lsb() const { return error_; }
+  // The contact sheet's tiles, in its order: the reference, its specular term and the skip mask,
+  // then each unit's image, specular term and heat map, reduced by sheet_factor.
+  std::vector<Image8> sheet_tiles() {
+    if (mode_ == RenderImages::kStream) {
+      std::vector<Image8> tiles;
+      for (std::size_t slot = 0; slot < 3; ++slot) tiles.push_back(std::move(thumb_[slot]));
+      for (std::size_t u = 0; u < units_; ++u) {
+        tiles.push_back(std::move(thumb_[kReferenceSlots + 2 * u]));
+        tiles.push_back(std::move(thumb_[kReferenceSlots + 2 * u + 1]));
+        tiles.push_back(std::move(heat_thumb_[u]));
+      }
+      return tiles;
+    }
+    const auto reduce = [&](const Image8& image) {
+      return factor_ > 1 ? downscale(image, factor_) : image;
+    };
+    std::vector<Image8> tiles{reduce(out_.reference), reduce(out_.reference_specular),
+                              reduce(out_.skip_mask)};
+    for (std::size_t u = 0; u < units_; ++u) {
+      const UnitRender& r = out_.units[u];
+      tiles.push_back(reduce(r.image));
+      tiles.push_back(reduce(r.specular));
+      tiles.push_back(factor_ > 1 ? error_thumb(error_[u], width_, height_, factor_,
+                                                r.heatmap_scale, r.label + " error, 8-bit LSB")
+                                  : r.heatmap);
+    }
+    return tiles;
+  }
 
  private:
   static std::vector<UnitSpec> unit_specs(const RenderOptions& o) {
@@ -259,49 +337,101 @@ class SceneRenderer {
     return {y > 0 && y >= 0.1 * peak_[p], y > 0 && y >= 0.5 * peak_[p]};
   }
 
-  int x_of(std::size_t p) const { return static_cast<int>(p % width_); }
-  int y_of(std::size_t p) const { return y0_ + static_cast<int>(p / width_); }
-
-  void compose_reference() {
-    static constexpr Rgb8 kZeroColour{20, 30, 110}, kTauColour{90, 170, 255};
+  // The reference's final pixels and highlight, which every unit's error needs.
+  void compose_reference_pixels() {
     ref8_.resize(pixels_);
     ref_highlight_.resize(pixels_);
     for (std::size_t p = 0; p < pixels_; ++p) {
-      const int x = x_of(p), y = y_of(p);
-      const Rgb8 ref = ref8_[p] = final_pixel(0, p);
+      ref8_[p] = final_pixel(0, p);
       ref_highlight_[p] = highlight(0, p);
-      out_.reference.set(x, y, ref);
-      out_.reference_specular.set(x, y, to_display8(scene_.display, specular_light_[0][p]));
-      const Rgb8 skip_only = final_pixel(1, p);
-      out_.skip_only.set(x, y, skip_only);
-      skip_acc_.add(ref, skip_only, ref_highlight_[p], highlight(1, p));
-      const auto grey = static_cast<std::uint8_t>((ref[0] * 54 + ref[1] * 183 + ref[2] * 19) >> 8);
-      switch (skip_[p]) {
-        case PixelSkip::kBackground:
-          out_.skip_mask.set(x, y, {0, 0, 0});
-          break;
-        case PixelSkip::kZero:
-          out_.skip_mask.set(x, y, kZeroColour);
-          break;
-        case PixelSkip::kTau:
-          out_.skip_mask.set(x, y, kTauColour);
-          break;
-        case PixelSkip::kComputed:
-          out_.skip_mask.set(x, y, {grey, grey, grey});
-          break;
-      }
     }
   }
 
-  void compose_unit(std::size_t u) {
+  // Pixel p of the tile's strip.
+  static void put(Image8& strip, std::size_t p, const Rgb8& c) {
+    std::copy(c.begin(), c.end(), strip.pixels.begin() + static_cast<std::ptrdiff_t>(3 * p));
+  }
+
+  void compose_reference() {
+    static constexpr Rgb8 kZeroColour{20, 30, 110}, kTauColour{90, 170, 255};
+    const bool images = mode_ != RenderImages::kNone;
     for (std::size_t p = 0; p < pixels_; ++p) {
-      const int x = x_of(p), y = y_of(p);
-      const Rgb8 img = final_pixel(2 + u, p);
-      image_[u].set(x, y, img);
-      specular_[u].set(x, y, to_display8(scene_.display, specular_light_[2 + u][p]));
-      error_[u][static_cast<std::size_t>(y) * width_ + x] = static_cast<std::uint8_t>(
-          acc_[u].add(ref8_[p], img, ref_highlight_[p], highlight(2 + u, p)));
+      const Rgb8 ref = ref8_[p];
+      const Rgb8 skip_only = final_pixel(1, p);
+      skip_acc_.add(ref, skip_only, ref_highlight_[p], highlight(1, p));
+      if (!images) continue;
+      put(strip_[0], p, ref);
+      put(strip_[1], p, to_display8(scene_.display, specular_light_[0][p]));
+      put(strip_[3], p, skip_only);
+      const auto grey = static_cast<std::uint8_t>((ref[0] * 54 + ref[1] * 183 + ref[2] * 19) >> 8);
+      switch (skip_[p]) {
+        case PixelSkip::kBackground:
+          put(strip_[2], p, {0, 0, 0});
+          break;
+        case PixelSkip::kZero:
+          put(strip_[2], p, kZeroColour);
+          break;
+        case PixelSkip::kTau:
+          put(strip_[2], p, kTauColour);
+          break;
+        case PixelSkip::kComputed:
+          put(strip_[2], p, {grey, grey, grey});
+          break;
+      }
     }
+    if (!images) return;
+    for (std::size_t slot = 0; slot < kReferenceSlots; ++slot) emit(slot);
+  }
+
+  void compose_unit(std::size_t u) {
+    const bool images = mode_ != RenderImages::kNone;
+    Image8* image = images ? &strip_[kReferenceSlots + 2 * u] : nullptr;
+    Image8* specular = images ? &strip_[kReferenceSlots + 2 * u + 1] : nullptr;
+    for (std::size_t p = 0; p < pixels_; ++p) {
+      const Rgb8 img = final_pixel(2 + u, p);
+      const int error = acc_[u].add(ref8_[p], img, ref_highlight_[p], highlight(2 + u, p));
+      if (!images) continue;
+      put(*image, p, img);
+      put(*specular, p, to_display8(scene_.display, specular_light_[2 + u][p]));
+      error_[u][static_cast<std::size_t>(y0_) * width_ + p] = static_cast<std::uint8_t>(error);
+    }
+    if (!images) return;
+    emit(kReferenceSlots + 2 * u);
+    emit(kReferenceSlots + 2 * u + 1);
+  }
+
+  // The whole image a slot's strip is part of (kKeep).
+  Image8& whole(std::size_t slot) {
+    switch (slot) {
+      case 0:
+        return out_.reference;
+      case 1:
+        return out_.reference_specular;
+      case 2:
+        return out_.skip_mask;
+      case 3:
+        return out_.skip_only;
+      default:
+        return (slot - kReferenceSlots) % 2 ? specular_[(slot - kReferenceSlots) / 2]
+                                            : image_[(slot - kReferenceSlots) / 2];
+    }
+  }
+
+  // A slot's strip, complete: into its whole image, or encoded and reduced.
+  void emit(std::size_t slot) {
+    const Image8& strip = strip_[slot];
+    if (mode_ == RenderImages::kKeep) {
+      std::copy(strip.pixels.begin(), strip.pixels.end(),
+                whole(slot).pixels.begin() + static_cast<std::ptrdiff_t>(3 * y0_ * width_));
+      return;
+    }
+    writer_[slot].add_rows(strip.pixels.data(), strip.height);
+    if (slot == 3) return;  // the skip-only image has no tile
+    const Image8 reduced = factor_ > 1 ? downscale(strip, factor_) : strip;
+    Image8& thumb = thumb_[slot];
+    thumb.width = reduced.width;
+    thumb.height += reduced.height;
+    thumb.pixels.insert(thumb.pixels.end(), reduced.pixels.begin(), reduced.pixels.end());
   }
 
   void finish() {
@@ -317,8 +447,10 @@ class SceneRenderer {
       UnitRender r;
       r.label = stats[u].name;
       r.spec = stats[u].spec;
-      r.image = std::move(image_[u]);
-      r.specular = std::move(specular_[u]);
+      if (mode_ == RenderImages::kKeep) {
+        r.image = std::move(image_[u]);
+        r.specular = std::move(specular_[u]);
+      }
       r.error = acc_[u].result();
       r.stats = stats[u];
       r.cost = unit_cost(*ev_.units()[u]);
@@ -327,11 +459,9 @@ class SceneRenderer {
       // Each heat map on its own scale (at least 1 LSB): a shared one would paint a 1-LSB unit
       // black beside a 60-LSB one. The scale is drawn in and reported.
       r.heatmap_scale = std::max(1.0, r.error.max_lsb);
-      const std::vector<double> lsb(error_[u].begin(), error_[u].end());
-      r.heatmap =
-          heatmap_with_scale(lsb, width_, height_, r.heatmap_scale, r.label + " error, 8-bit LSB");
       out_.units.push_back(std::move(r));
     }
+    if (mode_ != RenderImages::kNone) draw_heatmaps();
     const SlotMap& slots = ev_.slots();
     out_.chip = chip_json(ev_.chip(), slots);
     out_.slots = nlohmann::json::array();
@@ -347,6 +477,28 @@ class SceneRenderer {
     }
   }
 
+  // Each unit's heat map (a task each). kStream encodes it at once and keeps only its reduced
+  // tile; the error maps are freed as they are drawn.
+  void draw_heatmaps() {
+    heat_thumb_.resize(units_);
+    parallel_for(units_, options_.threads, [&](std::size_t u) {
+      UnitRender& r = out_.units[u];
+      const std::string title = r.label + " error, 8-bit LSB";
+      Image8 heatmap = heatmap_with_scale(std::vector<double>(error_[u].begin(), error_[u].end()),
+                                          width_, height_, r.heatmap_scale, title);
+      if (mode_ == RenderImages::kKeep) {
+        r.heatmap = std::move(heatmap);
+        return;
+      }
+      PngRowWriter(heatmap.width, heatmap.height, options_.png_sinks[heatmap_file(u)])
+          .add_rows(heatmap.pixels.data(), heatmap.height);
+      heat_thumb_[u] =
+          factor_ > 1 ? error_thumb(error_[u], width_, height_, factor_, r.heatmap_scale, title)
+                      : std::move(heatmap);
+      std::vector<std::uint8_t>().swap(error_[u]);
+    });
+  }
+
   const Scene& scene_;
   const RenderOptions& options_;
   RenderResult& out_;
@@ -357,10 +509,16 @@ class SceneRenderer {
   Evaluator ev_;
   const std::size_t units_;
   const SceneTracer tracer_;
+  const RenderImages mode_;
+  const int factor_;  // the contact sheet's reduction
   std::vector<double> ulp_;
-  // Whole-image results per unit.
+  // Whole-image results per unit (kKeep).
   std::vector<Image8> image_, specular_;
   std::vector<std::vector<std::uint8_t>> error_;  // LSBs per pixel (largest channel)
+  std::vector<Image8> strip_;                     // per slot, the current tile's rows
+  std::vector<PngRowWriter> writer_;              // per slot (kStream)
+  std::vector<Image8> thumb_;                     // per slot, reduced so far (kStream)
+  std::vector<Image8> heat_thumb_;                // per unit (kStream)
   std::vector<ImageErrorAccumulator> acc_;
   ImageErrorAccumulator skip_acc_;
   // The current tile.
@@ -393,8 +551,20 @@ VectorHeader scene_request_header(const Scene& scene, std::vector<std::int32_t>*
   return h;
 }
 
-std::uint64_t render_bytes(std::uint64_t pixels, std::size_t units) {
-  return pixels * (kRenderBytesPerPixel + kRenderBytesPerPixelUnit * units);
+std::uint64_t render_bytes(std::uint64_t pixels, std::size_t units, RenderImages images,
+                           int threads) {
+  switch (images) {
+    case RenderImages::kKeep:
+      return pixels * (kRenderBytesPerPixel + kRenderBytesPerPixelUnit * units);
+    case RenderImages::kStream:
+      return pixels *
+             (kStreamBytesPerPixel + kStreamBytesPerPixelUnit * units +
+              kStreamBytesPerHeatmap *
+                  std::min<std::uint64_t>(units, static_cast<std::uint64_t>(std::max(threads, 1))));
+    case RenderImages::kNone:
+      break;
+  }
+  return 0;
 }
 
 RenderResult render_scene(const Scene& scene, const RenderOptions& options) {
@@ -402,15 +572,19 @@ RenderResult render_scene(const Scene& scene, const RenderOptions& options) {
   const std::uint64_t pixels = static_cast<std::uint64_t>(scene.camera.width) *
                                static_cast<std::uint64_t>(scene.camera.height);
   const std::size_t units = options.units.empty() ? unit_names().size() : options.units.size();
-  if (render_bytes(pixels, units) > kMaxRenderBytes) {
-    throw InputError(
-        scene.file, 0, "camera.resolution",
-        fmt::format("{} x {} pixels through {} unit{} need about {} MiB, more than the limit of {} "
-                    "MiB per render (about {} + {} x units bytes per pixel): lower the resolution "
-                    "or render fewer units at a time",
-                    scene.camera.width, scene.camera.height, units, units == 1 ? "" : "s",
-                    render_bytes(pixels, units) >> 20, kMaxRenderBytes >> 20, kRenderBytesPerPixel,
-                    kRenderBytesPerPixelUnit));
+  const std::uint64_t bytes = render_bytes(pixels, units, options.images, options.threads);
+  if (bytes > kMaxRenderBytes) {
+    const std::string rule =
+        options.images == RenderImages::kKeep
+            ? fmt::format("{} + {} x units", kRenderBytesPerPixel, kRenderBytesPerPixelUnit)
+            : fmt::format("{} + {} x units + {} x min(threads, units)", kStreamBytesPerPixel,
+                          kStreamBytesPerPixelUnit, kStreamBytesPerHeatmap);
+    throw InputError(scene.file, 0, "camera.resolution",
+                     fmt::format("{} x {} pixels through {} unit{} need about {} MiB, more than "
+                                 "the limit of {} MiB per render (about {} bytes per pixel): "
+                                 "lower the resolution or render fewer units at a time",
+                                 scene.camera.width, scene.camera.height, units,
+                                 units == 1 ? "" : "s", bytes >> 20, kMaxRenderBytes >> 20, rule));
   }
   RenderResult out;
   out.scene_name = scene.name;
@@ -429,36 +603,28 @@ RenderResult render_scene(const Scene& scene, const RenderOptions& options) {
 
   SceneRenderer renderer(scene, options, out);
   renderer.run();
-  const std::vector<std::vector<std::uint8_t>>& error_lsb = renderer.error_lsb();
+  if (options.images == RenderImages::kNone) return out;
 
   // Full-size tiles would make a 1080p sheet 5760 pixels wide and 350 MB in memory: tiles are
   // reduced to at most kSheetTileWidth pixels (error maps by the largest error of each block, so
   // a one-pixel error still shows), the files keep full size.
-  const int factor = (out.width + kSheetTileWidth - 1) / kSheetTileWidth;
-  std::vector<Image8> thumbs;
-  thumbs.reserve(3 + 3 * out.units.size());
-  const auto thumb = [&](const Image8& image) -> const Image8* {
-    thumbs.push_back(factor > 1 ? downscale(image, factor) : image);
-    return &thumbs.back();
-  };
+  const std::vector<Image8> thumbs = renderer.sheet_tiles();
   std::vector<std::pair<std::string, const Image8*>> tiles{
-      {"reference", thumb(out.reference)},
-      {"reference specular", thumb(out.reference_specular)},
-      {"skip mask (light blue: tau, dark: t<=0)", thumb(out.skip_mask)}};
+      {"reference", &thumbs[0]},
+      {"reference specular", &thumbs[1]},
+      {"skip mask (light blue: tau, dark: t<=0)", &thumbs[2]}};
   for (std::size_t u = 0; u < out.units.size(); ++u) {
     const UnitRender& r = out.units[u];
-    tiles.emplace_back(r.label, thumb(r.image));
-    tiles.emplace_back(r.label + " specular", thumb(r.specular));
-    if (factor > 1) {
-      thumbs.push_back(heatmap_with_scale(block_max(error_lsb[u], out.width, out.height, factor),
-                                          thumbs.back().width, thumbs.back().height,
-                                          r.heatmap_scale, r.label + " error, 8-bit LSB"));
-      tiles.emplace_back(r.label + " error", &thumbs.back());
-    } else {
-      tiles.emplace_back(r.label + " error", &r.heatmap);
-    }
+    tiles.emplace_back(r.label, &thumbs[3 + 3 * u]);
+    tiles.emplace_back(r.label + " specular", &thumbs[4 + 3 * u]);
+    tiles.emplace_back(r.label + " error", &thumbs[5 + 3 * u]);
   }
   out.contact_sheet = contact_sheet(tiles, 3);
+  if (options.images == RenderImages::kStream) {
+    PngRowWriter(out.contact_sheet.width, out.contact_sheet.height, options.png_sinks.back())
+        .add_rows(out.contact_sheet.pixels.data(), out.contact_sheet.height);
+    out.contact_sheet = Image8();
+  }
   return out;
 }
 

@@ -35,6 +35,14 @@ inline constexpr int kRenderReportVersion = 3;
 VectorHeader scene_request_header(const Scene& scene,
                                   std::vector<std::int32_t>* header_of = nullptr);
 
+// What a render does with its images.
+enum class RenderImages {
+  kKeep,    // the result holds every image whole (write_render encodes them)
+  kStream,  // each PNG is encoded as its rows are made and handed to png_sinks; the result's
+            // images are left empty, so memory is the error maps', not the images'
+  kNone,    // no images: the image errors and skip counts only (sweeps)
+};
+
 struct RenderOptions {
   std::vector<UnitSpec> units;  // empty: every unit at its defaults
   int threads = 1;
@@ -44,6 +52,10 @@ struct RenderOptions {
   bool progress = false;  // a progress line on stderr
   // Receives every tile's requests in raster order (pixel, then light), e.g. for a vector file.
   std::function<void(const VectorRow* rows, std::size_t count)> on_requests;
+  RenderImages images = RenderImages::kKeep;
+  // kStream: one sink per PNG of render_file_names, in its order (report.json excluded). Sinks
+  // are called on the render's threads, each from one thread at a time.
+  std::vector<PngRowWriter::Sink> png_sinks;
 };
 
 // Error of one image against the reference, on the final 8-bit pixels in the scene's display
@@ -116,21 +128,32 @@ struct RenderResult {
   nlohmann::json slots;            // the slots the units were elaborated for
   nlohmann::json chip;             // the chip they are built on (eval/chip_report.h)
   Image8 contact_sheet;
+  RenderImages images = RenderImages::kKeep;  // the options' (kStream: the PNGs went to the sinks)
 
   SkipCounts skip_total() const;
   std::vector<std::string> t_inputs() const;  // "r.v" and/or "n.h": the cosines the scene needs
   nlohmann::json to_json() const;             // the render report (report.json)
 };
 
-// A render keeps every unit's images and per-pixel results whole until it writes them: about
-// kRenderBytesPerPixel + kRenderBytesPerPixelUnit x units bytes per pixel (measured: 33 bytes per
-// pixel for one unit, 17 more per further unit). Beyond kMaxRenderBytes by that rule,
-// render_scene refuses the scene before any work (InputError at "camera.resolution").
+// A render that keeps its images (kKeep) holds every unit's images and per-pixel results whole:
+// about kRenderBytesPerPixel + kRenderBytesPerPixelUnit x units bytes per pixel (measured: 33
+// bytes per pixel for one unit, 17 more per further unit). One that streams them (kStream, glint
+// render) keeps a byte per pixel and unit (its error, for the heat map drawn at the end), and
+// each thread draws one heat map at a time (its errors as doubles and its pixels): about
+// kStreamBytesPerPixel + kStreamBytesPerPixelUnit x units + kStreamBytesPerHeatmap x min(threads,
+// units) (measured at 3840x2160 with 1 to 5 units on 1 and 2 threads: 17 to 35 bytes per pixel,
+// the rule 22 to 39; tests/bench/RESULTS.md). Beyond kMaxRenderBytes by its rule, render_scene
+// refuses the scene before any work (InputError at "camera.resolution").
 inline constexpr std::uint64_t kRenderBytesPerPixel = 16;
 inline constexpr std::uint64_t kRenderBytesPerPixelUnit = 17;
+inline constexpr std::uint64_t kStreamBytesPerPixel = 8;
+inline constexpr std::uint64_t kStreamBytesPerPixelUnit = 1;
+inline constexpr std::uint64_t kStreamBytesPerHeatmap = 13;
 inline constexpr std::uint64_t kMaxRenderBytes = std::uint64_t{4} << 30;
-// The bytes a render of `pixels` pixels through `units` units takes by the rule above.
-std::uint64_t render_bytes(std::uint64_t pixels, std::size_t units);
+// The bytes a render of `pixels` pixels through `units` units on `threads` threads takes by the
+// rule above (kNone takes no per-pixel memory but its tiles').
+std::uint64_t render_bytes(std::uint64_t pixels, std::size_t units,
+                           RenderImages images = RenderImages::kKeep, int threads = 1);
 
 RenderResult render_scene(const Scene& scene, const RenderOptions& options);
 
@@ -150,9 +173,14 @@ struct RenderOutputs {
 RenderOutputs declare_render_outputs(OutputSet& outputs, const std::string& dir,
                                      const std::vector<std::string>& labels,
                                      const std::string& option = "-o");
-// Writes every image as PNG and report.json into the declared outputs (the names must be the
-// result's: std::logic_error otherwise); the caller commits them with its other outputs.
-void write_render(const RenderResult& result, const RenderOutputs& outputs);
+// Writes every image as PNG (encoded on `threads` threads; the bytes do not depend on it) and
+// report.json into the declared outputs (the names must be the result's: std::logic_error
+// otherwise); the caller commits them with its other outputs. A streamed result (kStream) wrote
+// its PNGs already: only report.json is written. A result without images (kNone) is a
+// std::logic_error.
+void write_render(const RenderResult& result, const RenderOutputs& outputs, int threads = 1);
+// The PNG sinks of kStream (RenderOptions::png_sinks) writing into the declared outputs.
+std::vector<PngRowWriter::Sink> render_png_sinks(const RenderOutputs& outputs);
 // The same into `dir` with an OutputSet of its own, committed: every file is written to its
 // temporary, and all are renamed into place only when all were written (output_set.h).
 void write_render(const RenderResult& result, const std::string& dir);
