@@ -337,15 +337,21 @@ class SceneRenderer {
     return {y > 0 && y >= 0.1 * peak_[p], y > 0 && y >= 0.5 * peak_[p]};
   }
 
-  // The reference's final pixels and highlight, which every unit's error needs.
+  // The reference's final pixels and highlight, which every unit's error needs, and the pixels
+  // without specular light: most of a unit's pixels (the background, and every request skipped or
+  // at t <= 0), which then cost no display encoding per unit.
   void compose_reference_pixels() {
     ref8_.resize(pixels_);
     ref_highlight_.resize(pixels_);
+    diffuse8_.resize(pixels_);
     for (std::size_t p = 0; p < pixels_; ++p) {
+      diffuse8_[p] = to_display8(scene_.display, diffuse_[p]);
       ref8_[p] = final_pixel(0, p);
       ref_highlight_[p] = highlight(0, p);
     }
   }
+
+  static bool dark(const Rgb& c) { return c.r == 0 && c.g == 0 && c.b == 0; }
 
   // Pixel p of the tile's strip.
   static void put(Image8& strip, std::size_t p, const Rgb8& c) {
@@ -387,12 +393,17 @@ class SceneRenderer {
     const bool images = mode_ != RenderImages::kNone;
     Image8* image = images ? &strip_[kReferenceSlots + 2 * u] : nullptr;
     Image8* specular = images ? &strip_[kReferenceSlots + 2 * u + 1] : nullptr;
+    const std::vector<Rgb>& light = specular_light_[2 + u];
     for (std::size_t p = 0; p < pixels_; ++p) {
-      const Rgb8 img = final_pixel(2 + u, p);
-      const int error = acc_[u].add(ref8_[p], img, ref_highlight_[p], highlight(2 + u, p));
+      // d + 0 is d exactly, and no light is no highlight: the same figures as the general case.
+      const bool none = dark(light[p]);
+      const Rgb8 img = none ? diffuse8_[p] : final_pixel(2 + u, p);
+      const int error =
+          acc_[u].add(ref8_[p], img, ref_highlight_[p],
+                      none ? ImageErrorAccumulator::Highlight{} : highlight(2 + u, p));
       if (!images) continue;
       put(*image, p, img);
-      put(*specular, p, to_display8(scene_.display, specular_light_[2 + u][p]));
+      put(*specular, p, none ? black8_ : to_display8(scene_.display, light[p]));
       error_[u][static_cast<std::size_t>(y0_) * width_ + p] = static_cast<std::uint8_t>(error);
     }
     if (!images) return;
@@ -534,6 +545,8 @@ class SceneRenderer {
   std::vector<PixelSkip> skip_;
   std::vector<double> peak_;  // the pixel material's peak specular luminance under every light
   std::vector<Rgb8> ref8_;
+  std::vector<Rgb8> diffuse8_;  // the final pixel without specular light
+  const Rgb8 black8_ = to_display8(scene_.display, Rgb{});
   std::vector<ImageErrorAccumulator::Highlight> ref_highlight_;
 };
 
