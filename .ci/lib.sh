@@ -3,10 +3,10 @@
 
 # What building and running glint needs (Debian packages). gtkwave: vcd2fst for --vcd t.fst;
 # yosys: glint synth; verilator: the RTL co-simulations; ninja-build and ccache: the builds;
-# libspng-dev: the PNG encoder.
+# libspng-dev: the PNG encoder; libopenexr-dev: render --float exr.
 GLINT_PACKAGES=(g++ cmake ninja-build ccache pkg-config libsystemc-dev libfmt-dev libcli11-dev
-  nlohmann-json3-dev libtinyobjloader-dev libstb-dev libspng-dev fonts-dejavu-core
-  libfast-float-dev gtkwave yosys)
+  nlohmann-json3-dev libtinyobjloader-dev libstb-dev libspng-dev libopenexr-dev
+  fonts-dejavu-core libfast-float-dev gtkwave yosys)
 # What the test suite and the benchmarks need on top: GoogleTest, Google Benchmark, RapidCheck,
 # MPFR (the 200-bit oracle), libpng (png_speed's comparison of encoders), GNU parallel (the
 # sharded-sweep test), Verilator, Python 3 (the documentation checks), Valgrind (the instruction

@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
@@ -23,6 +24,7 @@ struct RenderCommandOptions {
   std::vector<std::string> units;
   std::string out_dir;
   std::string vectors;
+  std::string float_format;  // --float: empty for none
   int threads = 0;
   Chip chip;
   EpsMeasure eps_measure = EpsMeasure::kLuminance;
@@ -41,6 +43,13 @@ int run_render(const RenderCommandOptions& o) {
   options.chip = o.chip;
   options.eps_measure = o.eps_measure;
   options.progress = isatty(STDERR_FILENO);
+  if (!o.float_format.empty()) {
+    try {
+      options.float_format = parse_float_format(o.float_format);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("--float: ") + e.what());
+    }
+  }
   if (options_only()) return kExitOk;
   load_text_font();  // a bad GLINT_FONT is refused before any work (the sheet has labels)
   // Outputs first, before any work: the folder made if missing, every file checked and its
@@ -48,8 +57,14 @@ int run_render(const RenderCommandOptions& o) {
   OutputSet outputs;
   outputs.add_input("SCENE", o.scene);
   if (o.json) outputs.claim_stdout("--json");
-  const RenderOutputs files =
-      declare_render_outputs(outputs, o.out_dir, render_unit_labels(options.units), "-o");
+  const std::vector<std::string> labels = render_unit_labels(options.units);
+  const RenderOutputs files = declare_render_outputs(outputs, o.out_dir, labels, "-o");
+  std::vector<std::pair<std::string, OutputFile*>> float_files;
+  if (options.float_format)
+    for (const std::string& name : render_float_file_names(labels, *options.float_format))
+      float_files.emplace_back(name,
+                               &outputs.add("--float (" + name + ")",
+                                            (std::filesystem::path(o.out_dir) / name).string()));
   OutputFile* vectors_file =
       o.vectors.empty() ? nullptr : &outputs.add("--write-vectors", o.vectors, true);
   const Scene scene = load_scene(o.scene);
@@ -65,6 +80,15 @@ int run_render(const RenderCommandOptions& o) {
   // not the images).
   options.images = RenderImages::kStream;
   options.png_sinks = render_png_sinks(files);
+  // Float images likewise, row by row through a descriptor of their own (EXR seeks back).
+  std::vector<std::unique_ptr<FloatRowWriter>> float_writers;
+  for (const auto& [name, file] : float_files) {
+    float_writers.push_back(std::make_unique<FloatRowWriter>(*options.float_format, file->dup_fd(),
+                                                             scene.camera.width,
+                                                             scene.camera.height, file->path()));
+    options.float_sinks.emplace_back(
+        [w = float_writers.back().get()](const float* rgb, int rows) { w->add_rows(rgb, rows); });
+  }
   RenderResult r;
   try {
     r = render_scene(scene, options);
@@ -73,6 +97,7 @@ int run_render(const RenderCommandOptions& o) {
   } catch (const ResourceLimitError& e) {
     refuse_size(o.scene, e);  // more slots or contract work than a run may take
   }
+  for (const auto& w : float_writers) w->finish();
   write_render(r, files);
   if (vectors) vectors->commit();  // flushes into its output
   outputs.commit();
@@ -134,6 +159,10 @@ void add_render_command(CLI::App& app, int& status) {
   sub->add_option("--write-vectors", o->vectors,
                   "Also write the scene's shading requests as a vector file (for eval, sim, "
                   "regress; - for stdout, then the summary goes to stderr)");
+  sub->add_option("--float", o->float_format,
+                  "Also write linear float images of the reference and of each unit's specular "
+                  "term: exr (OpenEXR, 32-bit float RGB) or pfm (Portable Float Map)")
+      ->type_name("FORMAT");
   add_threads_option(sub, o->threads);
   add_chip_option(sub, o->chip);
   add_eps_measure_option(sub, o->eps_measure);

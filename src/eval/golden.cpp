@@ -107,7 +107,8 @@ constexpr Field kStallFields[] = {{"merge_buffer_full", Kind::kUnsigned},
                                   {"unit_busy", Kind::kUnsigned}};
 constexpr Field kAreaFields[] = {{"ge", Kind::kNumber}, {"inventory", Kind::kArray}};
 constexpr Field kCriticalPathFields[] = {{"delay", Kind::kNumber}, {"stage", Kind::kString}};
-// The render report's fixed part (src/render/render_report.md, version 3).
+// The render report's fixed part (src/render/render_report.md, version 4; float_images is
+// optional: goldens of version 3 lack it).
 constexpr Field kRenderReportFields[] = {{"glint_render_report", Kind::kUnsigned},
                                          {"scene", Kind::kString},
                                          {"resolution", Kind::kArray},
@@ -124,7 +125,8 @@ constexpr Field kRenderReportFields[] = {{"glint_render_report", Kind::kUnsigned
                                          {"skip_only_image_error", Kind::kObject},
                                          {"skip_guarantee", Kind::kObject},
                                          {"units", Kind::kArray},
-                                         {"files", Kind::kArray}};
+                                         {"files", Kind::kArray},
+                                         {"float_images", Kind::kAny, true}};
 constexpr Field kRenderUnitFields[] = {{"unit", Kind::kString},
                                        {"spec", Kind::kString},
                                        {"image_error", Kind::kObject},

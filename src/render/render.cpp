@@ -133,6 +133,9 @@ class SceneRenderer {
       strip_.resize(kReferenceSlots + 2 * units_);
       error_.assign(units_, std::vector<std::uint8_t>(static_cast<std::size_t>(width_) * height_));
     }
+    if (!options.float_sinks.empty() && options.float_sinks.size() != 2 + units_)
+      throw std::logic_error("render: float_sinks needs one sink per float image file");
+    out_.float_format = options.float_format;
     if (mode_ == RenderImages::kStream) {
       if (options.png_sinks.size() != kReferenceSlots + 3 * units_ + 1)
         throw std::logic_error("render: kStream needs one PNG sink per image file");
@@ -358,8 +361,25 @@ class SceneRenderer {
     std::copy(c.begin(), c.end(), strip.pixels.begin() + static_cast<std::ptrdiff_t>(3 * p));
   }
 
+  // The linear light of `source` (plus the diffuse term if `diffuse`) to a float sink.
+  void emit_float(std::size_t sink, std::size_t source, bool diffuse) const {
+    std::vector<float> rgb(3 * pixels_);
+    const std::vector<Rgb>& light = specular_light_[source];
+    for (std::size_t p = 0; p < pixels_; ++p) {
+      const Rgb d = diffuse ? diffuse_[p] : Rgb{};
+      rgb[3 * p] = static_cast<float>(d.r + light[p].r);
+      rgb[3 * p + 1] = static_cast<float>(d.g + light[p].g);
+      rgb[3 * p + 2] = static_cast<float>(d.b + light[p].b);
+    }
+    options_.float_sinks[sink](rgb.data(), rows_in_tile_);
+  }
+
   void compose_reference() {
     static constexpr Rgb8 kZeroColour{20, 30, 110}, kTauColour{90, 170, 255};
+    if (!options_.float_sinks.empty()) {
+      emit_float(0, 0, true);
+      emit_float(1, 0, false);
+    }
     const bool images = mode_ != RenderImages::kNone;
     for (std::size_t p = 0; p < pixels_; ++p) {
       const Rgb8 ref = ref8_[p];
@@ -394,6 +414,7 @@ class SceneRenderer {
     Image8* image = images ? &strip_[kReferenceSlots + 2 * u] : nullptr;
     Image8* specular = images ? &strip_[kReferenceSlots + 2 * u + 1] : nullptr;
     const std::vector<Rgb>& light = specular_light_[2 + u];
+    if (!options_.float_sinks.empty()) emit_float(2 + u, 2 + u, false);
     for (std::size_t p = 0; p < pixels_; ++p) {
       // d + 0 is d exactly, and no light is no highlight: the same figures as the general case.
       const bool none = dark(light[p]);

@@ -10,11 +10,13 @@
 #include <functional>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "cost/cost_model.h"
 #include "eval/evaluate.h"
+#include "image/float_image.h"
 #include "image/image.h"
 #include "scene/scene.h"
 
@@ -23,11 +25,11 @@ namespace glint {
 class OutputSet;
 class OutputFile;
 
-// Version 3: image errors' mean_lsb is the mean of the pixels' largest channel (2: of every
-// channel); display, eps_measure, skip_guarantee and slots[].pixel_weight added; request-level
-// weighted errors in the scene's display encoding (2: linear, times c_y). Version 2 stated the
-// chip (chip; the colour stage gone).
-inline constexpr int kRenderReportVersion = 3;
+// Version 4: float_images (glint render --float). Version 3: image errors' mean_lsb is the mean of
+// the pixels' largest channel (2: of every channel); display, eps_measure, skip_guarantee and
+// slots[].pixel_weight added; request-level weighted errors in the scene's display encoding (2:
+// linear, times c_y). Version 2 stated the chip (chip; the colour stage gone).
+inline constexpr int kRenderReportVersion = 4;
 
 // The header of a scene's shading requests: the lights, and only the materials objects use (units
 // are elaborated for what the scene shows, not for what its file defines). header_of, if given,
@@ -56,6 +58,12 @@ struct RenderOptions {
   // kStream: one sink per PNG of render_file_names, in its order (report.json excluded). Sinks
   // are called on the render's threads, each from one thread at a time.
   std::vector<PngRowWriter::Sink> png_sinks;
+  // Linear float images, in any mode: the reference (ambient, diffuse and specular light), its
+  // specular term and each unit's, as rows of linear R, G, B floats a tile at a time, one sink per
+  // file of render_float_file_names in its order (each called from one thread at a time).
+  // float_format names the files in the report.
+  std::optional<FloatFormat> float_format;
+  std::vector<std::function<void(const float* rgb, int rows)>> float_sinks;
 };
 
 // Error of one image against the reference, on the final 8-bit pixels in the scene's display
@@ -129,6 +137,7 @@ struct RenderResult {
   nlohmann::json chip;             // the chip they are built on (eval/chip_report.h)
   Image8 contact_sheet;
   RenderImages images = RenderImages::kKeep;  // the options' (kStream: the PNGs went to the sinks)
+  std::optional<FloatFormat> float_format;    // the options': float images were written
 
   SkipCounts skip_total() const;
   std::vector<std::string> t_inputs() const;  // "r.v" and/or "n.h": the cosines the scene needs
@@ -163,6 +172,10 @@ std::vector<std::string> render_file_names(const RenderResult& result);
 // defaults when empty; std::invalid_argument for an unknown unit), and their files.
 std::vector<std::string> render_unit_labels(const std::vector<UnitSpec>& specs);
 std::vector<std::string> render_file_names(const std::vector<std::string>& labels);
+// The float images' files (RenderOptions::float_sinks): reference, reference_specular and
+// LABEL_specular, with the format's extension.
+std::vector<std::string> render_float_file_names(const std::vector<std::string>& labels,
+                                                 FloatFormat format);
 
 // The render's files as outputs of an OutputSet (io/output_set.h), declared before rendering:
 // `dir` made if missing (removed again if the run fails), every file checked and its temporary

@@ -22,6 +22,16 @@ double fraction(std::uint64_t part, std::uint64_t whole) {
   return whole ? static_cast<double>(part) / static_cast<double>(whole) : 0.0;
 }
 
+// The float images written beside the PNGs (--float), or null.
+nlohmann::json float_images_json(const RenderResult& r) {
+  if (!r.float_format) return nullptr;
+  std::vector<std::string> labels;
+  for (const UnitRender& u : r.units) labels.push_back(u.label);
+  return {{"format", to_string(*r.float_format)},
+          {"encoding", "linear"},
+          {"files", render_float_file_names(labels, *r.float_format)}};
+}
+
 }  // namespace
 
 nlohmann::json ImageError::to_json() const {
@@ -80,6 +90,14 @@ std::vector<std::string> render_file_names(const std::vector<std::string>& label
   }
   names.push_back("contact_sheet.png");
   names.push_back("report.json");
+  return names;
+}
+
+std::vector<std::string> render_float_file_names(const std::vector<std::string>& labels,
+                                                 FloatFormat format) {
+  const std::string ext = "." + to_string(format);
+  std::vector<std::string> names{"reference" + ext, "reference_specular" + ext};
+  for (const std::string& label : labels) names.push_back(label + "_specular" + ext);
   return names;
 }
 
@@ -156,7 +174,8 @@ nlohmann::json RenderResult::to_json() const {
             {"holds", skip_within_guarantee},
             {"channel_over_tau_weight", skip_ratio}}},
           {"units", units_json},
-          {"files", render_file_names(*this)}};
+          {"files", render_file_names(*this)},
+          {"float_images", float_images_json(*this)}};
 }
 
 RenderOutputs declare_render_outputs(OutputSet& outputs, const std::string& dir,

@@ -67,7 +67,7 @@ class RegressScenes : public ::testing::Test {
 TEST_F(RegressScenes, RecordedSceneGoldenPasses) {
   record({"hast", "lut"});
   const json g = read(scene_golden());
-  EXPECT_EQ(g.at("report").at("glint_render_report"), 3);
+  EXPECT_EQ(g.at("report").at("glint_render_report"), 4);
   EXPECT_EQ(g.at("report").at("units").size(), 2u);
   const CliRun r = regress();
   EXPECT_EQ(r.status, 0) << r.out << r.err;
