@@ -3,17 +3,17 @@
 
 # What building and running glint needs (Debian packages). gtkwave: vcd2fst for --vcd t.fst;
 # yosys: glint synth; verilator: the RTL co-simulations; ninja-build and ccache: the builds;
-# libspng-dev: the PNG encoder; libopenexr-dev: render --float exr.
+# libpng-dev: the PNG encoder; libopenexr-dev: render --float exr.
 GLINT_PACKAGES=(g++ cmake ninja-build ccache pkg-config libsystemc-dev libfmt-dev libcli11-dev
-  nlohmann-json3-dev libtinyobjloader-dev libstb-dev libspng-dev libopenexr-dev
+  nlohmann-json3-dev libtinyobjloader-dev libstb-dev libpng-dev libopenexr-dev
   fonts-dejavu-core libfast-float-dev gtkwave yosys)
 # What the test suite and the benchmarks need on top: GoogleTest, Google Benchmark, RapidCheck,
-# MPFR (the 200-bit oracle), libpng (png_speed's comparison of encoders), GNU parallel (the
+# MPFR (the 200-bit oracle), libspng (png_speed's comparison of encoders), GNU parallel (the
 # sharded-sweep test), Verilator, Python 3 (the documentation checks), Valgrind (the instruction
 # counts of tests/bench/instructions.py); clang, its sanitizer and libFuzzer runtimes and
 # llvm-symbolizer for the sanitizer and fuzz build.
 GLINT_TEST_PACKAGES=(libgtest-dev libgmock-dev libbenchmark-dev librapidcheck-dev libmpfr-dev
-  libpng-dev parallel verilator python3 valgrind clang libclang-rt-dev llvm)
+  libspng-dev parallel verilator python3 valgrind clang libclang-rt-dev llvm)
 
 # ccache keys on paths relative to the checkout (BASEDIR) and leaves the build folder out of the
 # key of objects with debug information (NOHASHDIR), so a clone elsewhere on the machine still hits.

@@ -1,15 +1,20 @@
-// PNG through libspng (libspng-dev, zlib's deflate), chosen by measurement over stb_image_write,
-// glint's encoder before, and libpng (tests/bench/png_speed.cpp, tests/bench/RESULTS.md "PNG
-// encoders"): on a 1080p render's 20 images, stb at level 8 took 2.66 CPU-s for 3.02 MB, libspng
-// with the Up filter at level 2 0.37 CPU-s for 2.51 MB; libpng the same way 0.28 CPU-s, but its
-// errors are longjmps, which must not cross the C++ frames of our sinks. Each encoder is a context
-// of its own, with no process-wide knobs, so images are encoded at once on any threads; rows can
-// be fed as they are made (PngRowWriter), so a render never holds a whole image just to write it.
-// The encoder writes IHDR, IDAT and IEND only (no time, text or gamma chunks), and neither the
-// filter nor zlib's deflate has randomness: equal pixels give equal bytes.
-#include <spng.h>
+// PNG through libpng (libpng-dev, zlib's deflate), chosen by measurement over stb_image_write,
+// glint's encoder before, and libspng (tests/bench/png_speed.cpp, tests/bench/RESULTS.md "PNG
+// encoders"): on a 1080p render's 20 images, stb at level 8 took 2.61 CPU-s for 3.02 MB, libspng
+// with the Up filter at level 2 0.36 CPU-s, libpng the same way 0.28 CPU-s for 2.51 MB. Each
+// encoder is a png_struct of its own, with no process-wide knobs, so images are encoded at once on
+// any threads; rows are fed as they are made (PngRowWriter), so a render never holds a whole image
+// just to write it. It writes IHDR, IDAT and IEND only (no time, text or gamma chunks), and
+// neither the filter nor zlib's deflate has randomness: equal pixels give equal bytes.
+//
+// libpng reports errors by longjmp. The jumps land in the small functions below that call it
+// (guarded), whose frames hold no C++ object, and the sink's exceptions never cross libpng's C
+// frames: the write callback catches them, and raises a libpng error once out of its catch block.
+#include <png.h>
 
 #include <climits>
+#include <csetjmp>
+#include <cstdio>
 #include <exception>
 #include <stdexcept>
 #include <string>
@@ -21,11 +26,11 @@ namespace glint {
 
 namespace {
 
-// One filter for every row, Up (each byte minus the one above): libspng's adaptive choice tries
-// all five per row, which took 4x the CPU for 6 % smaller files. zlib's level 2 of 0-9: level 1
-// costs the same for 3 % larger files, 6 and up several times more.
+// One filter for every row, Up (each byte minus the one above): the adaptive choice tries all five
+// per row, which took 3x the CPU for 6 % smaller files. zlib's level 2 of 0-9: level 1 costs the
+// same for 3 % larger files, 6 and up several times more.
 constexpr int kCompressionLevel = 2;
-constexpr int kFilterChoice = SPNG_FILTER_CHOICE_UP;
+constexpr int kFilters = PNG_FILTER_UP;
 
 void check_size(int width, int height) {
   if (width <= 0 || height <= 0) {
@@ -37,28 +42,58 @@ void check_size(int width, int height) {
 }  // namespace
 
 struct PngRowWriter::State {
-  spng_ctx* ctx = nullptr;
+  png_structp png = nullptr;
+  png_infop info = nullptr;
   Sink sink;
   int width = 0, height = 0, rows = 0;
-  std::exception_ptr error;  // thrown by the sink inside libspng's C frames, rethrown after
+  std::exception_ptr error;  // the sink's, rethrown once out of libpng
+  char message[200] = {};    // libpng's own error
 
-  ~State() { spng_ctx_free(ctx); }
+  ~State() { png_destroy_write_struct(&png, &info); }
 
-  static int write(spng_ctx*, void* user, void* data, std::size_t size) {
-    auto* s = static_cast<State*>(user);
+  static void write(png_structp png, png_bytep data, png_size_t size) {
+    auto* s = static_cast<State*>(png_get_io_ptr(png));
+    bool failed = false;
     try {
-      s->sink(static_cast<const std::uint8_t*>(data), size);
+      s->sink(data, size);
     } catch (...) {
       s->error = std::current_exception();
-      return SPNG_IO_ERROR;
+      failed = true;
     }
-    return 0;
+    if (failed) png_error(png, "sink");  // longjmps: nothing of this frame is live
+  }
+  static void flush(png_structp) {}
+  static void on_error(png_structp png, png_const_charp text) {
+    auto* s = static_cast<State*>(png_get_error_ptr(png));
+    std::snprintf(s->message, sizeof s->message, "%s", text);
+    std::longjmp(png_jmpbuf(png), 1);
+  }
+  static void on_warning(png_structp, png_const_charp) {}
+
+  // Runs libpng's calls under its jump buffer; false if one failed. No C++ object lives here.
+  bool start() {
+    if (setjmp(png_jmpbuf(png))) return false;
+    png_set_write_fn(png, this, &State::write, &State::flush);
+    png_set_compression_level(png, kCompressionLevel);
+    png_set_filter(png, PNG_FILTER_TYPE_BASE, kFilters);
+    png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 8,
+                 PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_BASE,
+                 PNG_FILTER_TYPE_BASE);
+    png_write_info(png, info);
+    return true;
+  }
+  bool write_rows(const std::uint8_t* rgb, int count) {
+    if (setjmp(png_jmpbuf(png))) return false;
+    const std::size_t row_bytes = 3 * static_cast<std::size_t>(width);
+    for (int r = 0; r < count; ++r, ++rows)
+      png_write_row(png, rgb + static_cast<std::size_t>(r) * row_bytes);
+    if (rows == height) png_write_end(png, nullptr);
+    return true;
   }
 
-  void check(int code, const char* what) {
+  [[noreturn]] void fail() {
     if (error) std::rethrow_exception(error);
-    if (code != 0 && code != SPNG_EOI)
-      throw std::runtime_error(std::string("encode_png: ") + what + ": " + spng_strerror(code));
+    throw std::runtime_error(std::string("encode_png: ") + message);
   }
 };
 
@@ -68,20 +103,10 @@ PngRowWriter::PngRowWriter(int width, int height, Sink sink) : state_(std::make_
   s.sink = std::move(sink);
   s.width = width;
   s.height = height;
-  s.ctx = spng_ctx_new(SPNG_CTX_ENCODER);
-  if (!s.ctx) throw std::runtime_error("encode_png: out of memory");
-  spng_ihdr ihdr{};
-  ihdr.width = static_cast<std::uint32_t>(width);
-  ihdr.height = static_cast<std::uint32_t>(height);
-  ihdr.bit_depth = 8;
-  ihdr.color_type = SPNG_COLOR_TYPE_TRUECOLOR;
-  s.check(spng_set_png_stream(s.ctx, &State::write, &s), "stream");
-  s.check(spng_set_option(s.ctx, SPNG_IMG_COMPRESSION_LEVEL, kCompressionLevel), "level");
-  s.check(spng_set_option(s.ctx, SPNG_FILTER_CHOICE, kFilterChoice), "filter");
-  s.check(spng_set_ihdr(s.ctx, &ihdr), "header");
-  s.check(spng_encode_image(s.ctx, nullptr, 0, SPNG_FMT_PNG,
-                            SPNG_ENCODE_PROGRESSIVE | SPNG_ENCODE_FINALIZE),
-          "start");
+  s.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &s, &State::on_error, &State::on_warning);
+  if (s.png) s.info = png_create_info_struct(s.png);
+  if (!s.png || !s.info) throw std::runtime_error("encode_png: out of memory");
+  if (!s.start()) s.fail();
 }
 
 PngRowWriter::~PngRowWriter() = default;
@@ -92,10 +117,7 @@ void PngRowWriter::add_rows(const std::uint8_t* rgb, int rows) {
   State& s = *state_;
   if (rows < 0 || rows > s.height - s.rows)
     throw std::logic_error("PngRowWriter: more rows than the image has");
-  const std::size_t row_bytes = 3 * static_cast<std::size_t>(s.width);
-  for (int r = 0; r < rows; ++r, ++s.rows)
-    s.check(spng_encode_row(s.ctx, rgb + static_cast<std::size_t>(r) * row_bytes, row_bytes),
-            "row");
+  if (!s.write_rows(rgb, rows)) s.fail();
 }
 
 bool PngRowWriter::done() const {

@@ -49,9 +49,10 @@ Bytes stb_encode(const Image8& im, int level) {
   return out;
 }
 
-Bytes spng_encode(const Image8& im, int level, int filters) {
+Bytes spng_encode(const Image8& im, int level, int filters, int strategy = -1) {
   spng_ctx* ctx = spng_ctx_new(SPNG_CTX_ENCODER);
   spng_set_option(ctx, SPNG_ENCODE_TO_BUFFER, 1);
+  if (strategy >= 0) spng_set_option(ctx, SPNG_IMG_COMPRESSION_STRATEGY, strategy);
   spng_set_option(ctx, SPNG_IMG_COMPRESSION_LEVEL, level);
   spng_set_option(ctx, SPNG_FILTER_CHOICE, filters);
   spng_ihdr ihdr{};
@@ -181,8 +182,15 @@ int main(int argc, char* argv[]) {
   encoders.push_back({"libspng level 2 none", [](const Image8& im) {
                         return spng_encode(im, 2, SPNG_FILTER_CHOICE_NONE);
                       }});
+  // zlib's strategies (zlib.h): 3 run-length only (Z_RLE), 0 the default.
+  encoders.push_back({"libspng level 1 up rle", [](const Image8& im) {
+                        return spng_encode(im, 1, SPNG_FILTER_CHOICE_UP, 3);
+                      }});
+  encoders.push_back({"libspng level 2 up default", [](const Image8& im) {
+                        return spng_encode(im, 2, SPNG_FILTER_CHOICE_UP, 0);
+                      }});
   encoders.push_back(
-      {"glint encode_png (libspng)", [](const Image8& im) { return glint::encode_png(im); }});
+      {"glint encode_png (libpng)", [](const Image8& im) { return glint::encode_png(im); }});
 
   fmt::print("{:<28} {:>9} {:>9} {:>10} {:>9}  {}\n", "encoder", "cpu_s", "wall_s", "MB", "cpu/stb",
              "pixels");
