@@ -2,19 +2,20 @@
 # Shared by the .ci scripts: package lists, the configure-and-build step, and timed phases.
 
 # What building and running glint needs (Debian packages). gtkwave: vcd2fst for --vcd t.fst;
-# libassimp-dev: PLY, glTF and STL meshes; yosys: glint synth; qflow-tech-osu018 and opensta:
-# its built-in node (OSU 0.18 um cells) and their timing; verilator: the RTL co-simulations;
-# ninja-build and ccache: the builds.
+# libassimp-dev: PLY, glTF and STL meshes; libpng-dev: the PNG encoder; libopenexr-dev: render
+# --float exr; yosys: glint synth; qflow-tech-osu018 and opensta: its built-in node (OSU 0.18 um
+# cells) and their timing; verilator: the RTL co-simulations; ninja-build and ccache: the builds.
 GLINT_PACKAGES=(g++ cmake ninja-build ccache pkg-config libsystemc-dev libfmt-dev libcli11-dev
-  nlohmann-json3-dev libtinyobjloader-dev libassimp-dev libstb-dev fonts-dejavu-core
-  libfast-float-dev gtkwave yosys qflow-tech-osu018 opensta)
+  nlohmann-json3-dev libtinyobjloader-dev libassimp-dev libstb-dev libpng-dev libopenexr-dev
+  fonts-dejavu-core libfast-float-dev gtkwave yosys qflow-tech-osu018 opensta)
 # What the test suite and the benchmarks need on top: GoogleTest, Google Benchmark, RapidCheck,
-# MPFR (the 200-bit oracle), GNU parallel (the sharded-sweep test), Verilator, Python 3 (the
-# documentation checks), Valgrind (the instruction counts of tests/bench/instructions.py); clang,
-# its sanitizer and libFuzzer runtimes and llvm-symbolizer for the sanitizer and fuzz build;
-# Chromium, headless, for the HTML pages' test in a browser (html.browser).
+# MPFR (the 200-bit oracle), libspng (png_speed's comparison of encoders), GNU parallel (the
+# sharded-sweep test), Verilator, Python 3 (the documentation checks), Valgrind (the instruction
+# counts of tests/bench/instructions.py); clang, its sanitizer and libFuzzer runtimes and
+# llvm-symbolizer for the sanitizer and fuzz build; Chromium, headless, for the HTML pages' test in
+# a browser (html.browser).
 GLINT_TEST_PACKAGES=(libgtest-dev libgmock-dev libbenchmark-dev librapidcheck-dev libmpfr-dev
-  parallel verilator python3 valgrind clang libclang-rt-dev llvm chromium)
+  libspng-dev parallel verilator python3 valgrind clang libclang-rt-dev llvm chromium)
 
 # ccache keys on paths relative to the checkout (BASEDIR) and leaves the build folder out of the
 # key of objects with debug information (NOHASHDIR), so a clone elsewhere on the machine still hits.

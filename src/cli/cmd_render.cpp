@@ -27,6 +27,7 @@ struct RenderCommandOptions {
   std::vector<std::string> units;
   std::string out_dir;
   std::string vectors;
+  std::string float_format;  // --float: empty for none
   int threads = 0;
   Chip chip;
   EpsMeasure eps_measure = EpsMeasure::kLuminance;
@@ -48,6 +49,13 @@ int run_render(const RenderCommandOptions& o) {
   options.eps_measure = o.eps_measure;
   options.heat_scale = o.heat_scale;
   options.progress = isatty(STDERR_FILENO);
+  if (!o.float_format.empty()) {
+    try {
+      options.float_format = parse_float_format(o.float_format);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("--float: ") + e.what());
+    }
+  }
   if (options_only()) return kExitOk;
   load_text_font();  // a bad GLINT_FONT is refused before any work (the sheet has labels)
   // Outputs first, before any work: the folder made if missing, every file checked and its
@@ -58,8 +66,15 @@ int run_render(const RenderCommandOptions& o) {
   // The scene before the outputs: the per-light skip masks are named after its lights. Loading
   // writes nothing, so a bad scene still leaves no output.
   const Scene scene = load_scene(o.scene);
-  const RenderOutputs files = declare_render_outputs(
-      outputs, o.out_dir, render_unit_labels(options.units), render_light_names(scene), "-o");
+  const std::vector<std::string> labels = render_unit_labels(options.units);
+  const RenderOutputs files =
+      declare_render_outputs(outputs, o.out_dir, labels, render_light_names(scene), "-o");
+  std::vector<std::pair<std::string, OutputFile*>> float_files;
+  if (options.float_format)
+    for (const std::string& name : render_float_file_names(labels, *options.float_format))
+      float_files.emplace_back(name,
+                               &outputs.add("--float (" + name + ")",
+                                            (std::filesystem::path(o.out_dir) / name).string()));
   OutputFile* page =
       o.html ? &outputs.add("--html", (std::filesystem::path(o.out_dir) / "report.html").string())
              : nullptr;
@@ -73,6 +88,19 @@ int run_render(const RenderCommandOptions& o) {
       for (std::size_t i = 0; i < n; ++i) vectors->write(rows[i]);
     };
   }
+  // Every PNG is encoded as its rows are made, straight into its output (memory: the error maps,
+  // not the images).
+  options.images = RenderImages::kStream;
+  options.png_sinks = render_png_sinks(files);
+  // Float images likewise, row by row through a descriptor of their own (EXR seeks back).
+  std::vector<std::unique_ptr<FloatRowWriter>> float_writers;
+  for (const auto& [name, file] : float_files) {
+    float_writers.push_back(std::make_unique<FloatRowWriter>(*options.float_format, file->dup_fd(),
+                                                             scene.camera.width,
+                                                             scene.camera.height, file->path()));
+    options.float_sinks.emplace_back(
+        [w = float_writers.back().get()](const float* rgb, int rows) { w->add_rows(rgb, rows); });
+  }
   RenderResult r;
   try {
     r = render_scene(scene, options);
@@ -81,6 +109,7 @@ int run_render(const RenderCommandOptions& o) {
   } catch (const ResourceLimitError& e) {
     refuse_size(o.scene, e);  // more slots or contract work than a run may take
   }
+  for (const auto& w : float_writers) w->finish();
   write_render(r, files);
   if (page) {
     HtmlRunInfo run = html_run_info();
@@ -155,6 +184,10 @@ void add_render_command(CLI::App& app, int& status) {
   sub->add_option("--write-vectors", o->vectors,
                   "Also write the scene's shading requests as a vector file (for eval, sim, "
                   "regress; - for stdout, then the summary goes to stderr)");
+  sub->add_option("--float", o->float_format,
+                  "Also write linear float images of the reference and of each unit's specular "
+                  "term: exr (OpenEXR, 32-bit float RGB) or pfm (Portable Float Map)")
+      ->type_name("FORMAT");
   add_threads_option(sub, o->threads);
   add_chip_option(sub, o->chip);
   add_eps_measure_option(sub, o->eps_measure);

@@ -107,7 +107,8 @@ constexpr Field kStallFields[] = {{"merge_buffer_full", Kind::kUnsigned},
                                   {"unit_busy", Kind::kUnsigned}};
 constexpr Field kAreaFields[] = {{"ge", Kind::kNumber}, {"inventory", Kind::kArray}};
 constexpr Field kCriticalPathFields[] = {{"delay", Kind::kNumber}, {"stage", Kind::kString}};
-// The render report's fixed part (src/render/render_report.md, version 4).
+// The render report's fixed part (src/render/render_report.md, version 4; float_images is
+// optional so version-4 reports written before it still read; it is null without --float).
 constexpr Field kRenderReportFields[] = {{"glint_render_report", Kind::kUnsigned},
                                          {"scene", Kind::kString},
                                          {"resolution", Kind::kArray},
@@ -127,7 +128,8 @@ constexpr Field kRenderReportFields[] = {{"glint_render_report", Kind::kUnsigned
                                          {"heat_scale", Kind::kString},
                                          {"reproduces", Kind::kAny},
                                          {"units", Kind::kArray},
-                                         {"files", Kind::kArray}};
+                                         {"files", Kind::kArray},
+                                         {"float_images", Kind::kAny, true}};
 constexpr Field kRenderUnitFields[] = {{"unit", Kind::kString},
                                        {"file", Kind::kString},
                                        {"spec", Kind::kString},

@@ -4,7 +4,10 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -35,6 +38,27 @@ void write_png(const std::string& path, const Image8& image);
 // The PNG bytes themselves (for tests and in-memory use). An image without pixels (0 wide or
 // high), which PNG cannot hold, throws std::invalid_argument, from write_png too.
 std::vector<std::uint8_t> encode_png(const Image8& image);
+
+// A PNG encoded as its rows arrive, top row first, its bytes handed to `sink` as they are made:
+// the same bytes as encode_png of the whole image, with only a few rows in memory. Writers share
+// no state, so any number may run at once on different threads. A size without pixels throws
+// std::invalid_argument; more rows than the image has, std::logic_error; an exception the sink
+// throws comes out of the call that fed it (the constructor writes the file's header).
+class PngRowWriter {
+ public:
+  using Sink = std::function<void(const std::uint8_t* data, std::size_t size)>;
+  PngRowWriter(int width, int height, Sink sink);
+  ~PngRowWriter();
+  PngRowWriter(PngRowWriter&&) noexcept;
+  PngRowWriter& operator=(PngRowWriter&&) noexcept;
+  // `rows` rows of 3 * width bytes each (RGB); the last row finishes the file.
+  void add_rows(const std::uint8_t* rgb, int rows);
+  bool done() const;  // every row added: the sink has had the whole file
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
 
 // A perceptually ordered colour map for errors (0 = black-ish, 1 = brightest); value clamped.
 // It is matplotlib's "inferno" (CC0): near-black, purple, red, orange, pale yellow, luminance

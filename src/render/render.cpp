@@ -70,6 +70,8 @@ struct RowRequests {
 
 // Renders a scene a tile of rows at a time. Every stage writes only its own outputs (a row, a
 // source of specular light, a unit's images), so the bytes never depend on the thread count.
+// Images are composed a tile (strip) at a time, then copied into whole images (kKeep) or
+// PNG-encoded at once and reduced for the contact sheet (kStream).
 class SceneRenderer {
  public:
   SceneRenderer(const Scene& scene, const RenderOptions& options, RenderResult& out)
@@ -82,22 +84,45 @@ class SceneRenderer {
         header_(request_header(scene, options, &header_of_)),
         ev_(header_, unit_specs(options), 8, options.chip),
         units_(ev_.units().size()),
-        tracer_(scene) {
-    out_.reference = out_.reference_specular = out_.skip_only = out_.skip_mask =
-        Image8(width_, height_);
-    masked_lights_ = std::min(lights_, kMaxLightSkipMasks);
-    out_.light_skip_masks.assign(masked_lights_, Image8(width_, height_));
-    object_.assign(static_cast<std::size_t>(width_) * height_, 0);
-    image_.assign(units_, Image8(width_, height_));
-    specular_.assign(units_, Image8(width_, height_));
-    error_.assign(units_, std::vector<std::uint8_t>(static_cast<std::size_t>(width_) * height_));
+        tracer_(scene),
+        mode_(options.images),
+        factor_(sheet_factor(width_)),
+        masked_lights_(std::min(lights_, kMaxLightSkipMasks)),
+        reference_slots_(4 + masked_lights_) {
+    out_.images = mode_;
+    if (mode_ == RenderImages::kKeep) {
+      out_.reference = out_.reference_specular = out_.skip_only = out_.skip_mask =
+          Image8(width_, height_);
+      out_.light_skip_masks.assign(masked_lights_, Image8(width_, height_));
+      image_.assign(units_, Image8(width_, height_));
+      specular_.assign(units_, Image8(width_, height_));
+    }
+    if (mode_ != RenderImages::kNone) {
+      strip_.resize(reference_slots_ + 2 * units_);
+      error_.assign(units_, std::vector<std::uint8_t>(static_cast<std::size_t>(width_) * height_));
+      object_.assign(static_cast<std::size_t>(width_) * height_, 0);
+    }
+    if (!options.float_sinks.empty() && options.float_sinks.size() != 2 + units_)
+      throw std::logic_error("render: float_sinks needs one sink per float image file");
+    out_.float_format = options.float_format;
+    if (mode_ == RenderImages::kStream) {
+      if (options.png_sinks.size() != sheet_file() + 1)
+        throw std::logic_error("render: kStream needs one PNG sink per image file");
+      thumb_.resize(strip_.size());
+      for (std::size_t slot = 0; slot < strip_.size(); ++slot)
+        writer_.emplace_back(width_, height_, options.png_sinks[slot_file(slot)]);
+    }
     acc_.resize(units_);
     for (std::size_t u = 0; u < units_; ++u) ulp_.push_back(ev_.units()[u]->out_format().ulp());
     out_.skips.assign(lights_, std::vector<SkipCounts>(scene.materials.size()));
   }
 
   void run() {
-    const int tile_rows = std::min(options_.tile_rows, height_);
+    // Streamed tiles are whole blocks of the contact sheet's reduction (but the last).
+    const int tile_rows = std::min(mode_ == RenderImages::kStream
+                                       ? (options_.tile_rows + factor_ - 1) / factor_ * factor_
+                                       : options_.tile_rows,
+                                   height_);
     for (int y0 = 0; y0 < height_; y0 += tile_rows) {
       y0_ = y0;
       rows_in_tile_ = std::min(height_, y0 + tile_rows) - y0;
@@ -107,8 +132,16 @@ class SceneRenderer {
       ev_.add_batch(requests_.data(), requests_.size(), results_, options_.threads);
       out_.requests += requests_.size();
       accumulate_specular();
-      compose_reference();
-      parallel_for(units_, options_.threads, [&](std::size_t u) { compose_unit(u); });
+      compose_reference_pixels();
+      for (Image8& strip : strip_)
+        if (strip.height != rows_in_tile_) strip = Image8(width_, rows_in_tile_);
+      parallel_for(1 + units_, options_.threads, [&](std::size_t task) {
+        if (task == 0) {
+          compose_reference();
+        } else {
+          compose_unit(task - 1);
+        }
+      });
       if (options_.progress)
         std::fprintf(stderr, "\rrender: %d/%d rows", y0 + rows_in_tile_, height_);
     }
@@ -116,10 +149,40 @@ class SceneRenderer {
     finish();
   }
 
-  // Each unit's per-pixel error in LSBs (its largest channel), row-major.
-  const std::vector<std::vector<std::uint8_t>>& error_lsb() const { return error_; }
-  // Nonzero where a pixel shows an object, row-major.
-  const std::vector<std::uint8_t>& object() const { return object_; }
+  // The contact sheet's tiles in compose_sheet's order: the reference, its specular term, the
+  // skip mask and the per-light masks, then each unit's image, specular term and error map, reduced
+  // by sheet_factor.
+  std::vector<Image8> sheet_tiles() {
+    std::vector<Image8> tiles;
+    if (mode_ == RenderImages::kStream) {
+      for (std::size_t slot = 0; slot + 1 < reference_slots_; ++slot)
+        tiles.push_back(std::move(thumb_[slot]));
+      for (std::size_t u = 0; u < units_; ++u) {
+        tiles.push_back(std::move(thumb_[reference_slots_ + 2 * u]));
+        tiles.push_back(std::move(thumb_[reference_slots_ + 2 * u + 1]));
+        tiles.push_back(std::move(heat_thumb_[u]));
+      }
+      return tiles;
+    }
+    const auto reduce = [&](const Image8& image) {
+      return factor_ > 1 ? downscale(image, factor_) : image;
+    };
+    tiles = {reduce(out_.reference), reduce(out_.reference_specular), reduce(out_.skip_mask)};
+    for (const Image8& mask : out_.light_skip_masks) tiles.push_back(reduce(mask));
+    for (std::size_t u = 0; u < units_; ++u) {
+      const UnitRender& r = out_.units[u];
+      tiles.push_back(reduce(r.image));
+      tiles.push_back(reduce(r.specular));
+      tiles.push_back(
+          factor_ > 1 ? error_thumb(error_[u], object_, width_, height_, factor_, r.heatmap_scale)
+                      : r.heatmap);
+    }
+    return tiles;
+  }
+
+  // The files of the images render_scene draws at the end (kStream).
+  std::size_t legend_file() const { return reference_slots_ + 3 * units_; }
+  std::size_t sheet_file() const { return legend_file() + 1; }
 
  private:
   static std::vector<UnitSpec> unit_specs(const RenderOptions& o) {
@@ -261,30 +324,64 @@ class SceneRenderer {
     return {y > 0 && y >= 0.1 * peak_[p], y > 0 && y >= 0.5 * peak_[p]};
   }
 
-  int x_of(std::size_t p) const { return static_cast<int>(p % width_); }
-  int y_of(std::size_t p) const { return y0_ + static_cast<int>(p / width_); }
-
-  void compose_reference() {
+  // The reference's final pixels and highlight, which every unit's error needs, and the pixels
+  // without specular light: most of a unit's pixels (the background, and every request skipped or
+  // at t <= 0), which then cost no display encoding per unit.
+  void compose_reference_pixels() {
     ref8_.resize(pixels_);
     ref_highlight_.resize(pixels_);
+    diffuse8_.resize(pixels_);
     for (std::size_t p = 0; p < pixels_; ++p) {
-      const int x = x_of(p), y = y_of(p);
-      const Rgb8 ref = ref8_[p] = final_pixel(0, p);
+      diffuse8_[p] = to_display8(scene_.display, diffuse_[p]);
+      ref8_[p] = final_pixel(0, p);
       ref_highlight_[p] = highlight(0, p);
-      out_.reference.set(x, y, ref);
-      out_.reference_specular.set(x, y, to_display8(scene_.display, specular_light_[0][p]));
+    }
+  }
+
+  static bool dark(const Rgb& c) { return c.r == 0 && c.g == 0 && c.b == 0; }
+
+  // Pixel p of the tile's strip.
+  static void put(Image8& strip, std::size_t p, const Rgb8& c) {
+    std::copy(c.begin(), c.end(), strip.pixels.begin() + static_cast<std::ptrdiff_t>(3 * p));
+  }
+
+  // The linear light of `source` (plus the diffuse term if `diffuse`) to a float sink.
+  void emit_float(std::size_t sink, std::size_t source, bool diffuse) const {
+    std::vector<float> rgb(3 * pixels_);
+    const std::vector<Rgb>& light = specular_light_[source];
+    for (std::size_t p = 0; p < pixels_; ++p) {
+      const Rgb d = diffuse ? diffuse_[p] : Rgb{};
+      rgb[3 * p] = static_cast<float>(d.r + light[p].r);
+      rgb[3 * p + 1] = static_cast<float>(d.g + light[p].g);
+      rgb[3 * p + 2] = static_cast<float>(d.b + light[p].b);
+    }
+    options_.float_sinks[sink](rgb.data(), rows_in_tile_);
+  }
+
+  void compose_reference() {
+    if (!options_.float_sinks.empty()) {
+      emit_float(0, 0, true);
+      emit_float(1, 0, false);
+    }
+    const bool images = mode_ != RenderImages::kNone;
+    for (std::size_t p = 0; p < pixels_; ++p) {
+      const Rgb8 ref = ref8_[p];
       const Rgb8 skip_only = final_pixel(1, p);
-      out_.skip_only.set(x, y, skip_only);
       skip_acc_.add(ref, skip_only, ref_highlight_[p], highlight(1, p));
+      if (!images) continue;
+      put(strip_[0], p, ref);
+      put(strip_[1], p, to_display8(scene_.display, specular_light_[0][p]));
+      put(strip_[skip_only_slot()], p, skip_only);
       const auto grey = static_cast<std::uint8_t>((ref[0] * 54 + ref[1] * 183 + ref[2] * 19) >> 8);
       const bool object = skip_[p] != PixelSkip::kBackground;
-      object_[static_cast<std::size_t>(y) * width_ + x] = object ? 1 : 0;
-      out_.skip_mask.set(
-          x, y,
+      object_[static_cast<std::size_t>(y0_) * width_ + p] = object ? 1 : 0;
+      put(strip_[2], p,
           object ? combined_skip_colour(lights_ - computed_lights_[p], lights_, grey) : Rgb8{});
       for (std::size_t l = 0; l < masked_lights_; ++l)
-        out_.light_skip_masks[l].set(x, y, skip_colour(light_skip_[l * pixels_ + p], grey));
+        put(strip_[3 + l], p, skip_colour(light_skip_[l * pixels_ + p], grey));
     }
+    if (!images) return;
+    for (std::size_t slot = 0; slot < reference_slots_; ++slot) emit(slot);
   }
 
   static Rgb8 skip_colour(PixelSkip s, std::uint8_t grey) {
@@ -301,15 +398,65 @@ class SceneRenderer {
     return {0, 0, 0};
   }
 
+  // The strips of the reference's images: reference, its specular term, the skip mask, the
+  // per-light masks, then the skip-only image (files in that order, render_file_names).
+  std::size_t skip_only_slot() const { return reference_slots_ - 1; }
+  std::size_t slot_file(std::size_t slot) const {
+    if (slot < reference_slots_) return slot;
+    const std::size_t k = slot - reference_slots_;
+    return reference_slots_ + 3 * (k / 2) + k % 2;
+  }
+  std::size_t heatmap_file(std::size_t unit) const { return reference_slots_ + 3 * unit + 2; }
+
   void compose_unit(std::size_t u) {
+    const bool images = mode_ != RenderImages::kNone;
+    Image8* image = images ? &strip_[reference_slots_ + 2 * u] : nullptr;
+    Image8* specular = images ? &strip_[reference_slots_ + 2 * u + 1] : nullptr;
+    const std::vector<Rgb>& light = specular_light_[2 + u];
+    if (!options_.float_sinks.empty()) emit_float(2 + u, 2 + u, false);
     for (std::size_t p = 0; p < pixels_; ++p) {
-      const int x = x_of(p), y = y_of(p);
-      const Rgb8 img = final_pixel(2 + u, p);
-      image_[u].set(x, y, img);
-      specular_[u].set(x, y, to_display8(scene_.display, specular_light_[2 + u][p]));
-      error_[u][static_cast<std::size_t>(y) * width_ + x] = static_cast<std::uint8_t>(
-          acc_[u].add(ref8_[p], img, ref_highlight_[p], highlight(2 + u, p)));
+      // d + 0 is d exactly, and no light is no highlight: the same figures as the general case.
+      const bool none = dark(light[p]);
+      const Rgb8 img = none ? diffuse8_[p] : final_pixel(2 + u, p);
+      const int error =
+          acc_[u].add(ref8_[p], img, ref_highlight_[p],
+                      none ? ImageErrorAccumulator::Highlight{} : highlight(2 + u, p));
+      if (!images) continue;
+      put(*image, p, img);
+      put(*specular, p, none ? black8_ : to_display8(scene_.display, light[p]));
+      error_[u][static_cast<std::size_t>(y0_) * width_ + p] = static_cast<std::uint8_t>(error);
     }
+    if (!images) return;
+    emit(reference_slots_ + 2 * u);
+    emit(reference_slots_ + 2 * u + 1);
+  }
+
+  // The whole image a slot's strip is part of (kKeep).
+  Image8& whole(std::size_t slot) {
+    if (slot == 0) return out_.reference;
+    if (slot == 1) return out_.reference_specular;
+    if (slot == 2) return out_.skip_mask;
+    if (slot == skip_only_slot()) return out_.skip_only;
+    if (slot < reference_slots_) return out_.light_skip_masks[slot - 3];
+    const std::size_t k = slot - reference_slots_;
+    return k % 2 ? specular_[k / 2] : image_[k / 2];
+  }
+
+  // A slot's strip, complete: into its whole image, or encoded and reduced.
+  void emit(std::size_t slot) {
+    const Image8& strip = strip_[slot];
+    if (mode_ == RenderImages::kKeep) {
+      std::copy(strip.pixels.begin(), strip.pixels.end(),
+                whole(slot).pixels.begin() + static_cast<std::ptrdiff_t>(3 * y0_ * width_));
+      return;
+    }
+    writer_[slot].add_rows(strip.pixels.data(), strip.height);
+    if (slot == skip_only_slot()) return;  // the skip-only image has no tile
+    const Image8 reduced = factor_ > 1 ? downscale(strip, factor_) : strip;
+    Image8& thumb = thumb_[slot];
+    thumb.width = reduced.width;
+    thumb.height += reduced.height;
+    thumb.pixels.insert(thumb.pixels.end(), reduced.pixels.begin(), reduced.pixels.end());
   }
 
   void finish() {
@@ -335,8 +482,10 @@ class SceneRenderer {
       r.label = labels[u];
       r.file = stems[u];
       r.spec = stats[u].spec;
-      r.image = std::move(image_[u]);
-      r.specular = std::move(specular_[u]);
+      if (mode_ == RenderImages::kKeep) {
+        r.image = std::move(image_[u]);
+        r.specular = std::move(specular_[u]);
+      }
       r.error = acc_[u].result();
       r.stats = stats[u];
       r.cost = unit_cost(*ev_.units()[u]);
@@ -344,10 +493,9 @@ class SceneRenderer {
       r.computed = stats[u].vectors - stats[u].skipped;
       r.heatmap_scale =
           options_.heat_scale == HeatScale::kShared ? shared_scale : std::max(1.0, r.error.max_lsb);
-      const std::vector<double> lsb(error_[u].begin(), error_[u].end());
-      r.heatmap = error_map(lsb, object_, width_, height_, r.heatmap_scale);
       out_.units.push_back(std::move(r));
     }
+    if (mode_ != RenderImages::kNone) draw_heatmaps();
     const SlotMap& slots = ev_.slots();
     out_.chip = chip_json(ev_.chip(), slots);
     out_.slots = nlohmann::json::array();
@@ -363,6 +511,28 @@ class SceneRenderer {
     }
   }
 
+  // Each unit's error map (a task each), drawn at the end where the shared scale is known.
+  // kStream encodes it at once and keeps only its reduced tile; the error maps are freed as they
+  // are drawn.
+  void draw_heatmaps() {
+    heat_thumb_.resize(units_);
+    parallel_for(units_, options_.threads, [&](std::size_t u) {
+      UnitRender& r = out_.units[u];
+      Image8 heatmap = error_map(std::vector<double>(error_[u].begin(), error_[u].end()), object_,
+                                 width_, height_, r.heatmap_scale);
+      if (mode_ == RenderImages::kKeep) {
+        r.heatmap = std::move(heatmap);
+        return;
+      }
+      PngRowWriter(heatmap.width, heatmap.height, options_.png_sinks[heatmap_file(u)])
+          .add_rows(heatmap.pixels.data(), heatmap.height);
+      heat_thumb_[u] =
+          factor_ > 1 ? error_thumb(error_[u], object_, width_, height_, factor_, r.heatmap_scale)
+                      : std::move(heatmap);
+      std::vector<std::uint8_t>().swap(error_[u]);
+    });
+  }
+
   const Scene& scene_;
   const RenderOptions& options_;
   RenderResult& out_;
@@ -373,10 +543,18 @@ class SceneRenderer {
   Evaluator ev_;
   const std::size_t units_;
   const SceneTracer tracer_;
+  const RenderImages mode_;
+  const int factor_;                   // the contact sheet's reduction
+  const std::size_t masked_lights_;    // lights with a skip mask of their own
+  const std::size_t reference_slots_;  // strips before the units' (see skip_only_slot)
   std::vector<double> ulp_;
-  // Whole-image results per unit.
+  // Whole-image results per unit (kKeep).
   std::vector<Image8> image_, specular_;
   std::vector<std::vector<std::uint8_t>> error_;  // LSBs per pixel (largest channel)
+  std::vector<Image8> strip_;                     // per slot, the current tile's rows
+  std::vector<PngRowWriter> writer_;              // per slot (kStream)
+  std::vector<Image8> thumb_;                     // per slot, reduced so far (kStream)
+  std::vector<Image8> heat_thumb_;                // per unit (kStream)
   std::vector<ImageErrorAccumulator> acc_;
   ImageErrorAccumulator skip_acc_;
   // The current tile.
@@ -390,12 +568,13 @@ class SceneRenderer {
   std::vector<Rgb> diffuse_;                      // ambient + diffuse, shared by every image
   std::vector<std::vector<Rgb>> specular_light_;  // [source][pixel], linear
   std::vector<PixelSkip> skip_;
-  std::size_t masked_lights_ = 0;               // lights with a skip mask of their own
   std::vector<PixelSkip> light_skip_;           // [light][pixel] of the masked lights
   std::vector<std::uint32_t> computed_lights_;  // lights computed per pixel
   std::vector<std::uint8_t> object_;            // whole image: nonzero where an object shows
   std::vector<double> peak_;  // the pixel material's peak specular luminance under every light
   std::vector<Rgb8> ref8_;
+  std::vector<Rgb8> diffuse8_;  // the final pixel without specular light
+  const Rgb8 black8_ = to_display8(scene_.display, Rgb{});
   std::vector<ImageErrorAccumulator::Highlight> ref_highlight_;
 };
 
@@ -421,8 +600,20 @@ VectorHeader scene_request_header(const Scene& scene, std::vector<std::int32_t>*
   return h;
 }
 
-std::uint64_t render_bytes(std::uint64_t pixels, std::size_t units) {
-  return pixels * (kRenderBytesPerPixel + kRenderBytesPerPixelUnit * units);
+std::uint64_t render_bytes(std::uint64_t pixels, std::size_t units, RenderImages images,
+                           int threads, std::size_t masked_lights) {
+  switch (images) {
+    case RenderImages::kKeep:
+      return pixels * (kRenderBytesPerPixel + kRenderBytesPerPixelUnit * units + 3 * masked_lights);
+    case RenderImages::kStream:
+      return pixels *
+             (kStreamBytesPerPixel + kStreamBytesPerPixelUnit * units +
+              kStreamBytesPerHeatmap *
+                  std::min<std::uint64_t>(units, static_cast<std::uint64_t>(std::max(threads, 1))));
+    case RenderImages::kNone:
+      break;
+  }
+  return 0;
 }
 
 RenderResult render_scene(const Scene& scene, const RenderOptions& options) {
@@ -430,15 +621,22 @@ RenderResult render_scene(const Scene& scene, const RenderOptions& options) {
   const std::uint64_t pixels = static_cast<std::uint64_t>(scene.camera.width) *
                                static_cast<std::uint64_t>(scene.camera.height);
   const std::size_t units = options.units.empty() ? unit_names().size() : options.units.size();
-  if (render_bytes(pixels, units) > kMaxRenderBytes) {
-    throw InputError(
-        scene.file, 0, "camera.resolution",
-        fmt::format("{} x {} pixels through {} unit{} need about {} MiB, more than the limit of {} "
-                    "MiB per render (about {} + {} x units bytes per pixel): lower the resolution "
-                    "or render fewer units at a time",
-                    scene.camera.width, scene.camera.height, units, units == 1 ? "" : "s",
-                    render_bytes(pixels, units) >> 20, kMaxRenderBytes >> 20, kRenderBytesPerPixel,
-                    kRenderBytesPerPixelUnit));
+  const std::size_t masked_lights = std::min(scene.lights.size(), kMaxLightSkipMasks);
+  const std::uint64_t bytes =
+      render_bytes(pixels, units, options.images, options.threads, masked_lights);
+  if (bytes > kMaxRenderBytes) {
+    const std::string rule =
+        options.images == RenderImages::kKeep
+            ? fmt::format("{} + {} x units + 3 x {} masked lights", kRenderBytesPerPixel,
+                          kRenderBytesPerPixelUnit, masked_lights)
+            : fmt::format("{} + {} x units + {} x min(threads, units)", kStreamBytesPerPixel,
+                          kStreamBytesPerPixelUnit, kStreamBytesPerHeatmap);
+    throw InputError(scene.file, 0, "camera.resolution",
+                     fmt::format("{} x {} pixels through {} unit{} need about {} MiB, more than "
+                                 "the limit of {} MiB per render (about {} bytes per pixel): "
+                                 "lower the resolution or render fewer units at a time",
+                                 scene.camera.width, scene.camera.height, units,
+                                 units == 1 ? "" : "s", bytes >> 20, kMaxRenderBytes >> 20, rule));
   }
   RenderResult out;
   out.scene_name = scene.name;
@@ -458,7 +656,19 @@ RenderResult render_scene(const Scene& scene, const RenderOptions& options) {
   out.reproduces = scene.reproduces;
   SceneRenderer renderer(scene, options, out);
   renderer.run();
-  compose_sheet(out, renderer.error_lsb(), renderer.object());
+  if (options.images == RenderImages::kNone) return out;
+
+  compose_sheet(out, renderer.sheet_tiles());
+  if (options.images == RenderImages::kStream) {
+    // The legend and the sheet are the last two files (render_file_names).
+    const std::size_t legend = options.png_sinks.size() - 2;
+    for (Image8* image : {&out.legend, &out.contact_sheet}) {
+      PngRowWriter(image->width, image->height,
+                   options.png_sinks[legend + (image == &out.contact_sheet ? 1 : 0)])
+          .add_rows(image->pixels.data(), image->height);
+      *image = Image8();
+    }
+  }
   return out;
 }
 

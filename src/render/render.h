@@ -16,6 +16,7 @@
 
 #include "cost/cost_model.h"
 #include "eval/evaluate.h"
+#include "image/float_image.h"
 #include "image/image.h"
 #include "scene/scene.h"
 
@@ -26,8 +27,9 @@ class OutputFile;
 
 // Version 4: skip.fractions_of, units[].skipped_fraction (every skip fraction of light x pixel
 // pairs), units[].file, heat_scale, skip_masks, reproduces, meshes[] (each mesh file and its
-// normals); units[].unit labelled by the keys that tell repeated units apart. Version 3: image errors' mean_lsb is the mean of the pixels'
-// largest channel (2: of every channel); display, eps_measure, skip_guarantee and
+// normals), float_images (glint render --float); units[].unit labelled by the keys that tell
+// repeated units apart. Version 3: image errors' mean_lsb is the mean of the pixels' largest
+// channel (2: of every channel); display, eps_measure, skip_guarantee and
 // slots[].pixel_weight added; request-level weighted errors in the scene's display encoding (2:
 // linear, times c_y). Version 2 stated the chip (chip; the colour stage gone).
 inline constexpr int kRenderReportVersion = 4;
@@ -47,6 +49,14 @@ const char* to_string(HeatScale s);
 // bytes per pixel until written).
 inline constexpr std::size_t kMaxLightSkipMasks = 8;
 
+// What a render does with its images.
+enum class RenderImages {
+  kKeep,    // the result holds every image whole (write_render encodes them)
+  kStream,  // each PNG is encoded as its rows are made and handed to png_sinks; the result's
+            // images are left empty, so memory is the error maps', not the images'
+  kNone,    // no images: the image errors and skip counts only (sweeps)
+};
+
 struct RenderOptions {
   std::vector<UnitSpec> units;  // empty: every unit at its defaults
   int threads = 1;
@@ -57,6 +67,16 @@ struct RenderOptions {
   bool progress = false;  // a progress line on stderr
   // Receives every tile's requests in raster order (pixel, then light), e.g. for a vector file.
   std::function<void(const VectorRow* rows, std::size_t count)> on_requests;
+  RenderImages images = RenderImages::kKeep;
+  // kStream: one sink per PNG of render_file_names, in its order (report.json excluded). Sinks
+  // are called on the render's threads, each from one thread at a time.
+  std::vector<PngRowWriter::Sink> png_sinks;
+  // Linear float images, in any mode: the reference (ambient, diffuse and specular light), its
+  // specular term and each unit's, as rows of linear R, G, B floats a tile at a time, one sink per
+  // file of render_float_file_names in its order (each called from one thread at a time).
+  // float_format names the files in the report.
+  std::optional<FloatFormat> float_format;
+  std::vector<std::function<void(const float* rgb, int rows)>> float_sinks;
 };
 
 // Error of one image against the reference, on the final 8-bit pixels in the scene's display
@@ -140,6 +160,8 @@ struct RenderResult {
   nlohmann::json chip;             // the chip they are built on (eval/chip_report.h)
   nlohmann::json meshes;           // each mesh's format and normals (scene/mesh_summary.h)
   Image8 contact_sheet;
+  RenderImages images = RenderImages::kKeep;  // the options' (kStream: the PNGs went to the sinks)
+  std::optional<FloatFormat> float_format;    // the options': float images were written
 
   SkipCounts skip_total() const;
   // The scene's reproduced quantity as glint measures it on this render (nullopt: no reference,
@@ -152,15 +174,30 @@ struct RenderResult {
   nlohmann::json to_json() const;             // the render report (report.json)
 };
 
-// A render keeps every unit's images and per-pixel results whole until it writes them: about
-// kRenderBytesPerPixel + kRenderBytesPerPixelUnit x units bytes per pixel (measured: 33 bytes per
-// pixel for one unit, 17 more per further unit). Beyond kMaxRenderBytes by that rule,
-// render_scene refuses the scene before any work (InputError at "camera.resolution").
-inline constexpr std::uint64_t kRenderBytesPerPixel = 16;
+// A render that keeps its images (kKeep) holds every unit's images and per-pixel results whole:
+// about kRenderBytesPerPixel + kRenderBytesPerPixelUnit x units + 3 x masked lights bytes per pixel
+// (measured: 33 bytes per pixel for one unit, 17 more per further unit, before the object map's
+// byte and the per-light masks). One that streams them (kStream, glint render) keeps a byte per
+// pixel and unit (its error, for the error map drawn at the end, where the shared scale is known)
+// and the object map's byte (error maps tell a zero error on an object from the background); the
+// per-light masks are strips of the current tile; each thread draws one error map at a time (its
+// errors as doubles and its pixels): about kStreamBytesPerPixel + kStreamBytesPerPixelUnit x
+// units + kStreamBytesPerHeatmap x min(threads, units) (the teapot at 3840x2160 through the
+// five default units: 309 MB peak RSS on 2 threads, 209 MB on 1; the rule 332 MB and 224 MB).
+// Beyond kMaxRenderBytes by its rule, render_scene refuses the scene before any work (InputError
+// at "camera.resolution").
+inline constexpr std::uint64_t kRenderBytesPerPixel = 17;
 inline constexpr std::uint64_t kRenderBytesPerPixelUnit = 17;
+inline constexpr std::uint64_t kStreamBytesPerPixel = 9;
+inline constexpr std::uint64_t kStreamBytesPerPixelUnit = 1;
+inline constexpr std::uint64_t kStreamBytesPerHeatmap = 13;
 inline constexpr std::uint64_t kMaxRenderBytes = std::uint64_t{4} << 30;
-// The bytes a render of `pixels` pixels through `units` units takes by the rule above.
-std::uint64_t render_bytes(std::uint64_t pixels, std::size_t units);
+// The bytes a render of `pixels` pixels through `units` units on `threads` threads, with
+// `masked_lights` per-light skip masks, takes by the rule above (kNone takes no per-pixel memory
+// but its tiles').
+std::uint64_t render_bytes(std::uint64_t pixels, std::size_t units,
+                           RenderImages images = RenderImages::kKeep, int threads = 1,
+                           std::size_t masked_lights = 0);
 
 RenderResult render_scene(const Scene& scene, const RenderOptions& options);
 
@@ -183,6 +220,10 @@ std::vector<std::string> render_file_names(const std::vector<std::string>& label
                                            const std::vector<std::string>& lights);
 // The lights' names as the scene gives them ("light N" when unnamed).
 std::vector<std::string> render_light_names(const Scene& scene);
+// The float images' files (RenderOptions::float_sinks): reference, reference_specular and
+// STEM_specular (render_file_stems of the labels), with the format's extension.
+std::vector<std::string> render_float_file_names(const std::vector<std::string>& labels,
+                                                 FloatFormat format);
 
 // The render's files as outputs of an OutputSet (io/output_set.h), declared before rendering:
 // `dir` made if missing (removed again if the run fails), every file checked and its temporary
@@ -194,9 +235,14 @@ RenderOutputs declare_render_outputs(OutputSet& outputs, const std::string& dir,
                                      const std::vector<std::string>& labels,
                                      const std::vector<std::string>& lights,
                                      const std::string& option = "-o");
-// Writes every image as PNG and report.json into the declared outputs (the names must be the
-// result's: std::logic_error otherwise); the caller commits them with its other outputs.
-void write_render(const RenderResult& result, const RenderOutputs& outputs);
+// Writes every image as PNG (encoded on `threads` threads; the bytes do not depend on it) and
+// report.json into the declared outputs (the names must be the result's: std::logic_error
+// otherwise); the caller commits them with its other outputs. A streamed result (kStream) wrote
+// its PNGs already: only report.json is written. A result without images (kNone) is a
+// std::logic_error.
+void write_render(const RenderResult& result, const RenderOutputs& outputs, int threads = 1);
+// The PNG sinks of kStream (RenderOptions::png_sinks) writing into the declared outputs.
+std::vector<PngRowWriter::Sink> render_png_sinks(const RenderOutputs& outputs);
 // The same into `dir` with an OutputSet of its own, committed: every file is written to its
 // temporary, and all are renamed into place only when all were written (output_set.h).
 void write_render(const RenderResult& result, const std::string& dir);

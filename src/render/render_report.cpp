@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <memory>
 
+#include "eval/parallel.h"
 #include "io/output_set.h"
 #include "render/render.h"
 #include "units/catalogue.h"
@@ -30,6 +31,16 @@ nlohmann::json reproduces_json(const RenderResult& r) {
           {"quantity", r.reproduces->quantity},
           {"paper_value", r.reproduces->value},
           {"glint_value", glint ? nlohmann::json(*glint) : nlohmann::json(nullptr)}};
+}
+
+// The float images written beside the PNGs (--float), or null.
+nlohmann::json float_images_json(const RenderResult& r) {
+  if (!r.float_format) return nullptr;
+  std::vector<std::string> labels;
+  for (const UnitRender& u : r.units) labels.push_back(u.label);
+  return {{"format", to_string(*r.float_format)},
+          {"encoding", "linear"},
+          {"files", render_float_file_names(labels, *r.float_format)}};
 }
 
 }  // namespace
@@ -125,6 +136,15 @@ std::vector<std::string> render_file_names(const std::vector<std::string>& label
   names.push_back("legend.png");
   names.push_back("contact_sheet.png");
   names.push_back("report.json");
+  return names;
+}
+
+std::vector<std::string> render_float_file_names(const std::vector<std::string>& labels,
+                                                 FloatFormat format) {
+  const std::string ext = "." + to_string(format);
+  std::vector<std::string> names{"reference" + ext, "reference_specular" + ext};
+  for (const std::string& stem : render_file_stems(labels))
+    names.push_back(stem + "_specular" + ext);
   return names;
 }
 
@@ -261,7 +281,8 @@ nlohmann::json RenderResult::to_json() const {
           {"heat_scale", to_string(heat_scale)},
           {"reproduces", reproduces_json(*this)},
           {"units", units_json},
-          {"files", render_file_names(*this)}};
+          {"files", render_file_names(*this)},
+          {"float_images", float_images_json(*this)}};
 }
 
 RenderOutputs declare_render_outputs(OutputSet& outputs, const std::string& dir,
@@ -276,27 +297,43 @@ RenderOutputs declare_render_outputs(OutputSet& outputs, const std::string& dir,
   return out;
 }
 
-void write_render(const RenderResult& r, const RenderOutputs& outputs) {
+std::vector<PngRowWriter::Sink> render_png_sinks(const RenderOutputs& outputs) {
+  std::vector<PngRowWriter::Sink> sinks;
+  for (std::size_t i = 0; i + 1 < outputs.files.size(); ++i) {
+    OutputFile* file = outputs.files[i].second;
+    sinks.emplace_back([file](const std::uint8_t* data, std::size_t size) {
+      file->stream().write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
+    });
+  }
+  return sinks;
+}
+
+void write_render(const RenderResult& r, const RenderOutputs& outputs, int threads) {
   if (render_file_names(r) != [&] {
         std::vector<std::string> names;
         for (const auto& f : outputs.files) names.push_back(f.first);
         return names;
       }())
     throw std::logic_error("write_render: the declared files are not the render's");
-  std::vector<const Image8*> images{&r.reference, &r.reference_specular, &r.skip_mask};
-  for (const Image8& mask : r.light_skip_masks) images.push_back(&mask);
-  images.push_back(&r.skip_only);
-  for (const UnitRender& u : r.units) {
-    images.push_back(&u.image);
-    images.push_back(&u.specular);
-    images.push_back(&u.heatmap);
-  }
-  images.push_back(&r.legend);
-  images.push_back(&r.contact_sheet);
-  for (std::size_t i = 0; i < images.size(); ++i) {
-    const std::vector<std::uint8_t> png = encode_png(*images[i]);
-    outputs.files[i].second->stream().write(reinterpret_cast<const char*>(png.data()),
-                                            static_cast<std::streamsize>(png.size()));
+  if (r.images == RenderImages::kNone)
+    throw std::logic_error("write_render: the render made no images (RenderImages::kNone)");
+  if (r.images == RenderImages::kKeep) {
+    std::vector<const Image8*> images{&r.reference, &r.reference_specular, &r.skip_mask};
+    for (const Image8& mask : r.light_skip_masks) images.push_back(&mask);
+    images.push_back(&r.skip_only);
+    for (const UnitRender& u : r.units) {
+      images.push_back(&u.image);
+      images.push_back(&u.specular);
+      images.push_back(&u.heatmap);
+    }
+    images.push_back(&r.legend);
+    images.push_back(&r.contact_sheet);
+    const std::vector<PngRowWriter::Sink> sinks = render_png_sinks(outputs);
+    // Each file its own task: the encoders share nothing, and each writes only its own output.
+    parallel_for(images.size(), threads, [&](std::size_t i) {
+      PngRowWriter(images[i]->width, images[i]->height, sinks[i])
+          .add_rows(images[i]->pixels.data(), images[i]->height);
+    });
   }
   outputs.files.back().second->stream() << r.to_json().dump(2) << '\n';
 }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -64,7 +65,8 @@ Image8 make_legend(const RenderResult& r, int width) {
                   "image {:.1f}% of the {} light x pixel pairs",
                   100.0 * skipped, total.total()),
       combined));
-  if (!r.light_skip_masks.empty())
+  // Per-light masks are written whenever the scene has a light (kStream keeps none in the result).
+  if (!r.lights.empty())
     parts.push_back(swatch_legend(width, "skip_mask_LIGHT: that light's pair",
                                   {{{128, 128, 128}, "computed (grey, shaded)"},
                                    {kSkipTauColour, "skipped by tau alone"},
@@ -120,41 +122,40 @@ std::vector<std::string> render_title(const RenderResult& r) {
   return lines;
 }
 
-void compose_sheet(RenderResult& out, const std::vector<std::vector<std::uint8_t>>& error_lsb,
-                   const std::vector<std::uint8_t>& object) {
-  // Every file is the render's size, so every tile is the same size: at most kSheetTileWidth
-  // wide, reduced by a box filter (error maps by each block's largest error).
-  const int factor = (out.width + kSheetTileWidth - 1) / kSheetTileWidth;
-  std::vector<Image8> thumbs;
-  thumbs.reserve(5 + out.light_skip_masks.size() + 3 * out.units.size());
-  const auto thumb = [&](const Image8& image) -> const Image8* {
-    thumbs.push_back(factor > 1 ? downscale(image, factor) : image);
-    return &thumbs.back();
-  };
+int sheet_factor(int width) {
+  return (width + kSheetTileWidth - 1) / kSheetTileWidth;
+}
+
+Image8 error_thumb(const std::vector<std::uint8_t>& error_lsb,
+                   const std::vector<std::uint8_t>& object, int width, int height, int factor,
+                   double scale) {
+  const int w = (width + factor - 1) / factor, h = (height + factor - 1) / factor;
+  return error_map(block_max(error_lsb, width, height, factor),
+                   factor > 1 ? block_any(object, width, height, factor) : object, w, h, scale);
+}
+
+void compose_sheet(RenderResult& out, std::vector<Image8> thumbs) {
+  const std::size_t masks = std::min(out.lights.size(), kMaxLightSkipMasks);
+  if (thumbs.size() != 3 + masks + 3 * out.units.size())
+    throw std::logic_error("compose_sheet: one tile per image of the sheet");
+  const Image8 blank(1, 1, {24, 24, 28});
   std::vector<std::pair<std::string, const Image8*>> tiles{
-      {"reference", thumb(out.reference)},
-      {"reference specular", thumb(out.reference_specular)},
-      {"skip mask: lights skipped", thumb(out.skip_mask)}};
-  for (std::size_t l = 0; l < out.light_skip_masks.size(); ++l)
-    tiles.emplace_back("skip mask: " + out.lights[l], thumb(out.light_skip_masks[l]));
+      {"reference", &thumbs[0]},
+      {"reference specular", &thumbs[1]},
+      {"skip mask: lights skipped", &thumbs[2]}};
+  for (std::size_t l = 0; l < masks; ++l)
+    tiles.emplace_back("skip mask: " + out.lights[l], &thumbs[3 + l]);
   // The unit rows start on a row of their own.
-  while (tiles.size() % kSheetColumns) tiles.emplace_back("", thumb(Image8(1, 1, {24, 24, 28})));
-  const std::vector<std::uint8_t> object_thumb =
-      factor > 1 ? block_any(object, out.width, out.height, factor) : object;
+  while (tiles.size() % kSheetColumns) tiles.emplace_back("", &blank);
   for (std::size_t u = 0; u < out.units.size(); ++u) {
     const UnitRender& r = out.units[u];
-    tiles.emplace_back(r.label, thumb(r.image));
-    tiles.emplace_back(r.label + " specular", thumb(r.specular));
-    if (factor > 1) {
-      thumbs.push_back(error_map(block_max(error_lsb[u], out.width, out.height, factor),
-                                 object_thumb, thumbs.back().width, thumbs.back().height,
-                                 r.heatmap_scale));
-    } else {
-      thumbs.push_back(r.heatmap);
-    }
+    const std::size_t t = 3 + masks + 3 * u;
+    tiles.emplace_back(r.label, &thumbs[t]);
+    tiles.emplace_back(r.label + " specular", &thumbs[t + 1]);
     tiles.emplace_back(fmt::format("{} error (max {:g} LSB)", r.label, r.error.max_lsb),
-                       &thumbs.back());
+                       &thumbs[t + 2]);
   }
+  const int factor = sheet_factor(out.width);
   const int tile_w = (out.width + factor - 1) / factor;
   out.legend = make_legend(out, std::max(320, kSheetColumns * tile_w + (kSheetColumns - 1) * 8));
   out.contact_sheet = contact_sheet(tiles, kSheetColumns, render_title(out), &out.legend);

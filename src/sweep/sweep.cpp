@@ -19,13 +19,16 @@
 namespace glint {
 namespace {
 
-// Renders per group of configurations: each keeps its images until the group's render returns
-// (image, specular, heat map, error map and its contact-sheet tiles: ~19 bytes per pixel), so a
-// group is as large as ~256 MB of them allows, at most 32.
-std::size_t render_group_size(const Scene& scene) {
-  const double per_config = 19.0 * scene.camera.width * scene.camera.height;
+// Renders per group of configurations, without images (RenderImages::kNone): a configuration
+// keeps only its image-error sums and, for the tile of rows in flight, its specular light per
+// pixel (24 bytes) and its result per request (8 bytes per light), so a group is as large as
+// ~256 MB of tiles allows, whatever the resolution. Usually one render makes every figure.
+std::size_t render_group_size(const Scene& scene, std::size_t configs) {
+  const double per_config = RenderOptions{}.tile_rows * static_cast<double>(scene.camera.width) *
+                            (24.0 + 8.0 * static_cast<double>(scene.lights.size()));
   const double fits = 256.0 * 1024 * 1024 / std::max(per_config, 1.0);
-  return static_cast<std::size_t>(std::clamp(fits, 1.0, 32.0));
+  return static_cast<std::size_t>(
+      std::clamp(fits, 1.0, std::max(1.0, static_cast<double>(configs))));
 }
 
 struct SceneRun {
@@ -63,7 +66,7 @@ SceneRun sweep_scene(const SweepJob& job, const std::vector<SweepConfig>& all,
                      const std::vector<SweepConfig>& mine) {
   const Scene scene = load_scene(job.input.path);
   SweepEngine engine = make_engine(job, scene_request_header(scene), mine);
-  const std::size_t group = render_group_size(scene);
+  const std::size_t group = render_group_size(scene, mine.size());
   // Without image errors (or with no configuration in this shard) one render of one unit still
   // makes the requests.
   const std::size_t renders = job.image && !mine.empty() ? (mine.size() + group - 1) / group : 1;
@@ -73,6 +76,7 @@ SceneRun sweep_scene(const SweepJob& job, const std::vector<SweepConfig>& all,
     options.threads = job.settings.jobs;
     options.chip = job.settings.chip;
     options.eps_measure = job.settings.eps_measure;
+    options.images = RenderImages::kNone;
     const std::size_t first = r * group;
     const std::size_t last = job.image ? std::min(mine.size(), first + group) : first;
     for (std::size_t k = first; k < last; ++k) options.units.push_back(mine[k].unit_spec);

@@ -383,9 +383,10 @@ class Runner:
                           "--grid", "hast:d=2..3", self.src("traces/phong_basic.vec"), "--json",
                           "--no-widen"],
                          "glint size (none meets)", ok=(1,))
-        # render: the small scene's report.json.
+        # render: the small scene's report.json (with --float: its float_images object).
         render_doc = "src/render/render_report.md"
-        if self.run(["render", self.src("traces/scenes/small.json"), "-o", "render"]) is not None:
+        if self.run(["render", self.src("traces/scenes/small.json"), "-o", "render",
+                     "--float", "pfm"]) is not None:
             self.json_file(render_doc, "glint_render_report",
                            os.path.join(self.work, "render", "report.json"), "glint render")
         # The teapot reproduces a paper's figure (reproduces.*); one unit keeps it quick.

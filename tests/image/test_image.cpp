@@ -2,7 +2,6 @@
 // its scale and the contact sheet. GLINT_IMAGE_DEMO=DIR also writes demo images to DIR to look at.
 #include <gtest/gtest.h>
 #include <stb_image.h>
-#include <stb_image_write.h>
 #include <sys/stat.h>
 
 #include <cmath>
@@ -174,12 +173,51 @@ TEST(Png, SameBytesEveryTimeAndOnlyTheEssentialChunks) {
   EXPECT_EQ(encode_png(image), first);
   // No time, text or gamma chunks that could make equal pixels differ.
   EXPECT_EQ(chunk_types(first), (std::vector<std::string>{"IHDR", "IDAT", "IEND"}));
-  // stb's knobs are process-wide: what someone else set must not leak into glint's bytes.
-  stbi_write_png_compression_level = 1;
-  stbi_write_force_png_filter = 0;
-  EXPECT_EQ(encode_png(image), first);
-  stbi_write_png_compression_level = 8;
-  stbi_write_force_png_filter = -1;
+}
+
+// Rows fed as a render makes them (tiles of any height) give the whole image's bytes, and
+// encoders running at once on other threads do not disturb each other.
+TEST(Png, RowWriterGivesTheSameBytesInAnyChunksAndOnAnyThread) {
+  const Image8 image = gradient(203, 121);
+  const std::vector<std::uint8_t> whole = encode_png(image);
+  const auto streamed = [&](int chunk) {
+    std::vector<std::uint8_t> out;
+    PngRowWriter writer(image.width, image.height, [&](const std::uint8_t* d, std::size_t n) {
+      out.insert(out.end(), d, d + n);
+    });
+    for (int y = 0; y < image.height; y += chunk) {
+      EXPECT_FALSE(writer.done());
+      writer.add_rows(image.pixels.data() + 3 * static_cast<std::size_t>(y) * image.width,
+                      std::min(chunk, image.height - y));
+    }
+    EXPECT_TRUE(writer.done());
+    return out;
+  };
+  EXPECT_EQ(streamed(1), whole);
+  EXPECT_EQ(streamed(16), whole);
+  EXPECT_EQ(decode(streamed(7)).pixels, image.pixels);
+  std::vector<std::vector<std::uint8_t>> results(4);
+  std::vector<std::thread> threads;
+  for (std::size_t t = 0; t < results.size(); ++t)
+    threads.emplace_back([&, t] { results[t] = streamed(static_cast<int>(t) + 1); });
+  for (std::thread& t : threads) t.join();
+  for (const auto& r : results) EXPECT_EQ(r, whole);
+}
+
+TEST(Png, RowWriterRefusesExtraRowsAndPassesOnTheSinksError) {
+  const Image8 image = gradient(8, 4);
+  PngRowWriter writer(8, 4, [](const std::uint8_t*, std::size_t) {});
+  writer.add_rows(image.pixels.data(), 4);
+  EXPECT_THROW(writer.add_rows(image.pixels.data(), 1), std::logic_error);
+  EXPECT_THROW(PngRowWriter(0, 4, [](const std::uint8_t*, std::size_t) {}), std::invalid_argument);
+  try {
+    PngRowWriter failing(
+        8, 4, [](const std::uint8_t*, std::size_t) { throw std::runtime_error("disk full"); });
+    failing.add_rows(image.pixels.data(), 4);
+    ADD_FAILURE() << "no exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_STREQ(e.what(), "disk full");
+  }
 }
 
 TEST(Png, RejectsImagesWithoutPixels) {
