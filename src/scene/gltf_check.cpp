@@ -50,9 +50,11 @@ class Reducer {
     for (std::size_t i = 0; i < scenes.size(); ++i) {
       const std::string at = "scenes[" + std::to_string(i) + "]";
       json s = {{"nodes", json::array()}};
-      if (const json* list = member(scenes[i], "nodes", at))
+      if (const json* list = member(scenes[i], "nodes", at)) {
+        if (!list->is_array()) fail(at + ".nodes", "must be an array");
         for (std::size_t k = 0; k < list->size(); ++k)
           s["nodes"].push_back(index((*list)[k], nodes.size(), at + ".nodes"));
+      }
       out["scenes"].push_back(s);
     }
     if (const json* s = member(doc_, "scene", "")) out["scene"] = index(*s, scenes.size(), "scene");
