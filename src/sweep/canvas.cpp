@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "io/html.h"
+
 namespace glint {
 namespace {
 
@@ -29,32 +31,6 @@ double canvas_text_width(const std::string& s, int height) {
   return text_width(s, height);
 }
 
-std::string xml_escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&apos;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
 SvgCanvas::SvgCanvas(int width, int height, Rgb8 background) : width_(width), height_(height) {
   rect(0, 0, width, height, background);
 }
@@ -68,7 +44,7 @@ void SvgCanvas::line(double x0, double y0, double x1, double y1, Rgb8 colour, do
 
 void SvgCanvas::circle(double cx, double cy, double r, Rgb8 fill, const char* role) {
   body_ += fmt::format("<circle{} cx=\"{}\" cy=\"{}\" r=\"{}\" fill=\"{}\"/>\n",
-                       role ? fmt::format(" class=\"{}\"", xml_escape(role)) : std::string(),
+                       role ? fmt::format(" class=\"{}\"", html_escape(role)) : std::string(),
                        num(cx), num(cy), num(r), hex(fill));
 }
 
@@ -84,7 +60,7 @@ void SvgCanvas::text(double x, double y, const std::string& s, int height, Rgb8 
                                                   : "end";
   body_ += fmt::format(
       "<text x=\"{}\" y=\"{}\" font-size=\"{}\" text-anchor=\"{}\" fill=\"{}\">{}</text>\n", num(x),
-      num(y + kBaseline * height), num(kEmPerHeight * height), a, hex(colour), xml_escape(s));
+      num(y + kBaseline * height), num(kEmPerHeight * height), a, hex(colour), html_escape(s));
 }
 
 std::string SvgCanvas::finish() const {

@@ -58,7 +58,4 @@ class ImageCanvas : public Canvas {
   Image8 image_;
 };
 
-// Escapes &, <, >, " and ' for XML text and attributes.
-std::string xml_escape(const std::string& s);
-
 }  // namespace glint
