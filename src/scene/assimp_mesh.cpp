@@ -377,15 +377,8 @@ Mesh load_mesh_file(const std::string& path, MeshFormat format, std::size_t max_
     }
   }
 
-  Mesh out;
-  if (all_normals) {
-    out.positions = std::move(positions);
-    out.normals = std::move(normals);
-    out.faces = std::move(faces);
-    out.normal_source = NormalSource::kFile;
-  } else {
-    out = smooth_normals(positions, faces, crease_degrees, path);
-  }
+  Mesh out = mesh_with_normals(std::move(positions), std::move(normals), std::move(faces),
+                               all_normals, crease_degrees, path);
   out.format = to_string(format);
   return out;
 }

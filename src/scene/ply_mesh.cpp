@@ -290,15 +290,8 @@ Mesh load_ply_mesh(const std::string& path, std::size_t max_triangles, const Obj
   // every declared vertex has been read by now.
   if (faces.empty()) throw InputError(path, 0, "f", "no triangles (a mesh needs faces)");
 
-  Mesh out;
-  if (has_normals) {
-    out.positions = std::move(positions);
-    out.normals = std::move(normals);
-    out.faces = std::move(faces);
-    out.normal_source = NormalSource::kFile;
-  } else {
-    out = smooth_normals(positions, faces, crease_degrees, path);
-  }
+  Mesh out = mesh_with_normals(std::move(positions), std::move(normals), std::move(faces),
+                               has_normals, crease_degrees, path);
   out.format = "ply";
   return out;
 }

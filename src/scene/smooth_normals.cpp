@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <unordered_map>
+#include <utility>
 
 #include "io/input_error.h"
 
@@ -179,6 +180,18 @@ Mesh smooth_normals(const std::vector<Vec3>& positions,
     mesh.faces.push_back(face);
   }
   return mesh;
+}
+
+Mesh mesh_with_normals(std::vector<Vec3> positions, std::vector<Vec3> normals,
+                       std::vector<std::array<std::uint32_t, 3>> faces, bool file_normals,
+                       double crease_degrees, const std::string& path) {
+  if (!file_normals) return smooth_normals(positions, faces, crease_degrees, path);
+  Mesh out;
+  out.positions = std::move(positions);
+  out.normals = std::move(normals);
+  out.faces = std::move(faces);
+  out.normal_source = NormalSource::kFile;
+  return out;
 }
 
 }  // namespace glint

@@ -31,4 +31,10 @@ Mesh smooth_normals(const std::vector<Vec3>& positions,
                     const std::vector<std::array<std::uint32_t, 3>>& faces, double crease_degrees,
                     const std::string& path);
 
+// A mesh file's triangles: with the file's normals (one per position) when `file_normals`,
+// normal_source kFile; else smooth_normals' of them with `crease_degrees`.
+Mesh mesh_with_normals(std::vector<Vec3> positions, std::vector<Vec3> normals,
+                       std::vector<std::array<std::uint32_t, 3>> faces, bool file_normals,
+                       double crease_degrees, const std::string& path);
+
 }  // namespace glint
