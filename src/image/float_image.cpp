@@ -69,6 +69,17 @@ class FdStream : public Imf::OStream {
   std::uint64_t pos_ = 0;
 };
 
+// Interleaved RGB floats as OpenEXR's R, G and B channels: row y at base + y * stride.
+Imf::FrameBuffer rgb_frame_buffer(char* base, std::size_t stride) {
+  Imf::FrameBuffer fb;
+  for (int c = 0; c < 3; ++c)
+    fb.insert(c == 0   ? "R"
+              : c == 1 ? "G"
+                       : "B",
+              Imf::Slice(Imf::FLOAT, base + c * sizeof(float), 3 * sizeof(float), stride));
+  return fb;
+}
+
 }  // namespace
 
 struct FloatRowWriter::State {
@@ -131,13 +142,7 @@ void FloatRowWriter::add_rows(const float* rgb, int rows) {
   const std::size_t stride = row_floats * sizeof(float);
   char* base = const_cast<char*>(reinterpret_cast<const char*>(rgb)) -
                static_cast<std::ptrdiff_t>(s.rows) * static_cast<std::ptrdiff_t>(stride);
-  Imf::FrameBuffer fb;
-  for (int c = 0; c < 3; ++c)
-    fb.insert(c == 0   ? "R"
-              : c == 1 ? "G"
-                       : "B",
-              Imf::Slice(Imf::FLOAT, base + c * sizeof(float), 3 * sizeof(float), stride));
-  s.exr->setFrameBuffer(fb);
+  s.exr->setFrameBuffer(rgb_frame_buffer(base, stride));
   s.exr->writePixels(rows);
   s.rows += rows;
 }
@@ -184,13 +189,7 @@ FloatImage read_exr(const std::string& path) {
     char* base = reinterpret_cast<char*>(image.rgb.data()) -
                  window.min.x * 3 * static_cast<std::ptrdiff_t>(sizeof(float)) -
                  window.min.y * static_cast<std::ptrdiff_t>(stride);
-    Imf::FrameBuffer fb;
-    for (int c = 0; c < 3; ++c)
-      fb.insert(c == 0   ? "R"
-                : c == 1 ? "G"
-                         : "B",
-                Imf::Slice(Imf::FLOAT, base + c * sizeof(float), 3 * sizeof(float), stride));
-    file.setFrameBuffer(fb);
+    file.setFrameBuffer(rgb_frame_buffer(base, stride));
     file.readPixels(window.min.y, window.max.y);
     return image;
   } catch (const std::exception& e) {
