@@ -1,31 +1,9 @@
 #include "render/image_error.h"
 
 #include <cmath>
-#include <cstdlib>
 #include <limits>
 
 namespace glint {
-
-int ImageErrorAccumulator::add(const Rgb8& reference, const Rgb8& image, Highlight reference_hl,
-                               Highlight image_hl) {
-  // The pixel error (reference/pixel_error.h): the largest channel's code difference. The mean
-  // is of that figure; PSNR stays the usual one over every channel.
-  int worst = 0;
-  for (int c = 0; c < 3; ++c) {
-    const int d = std::abs(int{image[c]} - int{reference[c]});
-    worst = d > worst ? d : worst;
-    sum_sq_ += static_cast<std::uint64_t>(d * d);
-  }
-  sum_abs_ += static_cast<std::uint64_t>(worst);
-  max_ = worst > max_ ? worst : max_;
-  differing_ += worst > 0;
-  ++pixels_;
-  lit_ += image_hl.lit;
-  reference_lit_ += reference_hl.lit;
-  core_ += image_hl.core;
-  reference_core_ += reference_hl.core;
-  return worst;
-}
 
 namespace {
 

@@ -131,6 +131,7 @@ class SceneRenderer {
       if (options_.on_requests) options_.on_requests(requests_.data(), requests_.size());
       ev_.add_batch(requests_.data(), requests_.size(), results_, options_.threads);
       out_.requests += requests_.size();
+      index_lit_pixels();
       accumulate_specular();
       compose_reference_pixels();
       for (Image8& strip : strip_)
@@ -262,21 +263,38 @@ class SceneRenderer {
     return Rgb{ks.r * i.r, ks.g * i.g, ks.b * i.b};
   }
 
+  // The tile's pixels with at least one request (lit_, in raster order) and each request's index
+  // among them. No other pixel receives specular light from any source, so a unit's light is kept
+  // for these alone: a scene sweep composes hundreds of units per tile, and most pixels are
+  // background or face away from every light.
+  void index_lit_pixels() {
+    lit_.clear();
+    request_lit_.resize(requests_.size());
+    for (std::size_t k = 0; k < requests_.size(); ++k) {
+      const std::uint32_t p = request_pixel_[k];
+      if (lit_.empty() || lit_.back() != p) lit_.push_back(p);
+      request_lit_[k] = static_cast<std::uint32_t>(lit_.size() - 1);
+    }
+  }
+
   // Sources of specular light: 0 the reference (with the skip statistics and the mask's classes),
-  // 1 the reference with the skip alone, 2 + u unit u; each source its own task.
+  // 1 the reference with the skip alone, both per pixel; 2 + u unit u, per lit pixel. Each source
+  // its own task.
   void accumulate_specular() {
     specular_light_.resize(2 + units_);
-    for (auto& s : specular_light_) s.assign(pixels_, Rgb{});
     parallel_for(1 + units_, options_.threads, [&](std::size_t task) {
       if (task == 0) {
+        specular_light_[0].assign(pixels_, Rgb{});
+        specular_light_[1].assign(pixels_, Rgb{});
         accumulate_reference();
         return;
       }
       const std::size_t u = task - 1;
       std::vector<Rgb>& spec = specular_light_[2 + u];
+      spec.assign(lit_.size(), Rgb{});
       const std::int64_t* raw = results_.raw.data() + u * requests_.size();
       for (std::size_t k = 0; k < requests_.size(); ++k)
-        add_scaled(spec[request_pixel_[k]], request_colour(k),
+        add_scaled(spec[request_lit_[k]], request_colour(k),
                    static_cast<double>(raw[k]) * ulp_[u]);
     });
   }
@@ -309,9 +327,9 @@ class SceneRenderer {
     }
   }
 
-  Rgb8 final_pixel(std::size_t source, std::size_t p) const {
+  // Pixel p's final colour with specular light s.
+  Rgb8 final_pixel(const Rgb& s, std::size_t p) const {
     const Rgb& d = diffuse_[p];
-    const Rgb& s = specular_light_[source][p];
     return to_display8(scene_.display, Rgb{d.r + s.r, d.g + s.g, d.b + s.b});
   }
 
@@ -319,8 +337,8 @@ class SceneRenderer {
   // not "8-bit code above 0" or "above eps": sRGB's steep toe makes a lobe of 1e-3 code 3, and the
   // threshold may drop up to eps per pixel (eps/K for each of K lights), so any level near eps
   // would measure the skip rather than the shape.
-  ImageErrorAccumulator::Highlight highlight(std::size_t source, std::size_t p) const {
-    const double y = luminance(specular_light_[source][p]);
+  ImageErrorAccumulator::Highlight highlight(const Rgb& s, std::size_t p) const {
+    const double y = luminance(s);
     return {y > 0 && y >= 0.1 * peak_[p], y > 0 && y >= 0.5 * peak_[p]};
   }
 
@@ -333,8 +351,8 @@ class SceneRenderer {
     diffuse8_.resize(pixels_);
     for (std::size_t p = 0; p < pixels_; ++p) {
       diffuse8_[p] = to_display8(scene_.display, diffuse_[p]);
-      ref8_[p] = final_pixel(0, p);
-      ref_highlight_[p] = highlight(0, p);
+      ref8_[p] = final_pixel(specular_light_[0][p], p);
+      ref_highlight_[p] = highlight(specular_light_[0][p], p);
     }
   }
 
@@ -345,10 +363,10 @@ class SceneRenderer {
     std::copy(c.begin(), c.end(), strip.pixels.begin() + static_cast<std::ptrdiff_t>(3 * p));
   }
 
-  // The linear light of `source` (plus the diffuse term if `diffuse`) to a float sink.
-  void emit_float(std::size_t sink, std::size_t source, bool diffuse) const {
+  // The reference's linear light (plus the diffuse term if `diffuse`) to a float sink.
+  void emit_float(std::size_t sink, bool diffuse) const {
     std::vector<float> rgb(3 * pixels_);
-    const std::vector<Rgb>& light = specular_light_[source];
+    const std::vector<Rgb>& light = specular_light_[0];
     for (std::size_t p = 0; p < pixels_; ++p) {
       const Rgb d = diffuse ? diffuse_[p] : Rgb{};
       rgb[3 * p] = static_cast<float>(d.r + light[p].r);
@@ -358,16 +376,29 @@ class SceneRenderer {
     options_.float_sinks[sink](rgb.data(), rows_in_tile_);
   }
 
+  // Unit u's linear specular light (zero off the lit pixels) to its float sink.
+  void emit_unit_float(std::size_t u) const {
+    std::vector<float> rgb(3 * pixels_, 0.0f);
+    const std::vector<Rgb>& light = specular_light_[2 + u];
+    for (std::size_t i = 0; i < lit_.size(); ++i) {
+      const std::size_t p = lit_[i];
+      rgb[3 * p] = static_cast<float>(light[i].r);
+      rgb[3 * p + 1] = static_cast<float>(light[i].g);
+      rgb[3 * p + 2] = static_cast<float>(light[i].b);
+    }
+    options_.float_sinks[2 + u](rgb.data(), rows_in_tile_);
+  }
+
   void compose_reference() {
     if (!options_.float_sinks.empty()) {
-      emit_float(0, 0, true);
-      emit_float(1, 0, false);
+      emit_float(0, true);
+      emit_float(1, false);
     }
     const bool images = mode_ != RenderImages::kNone;
     for (std::size_t p = 0; p < pixels_; ++p) {
       const Rgb8 ref = ref8_[p];
-      const Rgb8 skip_only = final_pixel(1, p);
-      skip_acc_.add(ref, skip_only, ref_highlight_[p], highlight(1, p));
+      const Rgb8 skip_only = final_pixel(specular_light_[1][p], p);
+      skip_acc_.add(ref, skip_only, ref_highlight_[p], highlight(specular_light_[1][p], p));
       if (!images) continue;
       put(strip_[0], p, ref);
       put(strip_[1], p, to_display8(scene_.display, specular_light_[0][p]));
@@ -413,18 +444,30 @@ class SceneRenderer {
     Image8* image = images ? &strip_[reference_slots_ + 2 * u] : nullptr;
     Image8* specular = images ? &strip_[reference_slots_ + 2 * u + 1] : nullptr;
     const std::vector<Rgb>& light = specular_light_[2 + u];
-    if (!options_.float_sinks.empty()) emit_float(2 + u, 2 + u, false);
-    for (std::size_t p = 0; p < pixels_; ++p) {
+    if (!options_.float_sinks.empty()) emit_unit_float(u);
+    // A pixel without requests has no specular light in any source: the unit's pixel is the
+    // reference's (d + 0 is d exactly), with no error and no highlight, so it is only counted.
+    acc_[u].add_equal_unlit(pixels_ - lit_.size());
+    std::uint8_t* error_row =
+        images ? error_[u].data() + static_cast<std::size_t>(y0_) * width_ : nullptr;
+    if (images)
+      for (std::size_t p = 0; p < pixels_; ++p) {
+        put(*image, p, diffuse8_[p]);
+        put(*specular, p, black8_);
+        error_row[p] = 0;
+      }
+    for (std::size_t i = 0; i < lit_.size(); ++i) {
+      const std::size_t p = lit_[i];
       // d + 0 is d exactly, and no light is no highlight: the same figures as the general case.
-      const bool none = dark(light[p]);
-      const Rgb8 img = none ? diffuse8_[p] : final_pixel(2 + u, p);
+      const bool none = dark(light[i]);
+      const Rgb8 img = none ? diffuse8_[p] : final_pixel(light[i], p);
       const int error =
           acc_[u].add(ref8_[p], img, ref_highlight_[p],
-                      none ? ImageErrorAccumulator::Highlight{} : highlight(2 + u, p));
+                      none ? ImageErrorAccumulator::Highlight{} : highlight(light[i], p));
       if (!images) continue;
       put(*image, p, img);
-      put(*specular, p, none ? black8_ : to_display8(scene_.display, light[p]));
-      error_[u][static_cast<std::size_t>(y0_) * width_ + p] = static_cast<std::uint8_t>(error);
+      put(*specular, p, none ? black8_ : to_display8(scene_.display, light[i]));
+      error_row[p] = static_cast<std::uint8_t>(error);
     }
     if (!images) return;
     emit(reference_slots_ + 2 * u);
@@ -566,7 +609,9 @@ class SceneRenderer {
   std::vector<std::uint32_t> request_pixel_;
   BatchResults results_;
   std::vector<Rgb> diffuse_;                      // ambient + diffuse, shared by every image
-  std::vector<std::vector<Rgb>> specular_light_;  // [source][pixel], linear
+  std::vector<std::vector<Rgb>> specular_light_;  // [source][pixel, or lit pixel for units]
+  std::vector<std::uint32_t> lit_;                // tile pixels with a request, ascending
+  std::vector<std::uint32_t> request_lit_;        // each request's index in lit_
   std::vector<PixelSkip> skip_;
   std::vector<PixelSkip> light_skip_;           // [light][pixel] of the masked lights
   std::vector<std::uint32_t> computed_lights_;  // lights computed per pixel
