@@ -131,9 +131,10 @@ int run_render(const RenderCommandOptions& o) {
   // The skip's statement is in the pixel measure of the table below; its bound is stated only
   // where the image holds it (it must: skip_guarantee_lsb is a proof, the image a check of it).
   out << fmt::format(
-      "{}: {}x{}, {} lights, {} requests; of {} light x pixel pairs skipped: {:.1f}% with tau, "
+      "{}: {}x{}, {} light{}, {} requests; of {} light x pixel pairs skipped: {:.1f}% with tau, "
       "{:.1f}% with t <= 0; skip alone: max {} LSB{}\n",
-      r.scene_name, r.width, r.height, r.lights.size(), r.requests, total.total(),
+      r.scene_name, r.width, r.height, r.lights.size(), r.lights.size() == 1 ? "" : "s",
+      r.requests, total.total(),
       pct(total.facing_away + total.zero + total.tau, total.total()),
       pct(total.facing_away + total.zero, total.total()), lsb_text(r.skip_only_error.max_lsb),
       r.skip_within_guarantee ? fmt::format(", within {} LSB by eps", r.skip_guarantee_lsb)

@@ -67,9 +67,9 @@ int run_tau(const TauOptions& o) {
                 {"never_skip", r.never_skip}});
     return kExitOk;
   }
-  std::cout << fmt::format("tau {:.6f}\n{} {:.6f}\neps {:.6g} (effective {:.6g} for {} lights)\n",
+  std::cout << fmt::format("tau {:.6f}\n{} {:.6f}\neps {:.6g} (effective {:.6g} for {} light{})\n",
                            r.tau, o.eps_measure == EpsMeasure::kChannel ? "w_max" : "c_y", r.c_y,
-                           o.eps, r.eps, o.lights)
+                           o.eps, r.eps, o.lights, o.lights == 1 ? "" : "s")
             << fmt::format("skip {}\n", verdict);
   return kExitOk;
 }

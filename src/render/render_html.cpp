@@ -78,6 +78,7 @@ HtmlTable unit_summary(const nlohmann::json& units) {
   struct Column {
     const char* heading;
     std::initializer_list<const char*> path;
+    bool percent = false;  // a fraction shown as a percentage (the sort key stays the fraction)
   };
   static const Column kColumns[] = {
       {"unit", {"unit"}},
@@ -87,8 +88,8 @@ HtmlTable unit_summary(const nlohmann::json& units) {
       {"differing_fraction", {"image_error", "differing_fraction"}},
       {"highlight_ratio", {"image_error", "highlight_ratio"}},
       {"core_ratio", {"image_error", "core_ratio"}},
-      {"skipped", {"skipped"}},
-      {"requests", {"requests"}},
+      // The one denominator of every skip figure (the text's skip%LxP, the figures above).
+      {"skipped % (light x pixel pairs)", {"skipped_fraction"}, true},
       {"area_ge", {"area_ge"}},
       {"critical_path", {"critical_path"}},
       {"spec", {"spec"}},
@@ -96,7 +97,11 @@ HtmlTable unit_summary(const nlohmann::json& units) {
   for (const Column& c : kColumns) t.headings.push_back(c.heading);
   for (const nlohmann::json& u : units) {
     std::vector<HtmlCell> row;
-    for (const Column& c : kColumns) row.push_back(json_cell(at_path(u, c.path)));
+    for (const Column& c : kColumns) {
+      HtmlCell cell = json_cell(at_path(u, c.path));
+      if (c.percent && cell.numeric) cell.text = percent(at_path(u, c.path));
+      row.push_back(std::move(cell));
+    }
     t.rows.push_back(std::move(row));
   }
   return t;

@@ -164,11 +164,15 @@ def check_pages(pages, out):
         with open(os.path.join(os.path.dirname(path), name), "rb") as f:
             assert base64.b64decode(src[len(prefix):]) == f.read(), f"{name}: not the file"
     units = page.tables["units"]
+    assert "skipped % (light x pixel pairs)" in page.texts, "the units' skip column"
     assert len(units) == len(report["units"]), f"units table: {len(units)} rows"
     for row, u in zip(units, report["units"]):
         assert row[0][0] == u["unit"], f"{row[0][0]} != {u['unit']}"
         assert float(row[1][1]) == u["image_error"]["max_lsb"], f"{u['unit']}: max_lsb"
         assert row[-1][0] == u["spec"]
+        skip = 7  # the column after core_ratio
+        assert float(row[skip][1]) == u["skipped_fraction"], f"{u['unit']}: skipped_fraction"
+        assert row[skip][0] == f"{100 * u['skipped_fraction']:.1f} %", row[skip][0]
     assert len(page.tables["skips"]) == len(report["skip"]["per_light_material"])
     assert len(page.tables["slots"]) == len(report["slots"])
     assert json.loads(page.pre[""]) == report, "the page's report.json is not the file"
