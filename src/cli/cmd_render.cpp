@@ -133,9 +133,8 @@ int run_render(const RenderCommandOptions& o) {
   out << fmt::format(
       "{}: {}x{}, {} light{}, {} requests; of {} light x pixel pairs skipped: {:.1f}% with tau, "
       "{:.1f}% with t <= 0; skip alone: max {} LSB{}\n",
-      r.scene_name, r.width, r.height, r.lights.size(), r.lights.size() == 1 ? "" : "s",
-      r.requests, total.total(),
-      pct(total.facing_away + total.zero + total.tau, total.total()),
+      r.scene_name, r.width, r.height, r.lights.size(), r.lights.size() == 1 ? "" : "s", r.requests,
+      total.total(), pct(total.facing_away + total.zero + total.tau, total.total()),
       pct(total.facing_away + total.zero, total.total()), lsb_text(r.skip_only_error.max_lsb),
       r.skip_within_guarantee ? fmt::format(", within {} LSB by eps", r.skip_guarantee_lsb)
                               : fmt::format(" (beyond the {} LSB bound from eps: a bug in glint)",

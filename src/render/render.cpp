@@ -294,8 +294,7 @@ class SceneRenderer {
       spec.assign(lit_.size(), Rgb{});
       const std::int64_t* raw = results_.raw.data() + u * requests_.size();
       for (std::size_t k = 0; k < requests_.size(); ++k)
-        add_scaled(spec[request_lit_[k]], request_colour(k),
-                   static_cast<double>(raw[k]) * ulp_[u]);
+        add_scaled(spec[request_lit_[k]], request_colour(k), static_cast<double>(raw[k]) * ulp_[u]);
     });
   }
 
