@@ -165,7 +165,7 @@ struct RenderResult {
 
   SkipCounts skip_total() const;
   // The scene's reproduced quantity as glint measures it on this render (nullopt: no reference,
-  // or "tau" on a scene of more than one slot).
+  // a figure without a number, or "tau" on a scene of more than one slot).
   std::optional<double> reproduced_value() const;
   // The unit's skipped share of the light x pixel pairs, the one denominator of every skip
   // fraction: the pairs facing away (no request) plus the requests its comparator skipped.

@@ -26,10 +26,11 @@ double fraction(std::uint64_t part, std::uint64_t whole) {
 nlohmann::json reproduces_json(const RenderResult& r) {
   if (!r.reproduces) return nullptr;
   const std::optional<double> glint = r.reproduced_value();
+  const bool number = !r.reproduces->quantity.empty();
   return {{"paper", r.reproduces->paper},
           {"figure", r.reproduces->figure},
-          {"quantity", r.reproduces->quantity},
-          {"paper_value", r.reproduces->value},
+          {"quantity", number ? nlohmann::json(r.reproduces->quantity) : nlohmann::json(nullptr)},
+          {"paper_value", number ? nlohmann::json(r.reproduces->value) : nlohmann::json(nullptr)},
           {"glint_value", glint ? nlohmann::json(*glint) : nlohmann::json(nullptr)}};
 }
 
@@ -192,7 +193,7 @@ std::vector<std::string> render_unit_labels(const std::vector<UnitSpec>& given) 
 }
 
 std::optional<double> RenderResult::reproduced_value() const {
-  if (!reproduces) return std::nullopt;
+  if (!reproduces || reproduces->quantity.empty()) return std::nullopt;
   if (reproduces->quantity == "tau") {
     if (slots.size() != 1) return std::nullopt;
     return slots[0]["tau"].get<double>();
@@ -204,6 +205,8 @@ std::optional<double> RenderResult::reproduced_value() const {
 std::string reproduces_line(const RenderResult& r) {
   if (!r.reproduces) return "";
   const SceneReproduces& p = *r.reproduces;
+  if (p.quantity.empty())
+    return fmt::format("reproduces {} {} (the paper states no number for it)", p.paper, p.figure);
   const std::optional<double> v = r.reproduced_value();
   const bool percent = p.quantity != "tau";
   const auto show = [percent](double x) {

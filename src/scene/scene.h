@@ -99,7 +99,7 @@ struct Plane {
 // measures on the render (render_report.md: reproduces), so that both are shown side by side.
 struct SceneReproduces {
   std::string paper, figure;
-  std::string quantity;  // one of kReproducibleQuantities
+  std::string quantity;  // one of kReproducibleQuantities; empty: the paper gives no number
   double value = 0;      // the paper's figure for it
 };
 // "tau": the scene's threshold (it must have exactly one slot); "skipped_fraction_tau": the

@@ -125,7 +125,14 @@ SceneReproduces read_reproduces(const Node& node) {
   SceneReproduces r;
   r.paper = node.at("paper").string();
   r.figure = node.at("figure").string();
-  const Node quantity = node.at("quantity");
+  // A figure may come without a number (Källberg & Larsson's Fig. 2 gives none): then neither key.
+  const std::optional<Node> quantity_node = node.find("quantity");
+  const std::optional<Node> value_node = node.find("value");
+  if (!quantity_node && !value_node) return r;
+  if (!quantity_node || !value_node)
+    node.fail(
+        "\"quantity\" and \"value\" go together: the paper's number for a quantity, or neither");
+  const Node& quantity = *quantity_node;
   r.quantity = quantity.string();
   std::string known;
   bool found = false;
@@ -134,7 +141,7 @@ SceneReproduces read_reproduces(const Node& node) {
     known += (known.empty() ? "" : " or ") + std::string("\"") + q + "\"";
   }
   if (!found) quantity.fail("unknown quantity " + quote_input(r.quantity) + " (" + known + ")");
-  r.value = node.at("value").number();
+  r.value = value_node->number();
   return r;
 }
 

@@ -73,6 +73,34 @@ TEST(KallbergFig2, SkippedFractionGrowsWithShininess) {
   }
 }
 
+// Fig.2 as shipped (traces/scenes/bunny.json): three bunnies at alpha = 2, 10, 50, one material
+// each; the skipped share grows with alpha on the irregular surface too. The paper states no
+// number for the figure, and the render says so.
+TEST(KallbergFig2, BunnySceneSkipsMoreAtHigherShininess) {
+  Scene scene = load_scene(std::string(GLINT_SOURCE_DIR) + "/traces/scenes/bunny.json");
+  scene.camera.width = 240;
+  scene.camera.height = 80;
+  const RenderResult r = render(scene, {"pow"});
+  ASSERT_EQ(r.skips.size(), 1u);
+  ASSERT_EQ(r.skips[0].size(), 3u);
+  double previous = -1;
+  for (std::size_t m = 0; m < 3; ++m) {
+    SCOPED_TRACE(scene.materials[m].name);
+    ASSERT_GT(r.skips[0][m].total(), 500u);
+    const double f = tau_fraction(r.skips[0][m]);
+    EXPECT_GT(f, previous);
+    previous = f;
+  }
+  EXPECT_GT(previous, 0.9);  // alpha = 50: almost all blue, as Fig.1's teapot
+  ASSERT_TRUE(r.reproduces.has_value());
+  EXPECT_EQ(r.reproduces->figure, "Fig. 2");
+  EXPECT_FALSE(r.reproduced_value().has_value());
+  const nlohmann::json j = r.to_json()["reproduces"];
+  EXPECT_TRUE(j["quantity"].is_null() && j["paper_value"].is_null() && j["glint_value"].is_null());
+  EXPECT_EQ(reproduces_line(r),
+            "reproduces Källberg & Larsson 2014 Fig. 2 (the paper states no number for it)");
+}
+
 // §3: Blinn-Phong gains relatively more from the threshold than Phong, for equally sized
 // highlights (n_blinn = 4 n_phong), since n.h <= 0 holds only when the light or the viewer is
 // below the tangent plane.

@@ -225,6 +225,23 @@ TEST(RenderReproduces, UnknownQuantityIsAnErrorNamingTheField) {
   }
 }
 
+// "quantity" and "value" come together or not at all.
+TEST(RenderReproduces, QuantityWithoutValueIsAnError) {
+  test::TempDir dir;
+  std::string text = test::read_file(scene_path("small.json"));
+  text.replace(text.find("\"eps\""), 0,
+               "\"reproduces\": {\"paper\": \"p\", \"figure\": \"f\", \"quantity\": \"tau\"},\n  ");
+  const std::string path = dir.file("bad.json");
+  std::ofstream(path) << text;
+  try {
+    load_scene(path);
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("reproduces"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("go together"), std::string::npos) << e.what();
+  }
+}
+
 // Every tile of the sheet is one size: the images are the render's size, reduced alike.
 TEST(RenderSheet, TitledSheetOfEqualTiles) {
   const RenderResult r = render(load_scene(scene_path("multi.json")), 96, 72, {"pow", "schlick"});
