@@ -241,6 +241,12 @@ ErrorParts UnitStats::bound() const {
   return b;
 }
 
+bool UnitStats::bound_exact() const {
+  for (const SlotContract& c : slots)
+    if (!c.always_skipped && !c.exact) return false;
+  return true;
+}
+
 double UnitStats::weighted_bound() const {
   double w = 0;
   for (const SlotContract& c : slots) w = std::max(w, c.weighted_bound());
@@ -450,6 +456,20 @@ std::string lsb_cell(double v) {
   return v >= 9999.5 ? fmt::format("{:.2e}", v) : fmt::format("{:.2f}", v);
 }
 
+// A stated bound, marked "~" where it is an estimate (UnitStats::bound_exact).
+std::string bound_cell(double v, bool exact) {
+  return (exact ? "" : "~") + lsb_cell(v);
+}
+
+constexpr const char* kEstimateNote =
+    "~ an estimate, not a bound: inputs finer than 2^-20 are measured at ~2^20 sampled codes\n";
+
+bool any_estimate(const std::vector<UnitStats>& stats) {
+  for (const auto& s : stats)
+    if (!s.bound_exact()) return true;
+  return false;
+}
+
 }  // namespace
 
 std::string format_eval_table(const std::vector<UnitStats>& stats) {
@@ -470,9 +490,11 @@ std::string format_eval_table(const std::vector<UnitStats>& stats) {
         "{:>17.4f} {:<17}\n",
         s.name, s.vectors, s.vectors ? 100.0 * s.skipped / s.vectors : 0.0, s.total.max_abs,
         s.total.t_at_max, s.total.rms(), lsb_cell(s.total.max_abs * lsb),
-        lsb_cell(s.bound().total() * lsb), lsb_cell(s.weighted.max_abs * lsb), s.max_ulps(),
-        s.vectors ? static_cast<double>(s.mismatch) / s.vectors : 0.0, to_string(s.contract()));
+        bound_cell(s.bound().total() * lsb, s.bound_exact()), lsb_cell(s.weighted.max_abs * lsb),
+        s.max_ulps(), s.vectors ? static_cast<double>(s.mismatch) / s.vectors : 0.0,
+        to_string(s.contract()));
   }
+  if (any_estimate(stats)) out += kEstimateNote;
   return out;
 }
 
@@ -515,7 +537,7 @@ std::string format_parts_table(const std::vector<UnitStats>& stats) {
     const double lsb = display_scale(s.display_bits);
     const ErrorParts b = s.bound();
     const auto cell = [&](const PartStats& p, double bound) {
-      return lsb_cell(p.max_abs * lsb) + " / " + lsb_cell(bound * lsb);
+      return lsb_cell(p.max_abs * lsb) + " / " + bound_cell(bound * lsb, s.bound_exact());
     };
     out += fmt::format("{:<9} {:>17} {:>17} {:>17} {:>17} {:>17}\n", s.name, cell(s.input, b.input),
                        cell(s.parameter, b.parameter), cell(s.approximation, b.approximation),
@@ -528,6 +550,7 @@ std::string format_parts_table(const std::vector<UnitStats>& stats) {
       }
     }
   }
+  if (any_estimate(stats)) out += kEstimateNote;
   return out;
 }
 

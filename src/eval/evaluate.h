@@ -204,6 +204,9 @@ struct UnitStats {
   // Bounds over the computed slots (always-skipped ones apart), and the weakest datapath contract.
   ErrorParts bound() const;
   double weighted_bound() const;  // over every slot, always-skipped ones included
+  // Whether bound() is a bound: false when some computed slot's input is finer than
+  // kExactInputBits, whose parts are measured at sampled codes (estimates; "~" in text tables).
+  bool bound_exact() const;
   ContractKind contract() const;
   // The datapath part in output ulps (fixed result vs the unit's own real model).
   double max_ulps() const { return datapath.max_abs / out_ulp; }

@@ -484,6 +484,30 @@ TEST_F(CliTest, EvalTableListsFiveUnits) {
   }
 }
 
+// A bound measured at sampled codes (an input finer than 2^-20) is marked as an estimate in the
+// text, as the JSON's per-slot "exact": false says; an exhaustive one is not.
+TEST_F(CliTest, EvalTextMarksEstimatedBounds) {
+  // hard_cases.vec has dim slots whose threshold is low: more than 2^20 codes above it at 22 bits.
+  const std::string hard = kTraces + "/hard_cases.vec";
+  const CliRun r = glint("eval --unit horner:in=uq1.22 --unit horner " + quote(hard));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::vector<std::string> lines = lines_of(r.out);
+  ASSERT_GT(lines.size(), 4u);
+  const std::string fine = lines.at(3), exhaustive = lines.at(4);
+  EXPECT_TRUE(std::regex_search(fine, std::regex(" ~[0-9]"))) << fine;
+  EXPECT_EQ(exhaustive.find('~'), std::string::npos) << exhaustive;
+  EXPECT_NE(r.out.find("~ an estimate, not a bound"), std::string::npos) << r.out;
+  const CliRun j = glint("eval --json --unit horner:in=uq1.22 " + quote(hard));
+  ASSERT_EQ(j.status, 0) << j.err;
+  int sampled = 0;
+  const nlohmann::json report = nlohmann::json::parse(j.out);
+  for (const auto& slot : report.at("units").at(0).at("errors").at("slots"))
+    sampled += !slot.at("always_skipped").get<bool>() && !slot.at("exact").get<bool>();
+  EXPECT_GT(sampled, 0);
+  const CliRun plain = glint("eval --unit horner " + quote(hard));
+  EXPECT_EQ(plain.out.find('~'), std::string::npos) << plain.out;
+}
+
 TEST_F(CliTest, EvalJson) {
   const std::vector<double> ts = row_ts(kPhongBasic);
   ASSERT_FALSE(ts.empty());
