@@ -75,9 +75,9 @@ int run_size_command(const SizeOptions& o) {
     grids.push_back(parse_grid(g));
   expand_grids(grids);  // the cap, before any input is read
   if (options_only()) return kExitOk;
-  // A scene's renders (contact sheets, made even with --no-image, which renders once for the
-  // requests) draw text: a bad font is refused before any work.
-  if (!o.scenes.empty() || !o.html.empty()) load_text_font();  // --html: the plots' text too
+  // --html's plots draw text: a bad font is refused before any work. A scene's renders make no
+  // images here (RenderImages::kNone), so they need no font.
+  if (!o.html.empty()) load_text_font();
   // The page, declared before any work as every output is (io/output_set.h).
   OutputSet set;
   for (const SweepInput& in : inputs) set.add_input(in.scene ? "--scene" : "VECTORS", in.path);

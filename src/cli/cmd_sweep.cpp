@@ -59,9 +59,9 @@ int run_sweep_command(const SweepCommandOptions& o) {
   job.image = !o.no_image;
   const SweepOutputs outputs = sweep_outputs(o.out, o.csv, o.plot);
   if (options_only()) return kExitOk;
-  // Plots and a scene's renders (contact sheets, made even with --no-image, which renders once
-  // for the requests) draw text: a bad font is refused before any work.
-  if (!o.plot.empty() || !o.html.empty() || !o.scene.empty()) load_text_font();
+  // The plots (--plot, and --html's) draw text: a bad font is refused before any work. A scene's
+  // renders make no images here (RenderImages::kNone), so they need no font.
+  if (!o.plot.empty() || !o.html.empty()) load_text_font();
   OutputSet set;
   set.add_input(o.vectors.empty() ? "--scene" : "VECTORS", job.input.path);
   if (o.json) set.claim_stdout("--json");

@@ -139,21 +139,31 @@ TEST_P(BadFontRefused, SweepPlotLeavesNoFolder) {
   EXPECT_FALSE(fs::exists(dir_.file("plots")));
 }
 
-TEST_P(BadFontRefused, SweepSceneWritesNoReport) {
+// A scene sweep's renders make no images, so without --plot or --html it needs no font: the bad
+// one is not read, and the report is written. With --html (its plots) it is refused.
+TEST_P(BadFontRefused, SweepSceneNeedsTheFontOnlyForPlots) {
   const std::string font = make_font();
-  const GlintRun r = glint_with_font(
+  const GlintRun ok = glint_with_font(
       dir_, font, "sweep --scene " + shell_quote(kScene) + " --grid 'lut:bits=4' -o sweep.json");
+  EXPECT_EQ(ok.status, 0) << ok.err;
+  EXPECT_TRUE(fs::exists(dir_.file("sweep.json")));
+  const GlintRun r = glint_with_font(dir_, font,
+                                     "sweep --scene " + shell_quote(kScene) +
+                                         " --grid 'lut:bits=4' -o sweep2.json --html sweep.html");
   expect_refused(r, font);
-  EXPECT_FALSE(fs::exists(dir_.file("sweep.json")));
+  EXPECT_FALSE(fs::exists(dir_.file("sweep2.json")));
+  EXPECT_FALSE(fs::exists(dir_.file("sweep.html")));
 }
 
-// size renders its scenes (for the requests) even with --no-image, and merge --plot draws plots.
+// size --html and merge --plot draw plots.
 TEST_P(BadFontRefused, SizeAndMergeRefuseIt) {
   const std::string font = make_font();
   expect_refused(glint_with_font(dir_, font,
                                  "size --scene " + shell_quote(kScene) +
-                                     " --no-image --grid 'lut:bits=4' --budget 'max_lsb<=4'"),
+                                     " --no-image --grid 'lut:bits=4' --budget 'max_lsb<=4' "
+                                     "--html size.html"),
                  font);
+  EXPECT_FALSE(fs::exists(dir_.file("size.html")));
   expect_refused(glint_with_font(dir_, font, "merge no-shard.json --plot plots"), font);
   EXPECT_FALSE(fs::exists(dir_.file("plots")));
 }
