@@ -12,6 +12,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <filesystem>
 #include <string>
 
 namespace glint::fuzz {
@@ -29,6 +30,14 @@ int mesh(const std::uint8_t* data, std::size_t size);
 
 // Reports a finding on stderr and aborts (libFuzzer then saves the input as a crash).
 [[noreturn]] void fail(const std::string& what);
+
+// A folder of this process for the files a harness writes per input, one per `name`
+// (glint_fuzz_<name>.XXXXXX), made on first use and removed when the process exits normally
+// (libFuzzer's -runs/-max_total_time, the replay test); a crash leaves it for the finding's replay
+// to overwrite. In $TMPDIR if set, else in /dev/shm: on ext4 a truncated file is flushed when it
+// is closed (auto_da_alloc), and rewriting three files per input held the scene harness to 363
+// executions a second against 3122 in tmpfs (60 s runs from the same corpus, one after the other).
+const std::filesystem::path& temp_folder(const std::string& name);
 
 }  // namespace glint::fuzz
 

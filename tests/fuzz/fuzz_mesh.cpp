@@ -7,7 +7,6 @@
 // most the harness's triangle limit. InputError is a refusal (exit 2); anything else is a finding.
 // Work per input is bounded by the limits below (a 1 MiB file of at most 100 000 triangles and
 // vertices).
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -28,28 +27,6 @@ namespace fs = std::filesystem;
 constexpr std::size_t kMaxTriangles = 100000;
 constexpr ObjLimits kLimits{std::uint64_t{1} << 20, 100000};
 
-// As fuzz_scene.cpp: tmpfs unless $TMPDIR says otherwise; removed at a normal exit.
-const fs::path& folder() {
-  struct Folder {
-    fs::path path;
-    Folder() {
-      std::error_code ec;
-      const fs::path root = std::getenv("TMPDIR") == nullptr && fs::is_directory("/dev/shm", ec)
-                                ? fs::path("/dev/shm")
-                                : fs::temp_directory_path();
-      std::string tmpl = (root / "glint_fuzz_mesh.XXXXXX").string();
-      if (!mkdtemp(tmpl.data())) fail("cannot make a temporary folder");
-      path = tmpl;
-    }
-    ~Folder() {
-      std::error_code ec;
-      fs::remove_all(path, ec);
-    }
-  };
-  static const Folder dir;
-  return dir.path;
-}
-
 bool finite(Vec3 v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
@@ -62,7 +39,7 @@ int mesh(const std::uint8_t* data, std::size_t size) {
                                             MeshFormat::kStl};
   const MeshFormat format = kFormats[data[0] % 4];
   const double crease = data[1] % 181;
-  const fs::path path = folder() / (std::string("mesh.") + to_string(format));
+  const fs::path path = temp_folder("mesh") / (std::string("mesh.") + to_string(format));
   {
     std::ofstream out(path, std::ios::binary | std::ios::trunc);
     out.write(reinterpret_cast<const char*>(data + 2), static_cast<std::streamsize>(size - 2));

@@ -13,7 +13,6 @@
 //   accuracy contracts, the cost model, the images), ~20x the parser's time per input, so that
 //   the parser gets its executions and the pipeline its own runs.
 // InputError and std::invalid_argument are refusals (exit 2); anything else is a finding.
-#include <unistd.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -39,32 +38,8 @@ namespace fs = std::filesystem;
 constexpr std::size_t kMaxTracedTriangles = 200000;
 constexpr std::size_t kMaxRenderedSlots = 16;
 
-// In $TMPDIR if set, else in /dev/shm: on ext4 a truncated file is flushed when it is closed
-// (auto_da_alloc), and rewriting three files per input held the parser harness to 363 executions
-// a second against 3122 in tmpfs (60 s runs from the same corpus, one after the other).
-fs::path temp_root() {
-  std::error_code ec;
-  if (std::getenv("TMPDIR") == nullptr && fs::is_directory("/dev/shm", ec)) return "/dev/shm";
-  return fs::temp_directory_path();
-}
-
-// The process's folder, removed when it exits normally (libFuzzer's -runs/-max_total_time, the
-// replay test); a crash leaves it for the finding's replay to overwrite.
 const fs::path& folder() {
-  struct Folder {
-    fs::path path;
-    Folder() {
-      std::string tmpl = (temp_root() / "glint_fuzz_scene.XXXXXX").string();
-      if (!mkdtemp(tmpl.data())) fail("cannot make a temporary folder");
-      path = tmpl;
-    }
-    ~Folder() {
-      std::error_code ec;
-      fs::remove_all(path, ec);
-    }
-  };
-  static const Folder dir;
-  return dir.path;
+  return temp_folder("scene");
 }
 
 // Writes `text` to `name` in the folder, or removes the file when the input has no such part.
