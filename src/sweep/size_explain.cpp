@@ -43,7 +43,29 @@ nlohmann::json blocking_part(const nlohmann::json& row, bool bound, double scale
     }
   }
   if (largest < 0) return nullptr;
-  return {{"name", name}, {bound ? "bound_lsb" : "max_lsb", largest * scale}};
+  if (!bound) return {{"name", name}, {"max_lsb", largest * scale}};
+  // A bound is an estimate when any slot's is (UnitStats::bound_exact).
+  bool exact = true;
+  if (const auto slots = parts->find("slots"); slots != parts->end())
+    for (const nlohmann::json& s : *slots) exact = exact && s.value("exact", true);
+  return {{"name", name}, {"bound_lsb", largest * scale}, {"exact", exact}};
+}
+
+// Whether configuration i's stated bounds are bounds on every input: false when some slot's input
+// is finer than 2^-20 and its bound was measured at sampled codes (UnitStats::bound_exact).
+bool bounds_exact(const std::vector<nlohmann::json>& reports, std::size_t i) {
+  for (const nlohmann::json& report : reports) {
+    const nlohmann::json& row = report.at("results").at(i);
+    const auto errors = row.find("errors");
+    if (errors == row.end() || !errors->contains("slots")) continue;
+    for (const nlohmann::json& s : errors->at("slots"))
+      if (!s.value("exact", true)) return false;
+  }
+  return true;
+}
+
+bool bound_measure(const Budget& b) {
+  return b.measure.pointer.find("bound") != std::string::npos;
 }
 
 // The slot with the weakest guarantee (the largest stated bound, weighted by what reaches the pixel
@@ -68,11 +90,10 @@ nlohmann::json blocking_slot(const nlohmann::json& row, bool weighted, double sc
       part = name;
     }
   }
-  nlohmann::json out = {{"slot", worst->at("slot")},
-                        {"name", worst->at("name")},
-                        {"bound_lsb", worst->at(key)},
-                        {"part", part},
-                        {"part_bound_lsb", largest * scale}};
+  nlohmann::json out = {
+      {"slot", worst->at("slot")},         {"name", worst->at("name")},
+      {"bound_lsb", worst->at(key)},       {"part", part},
+      {"part_bound_lsb", largest * scale}, {"exact", worst->value("exact", true)}};
   return out;
 }
 
@@ -214,11 +235,13 @@ nlohmann::json explain_family(const std::string& unit, const std::vector<nlohman
         best_value = v;
       }
     }
-    reached.push_back(best ? nlohmann::json{{"condition", b.text},
-                                            {"best", *best_value},
-                                            {"index", *best},
-                                            {"spec", rows[*best].at("spec")}}
-                           : nlohmann::json{{"condition", b.text}, {"best", nullptr}});
+    nlohmann::json r = best ? nlohmann::json{{"condition", b.text},
+                                             {"best", *best_value},
+                                             {"index", *best},
+                                             {"spec", rows[*best].at("spec")}}
+                            : nlohmann::json{{"condition", b.text}, {"best", nullptr}};
+    if (best && bound_measure(b)) r["exact"] = bounds_exact(reports, *best);
+    reached.push_back(std::move(r));
   }
   nlohmann::json out = {{"reached", reached}};
   if (meets_budget || family.empty()) return out;
@@ -261,7 +284,7 @@ nlohmann::json explain_family(const std::string& unit, const std::vector<nlohman
   const nlohmann::json& row = report.at("results").at(*closest);
   const bool error_measure =
       b.measure.pointer.rfind("/errors/", 0) == 0 || b.measure.pointer.rfind("/image/", 0) == 0;
-  const bool bound = b.measure.pointer.find("bound") != std::string::npos;
+  const bool bound = bound_measure(b);
   const bool weighted = b.measure.pointer.rfind("/errors/weighted", 0) == 0;
   const double scale = lsb_scale(lsb_bits(b, report));
   const SweepConfig& config = configs.at(*closest);
@@ -275,6 +298,7 @@ nlohmann::json explain_family(const std::string& unit, const std::vector<nlohman
       {"part", error_measure ? blocking_part(row, bound, scale) : nlohmann::json(nullptr)},
       {"slot", error_measure ? blocking_slot(row, weighted, scale) : nlohmann::json(nullptr)},
       {"grid_edges", grid_edges(grids.at(config.grid), configs, *closest, miss)}};
+  if (bound) out["closest"]["exact"] = bounds_exact(reports, *closest);
   return out;
 }
 
@@ -287,8 +311,9 @@ std::string format_explanation(const nlohmann::json& e) {
       out += fmt::format("  {}: no value in any configuration\n",
                          r.at("condition").get<std::string>());
     } else {
-      out += fmt::format("  {}: best {:.6g} ({})\n", r.at("condition").get<std::string>(),
-                         r.at("best").get<double>(), r.at("spec").get<std::string>());
+      out += fmt::format("  {}: best {}{:.6g} ({})\n", r.at("condition").get<std::string>(),
+                         r.value("exact", true) ? "" : "~", r.at("best").get<double>(),
+                         r.at("spec").get<std::string>());
     }
   }
   if (closest->is_null()) return out + "  every configuration was refused or lacks the measures\n";
@@ -297,22 +322,28 @@ std::string format_explanation(const nlohmann::json& e) {
   const double miss = c.at("miss").get<double>();
   const std::string by =
       miss < 1 ? fmt::format("{:.3g} %", 100 * miss) : fmt::format("a factor {:.3g}", 1 + miss);
-  out += fmt::format("  closest: {} misses {} by {} ({:.6g}, on {})\n",
+  out += fmt::format("  closest: {} misses {} by {} ({}{:.6g}, on {})\n",
                      c.at("spec").get<std::string>(), c.at("missed").get<std::string>(), by,
-                     c.at("value").get<double>(), c.at("input").get<std::string>());
+                     c.value("exact", true) ? "" : "~", c.at("value").get<double>(),
+                     c.at("input").get<std::string>());
   if (!c.at("part").is_null()) {
     const nlohmann::json& p = c.at("part");
     const bool bound = p.contains("bound_lsb");
-    out += fmt::format("    largest error part: {} ({} {})\n", p.at("name").get<std::string>(),
-                       bound ? "bound" : "measured",
-                       lsb_text(p.at(bound ? "bound_lsb" : "max_lsb").get<double>()));
+    const bool estimate = bound && !p.value("exact", true);
+    out += fmt::format("    largest error part: {} ({} {}{}){}\n", p.at("name").get<std::string>(),
+                       bound ? "bound" : "measured", estimate ? "~" : "",
+                       lsb_text(p.at(bound ? "bound_lsb" : "max_lsb").get<double>()),
+                       estimate ? ", an estimate: inputs sampled" : "");
   }
   if (!c.at("slot").is_null()) {
     const nlohmann::json& s = c.at("slot");
-    out += fmt::format("    weakest slot: {}, {} (bound {}, {} of it {})\n",
-                       s.at("slot").get<int>(), s.at("name").get<std::string>(),
+    // "~": the slot's input is finer than 2^-20 and its bound was measured at sampled codes.
+    const std::string estimate = s.value("exact", true) ? "" : "~";
+    out += fmt::format("    weakest slot: {}, {} (bound {}{}, {} of it {}{}){}\n",
+                       s.at("slot").get<int>(), s.at("name").get<std::string>(), estimate,
                        lsb_text(s.at("bound_lsb").get<double>()), s.at("part").get<std::string>(),
-                       lsb_text(s.at("part_bound_lsb").get<double>()));
+                       estimate, lsb_text(s.at("part_bound_lsb").get<double>()),
+                       estimate.empty() ? "" : ", an estimate: inputs sampled");
   }
   std::vector<std::string> edges;
   for (const nlohmann::json& g : c.at("grid_edges"))

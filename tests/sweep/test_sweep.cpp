@@ -511,6 +511,39 @@ TEST(SweepSize, ExplainsWhatBlocksAFamily) {
   EXPECT_EQ(glint::format_explanation(met), "");
 }
 
+// A bound measured at sampled codes (a slot's "exact": false) is marked "~" wherever the
+// explanation shows it: the best value, the closest's value, its part and its slot.
+TEST(SweepSize, ExplanationMarksEstimatedBounds) {
+  const std::vector<Grid> grids = {parse_grid("lut:bits=5..6")};
+  const auto configs = glint::expand_grids(grids);
+  json r5 = hand_row(0, 200, 0.015, 0.014, 0.001), r6 = hand_row(1, 300, 0.008, 0.007, 0.001);
+  r6["errors"]["slots"][1]["exact"] = false;
+  r5["errors"]["slots"][1]["exact"] = true;
+  const std::vector<json> reports = {hand_report({r5, r6})};
+  const std::vector<double> cost = {200, 300};
+  const json e = glint::explain_family("lut", reports, glint::parse_budgets("bound_lsb<=1", false),
+                                       grids, configs, cost, false);
+  EXPECT_FALSE(e.at("reached")[0].at("exact").get<bool>());
+  EXPECT_FALSE(e.at("closest").at("exact").get<bool>());
+  EXPECT_FALSE(e.at("closest").at("part").at("exact").get<bool>());
+  EXPECT_FALSE(e.at("closest").at("slot").at("exact").get<bool>());
+  const std::string text = glint::format_explanation(e);
+  EXPECT_NE(text.find("best ~"), std::string::npos) << text;
+  EXPECT_NE(text.find("(~"), std::string::npos) << text;
+  EXPECT_NE(text.find("(bound ~"), std::string::npos) << text;
+  EXPECT_NE(text.find("an estimate: inputs sampled"), std::string::npos) << text;
+  // Exact bounds carry no mark; a measured error never does.
+  r6["errors"]["slots"][1]["exact"] = true;
+  const json x = glint::explain_family("lut", {hand_report({r5, r6})},
+                                       glint::parse_budgets("bound_lsb<=1", false), grids, configs,
+                                       cost, false);
+  EXPECT_EQ(glint::format_explanation(x).find('~'), std::string::npos);
+  const json m = glint::explain_family("lut", reports, glint::parse_budgets("lsb8<=1", false),
+                                       grids, configs, cost, false);
+  EXPECT_FALSE(m.at("reached")[0].contains("exact"));
+  EXPECT_EQ(glint::format_explanation(m).find("best ~"), std::string::npos);
+}
+
 TEST(SweepSize, RelativeMissAndTheCheapestK) {
   const auto le = glint::parse_budgets("lsb8<=2", false)[0];
   const auto lt = glint::parse_budgets("lsb8<2", false)[0];
