@@ -230,6 +230,8 @@ std::string gen_spec(const std::string& unit) {
   } else if (unit == "lut") {
     maybe("bits", integer(1, 16));
     maybe("table_frac", one_in(3) ? std::string("auto") : integer(0, 40));
+  } else if (unit == "sfu") {
+    maybe("n", n_format());
   }
   // Every generated key is one the catalogue lists for the unit (the generator follows it).
   const UnitInfo& info = unit_info(unit);
@@ -411,10 +413,17 @@ TEST(ContractProperties, horner) {
 TEST(ContractProperties, lut) {
   check_property([] { check_unit_case("lut"); });
 }
+TEST(ContractProperties, sfu) {
+  check_property([] { check_unit_case("sfu"); });
+}
 
 // Every unit in the catalogue has its property above.
 TEST(ContractProperties, EveryUnitCovered) {
-  EXPECT_EQ(unit_names(), (std::vector<std::string>{"pow", "schlick", "hast", "horner", "lut"}));
+  EXPECT_EQ(unit_names(),
+            (std::vector<std::string>{"pow", "schlick", "hast", "horner", "lut", "sfu"}));
+  // sfu is one --unit away: the default set, and every default output, are as before it.
+  EXPECT_EQ(default_unit_names(),
+            (std::vector<std::string>{"pow", "schlick", "hast", "horner", "lut"}));
 }
 
 // ---------------------------------------------------------------------------------------------
