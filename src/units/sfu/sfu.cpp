@@ -17,6 +17,7 @@
 #include <optional>
 
 #include "units/sfu/datapath.h"
+#include "units/sfu/rtl.h"
 #include "units/unit_set.h"
 
 namespace glint {
@@ -31,8 +32,9 @@ std::vector<std::int64_t> table_words(const tesla_sfu::Table& t) {
   std::vector<std::int64_t> words;
   for (const auto& k : t) {
     const auto field = [](std::int64_t v, int w) { return v & ((std::int64_t{1} << w) - 1); };
+    // lg2's C is negative: stored as its magnitude and subtracted (units/sfu/rtl.cpp).
     words.push_back(field(k.a, kCoefA) << (kCoefB + kCoefC) | field(k.b, kCoefB) << kCoefC |
-                    field(k.c, kCoefC));
+                    field(k.c < 0 ? -k.c : k.c, kCoefC));
   }
   return words;
 }
@@ -69,7 +71,11 @@ struct Sfu : UnitKindDefaults {
       {"default", "", "--vectors traces/phong_basic.vec --sink-ready 0.6"},
       {"narrow", "in=uq1.12,out=uq1.10,n=uq10.2",
        "--vectors traces/multi_light.vec --sink-ready 0.5"},
-      {"ram", "tables=ram", "--vectors traces/blinn_colored.vec --sink-ready 0.6"}};
+      {"ram", "tables=ram", "--vectors traces/blinn_colored.vec --sink-ready 0.6"},
+      // Every code from t = 0 through the datapath, and outputs finer than fp32's significand
+      // (to_fixed's left shift).
+      {"skip_off_wide_out", "skip=off,in=uq1.17,out=uq1.30",
+       "--vectors traces/contract_cases.vec --sink-ready 0.9 --seed 11"}};
 
   static std::unique_ptr<SpecularUnit> build(const KeyReader& keys, const CommonKeys& common,
                                              const SlotPlan& plan) {
@@ -200,6 +206,10 @@ struct Sfu : UnitKindDefaults {
               "SPs"}}};
   }
 
+  static std::string rtl(const hdl::DatapathPorts& p, const Config&,
+                         const std::vector<Datapath>& units, const StageLayout& layout) {
+    return sfu_rtl(p, units, layout);
+  }
   static nlohmann::json describe_slot(const Datapath& u) {
     return {{"n", u.shininess_q()},
             {"n_fp32", fmt::format("0x{:08x}", u.n_fp32())},
