@@ -140,7 +140,14 @@ struct Sfu : UnitKindDefaults {
     const Seg n = b.slot_table(L.groups, 31, 1, true, "stage 2: n table, fp32 (per datapath group)",
                                L.tables_ram ? nullptr : &ns);
     b.op("table_read");
-    const Seg mul = b.multiplier(24, 24, "stage 2: fp32 significand multiplier 24 x 24");
+    // n's significand from a ROM of known contents unless the chip loads it: one material's is a
+    // constant, and Yosys builds rows for its one bits only (builder.h, table_multiplier).
+    std::vector<std::int64_t> sig;
+    for (std::int64_t v : ns) sig.push_back(0x800000 | (v & 0x7fffff));
+    const bool known = !L.tables_ram && L.groups == static_cast<int>(units.size());
+    const Seg mul =
+        known ? b.table_multiplier(24, sig, "stage 2: fp32 significand multiplier 24 x n's")
+              : b.multiplier(24, 24, "stage 2: fp32 significand multiplier 24 x 24");
     const Seg rnd = b.adder(25, "stage 2: round to nearest even");
     b.adder(9, "stage 2: exponent sum");
     b.mux(24, 2, "stage 2: normalise by one bit");
