@@ -9,7 +9,7 @@
 // multiplier; stage 3 RRO's shifter; stage 4 the ex2 interpolator; stage 5 the shift to the
 // output format, rounding and clamp. A GPU shares one SFU among four SPs and one interpolator
 // among five functions: what a highlight occupies of that hardware is stated beside the lane's
-// price (sfu_share below), not folded into it.
+// price (hardware_share below), not folded into it.
 #include "units/sfu/sfu.h"
 
 #include <fmt/format.h>
@@ -27,7 +27,7 @@ constexpr int kCoefA = 26, kCoefB = 16, kCoefC = 10;  // Oberman & Siu's widths
 constexpr int kWord = kCoefA + kCoefB + kCoefC;
 constexpr QFormat kFp32 = uq(32, 0);  // an fp32 register, shown as its bit pattern
 
-// A table's words as the ROM stores them: A, B and C side by side (two's complement fields).
+// A table's words as the ROM stores them: A, B and C side by side.
 std::vector<std::int64_t> table_words(const tesla_sfu::Table& t) {
   std::vector<std::int64_t> words;
   for (const auto& k : t) {
