@@ -128,7 +128,8 @@ std::vector<UnitSpec> parse_unit_options(const std::vector<std::string>& units) 
     throw std::invalid_argument(fmt::format(
         "--unit given {} times: at most {} units (lanes) per run", units.size(), kMaxUnitOptions));
   std::vector<UnitSpec> specs;
-  for (const auto& s : units.empty() ? unit_names() : units) specs.push_back(parse_unit_spec(s));
+  for (const auto& s : units.empty() ? default_unit_names() : units)
+    specs.push_back(parse_unit_spec(s));
   return specs;
 }
 

@@ -132,11 +132,10 @@ void add_eval_command(CLI::App& app, int& status) {
       app.add_subcommand("eval", "Run the untimed bit-accurate datapaths over a vector file");
   sub->add_option("VECTORS", o->vectors, "Vector file (see traces/README.md); - for stdin")
       ->required();
-  sub->add_option(
-      "--unit", o->units,
-      fmt::format("Unit SPEC NAME[:key=value,...] (repeatable, at most {}; default all; "
-                  "keys: glint units)",
-                  kMaxUnitOptions));
+  sub->add_option("--unit", o->units,
+                  fmt::format("Unit SPEC NAME[:key=value,...] (repeatable, at most {}; default: "
+                              "the default set, which glint units marks; keys: glint units)",
+                              kMaxUnitOptions));
   sub->add_option("--dump", o->dump,
                   "Per-vector CSV (written atomically; - for stdout, then the summary goes to "
                   "stderr)");

@@ -42,7 +42,7 @@ std::string lsb_text(double v) {
 
 int run_render(const RenderCommandOptions& o) {
   RenderOptions options;
-  if (!o.units.empty()) options.units = parse_unit_options(o.units);  // empty: every unit
+  if (!o.units.empty()) options.units = parse_unit_options(o.units);  // empty: the default set
   options.units = specs_for_chip(options.units, o.chip);
   options.threads = o.threads > 0 ? o.threads : default_threads();
   options.chip = o.chip;
@@ -178,7 +178,8 @@ void add_render_command(CLI::App& app, int& status) {
   sub->add_option("SCENE", o->scene, "Scene file (JSON, see traces/scenes/README.md)")->required();
   sub->add_option(
       "--unit", o->units,
-      fmt::format("Unit SPEC NAME[:key=value,...] (repeatable, at most {}; default all)",
+      fmt::format("Unit SPEC NAME[:key=value,...] (repeatable, at most {}; default: the "
+                  "default set, which glint units marks)",
                   kMaxUnitOptions));
   sub->add_option("-o,--out", o->out_dir, "Folder for the PNG images and report.json")->required();
   sub->add_option("--write-vectors", o->vectors,

@@ -274,8 +274,13 @@ void write_outputs(const SimOptions& o, SimPlan& plan, std::uint64_t rows,
                      clocked ? "clocked" : "fast", o.sink_ready,
                      o.vcd.empty() ? "" : ", VCD " + o.vcd, pixel_measure_line(lanes_slots))
       << chip_line(report.at("chip")) << format_sim_table(report);
-  for (const auto& u : report["units"])
+  for (const auto& u : report["units"]) {
     out << fmt::format("  {}: {}\n", u["unit"].get<std::string>(), u["spec"].get<std::string>());
+    // Beside the lane's area_ge: what it stands for in shared hardware (sfu), stated as such.
+    const nlohmann::json& e = u.at("elaboration");
+    if (const auto share = e.find("hardware_share"); share != e.end())
+      out << fmt::format("    {}\n", (*share)["statement"].get<std::string>());
+  }
 }
 
 int run_sim(const SimOptions& o) {
@@ -319,8 +324,9 @@ void add_sim_command(CLI::App& app, int& status) {
   sub->add_option("VECTORS", o->vectors, "Vector file (see traces/README.md); - for stdin")
       ->required();
   sub->add_option("--unit", o->units,
-                  fmt::format("Unit SPEC NAME[:key=value,...] (repeatable, at most {}; default "
-                              "all five); timing keys: buffer, schlick divider",
+                  fmt::format("Unit SPEC NAME[:key=value,...] (repeatable, at most {}; default: "
+                              "the default set, which glint units marks); timing keys: buffer, "
+                              "schlick divider",
                               kMaxUnitOptions));
   sub->add_option("--report", o->report,
                   "Write the JSON report to this file (atomically; - for stdout)");

@@ -20,7 +20,10 @@ void add_units_command(CLI::App& app, int& status) {
           nlohmann::json keys = nlohmann::json::array();
           for (const auto& k : u.keys)
             keys.push_back({{"key", k.key}, {"meaning", k.meaning}, {"default", k.default_value}});
-          j.push_back({{"name", u.name}, {"summary", u.summary}, {"keys", keys}});
+          j.push_back({{"name", u.name},
+                       {"summary", u.summary},
+                       {"default_set", u.default_set},
+                       {"keys", keys}});
         }
         print_json({{"units", j}, {"spec_syntax", "NAME[:key=value,...]"}});
         return kExitOk;
@@ -28,6 +31,8 @@ void add_units_command(CLI::App& app, int& status) {
       std::cout << "A unit SPEC is NAME[:key=value,...], e.g. horner:degree=5,method=ls\n";
       for (const auto& u : unit_catalog()) {
         std::cout << fmt::format("\n{}  {}\n", u.name, u.summary);
+        if (!u.default_set)
+          std::cout << fmt::format("  (not in the default set: only with --unit {})\n", u.name);
         for (const auto& k : u.keys)
           std::cout << fmt::format("  {:<11} {:<10} {}\n", k.key, k.default_value, k.meaning);
       }

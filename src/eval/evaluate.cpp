@@ -523,6 +523,8 @@ std::string format_elaboration(const std::vector<UnitStats>& stats) {
         sized ? std::string("sized to the stream")
               : fmt::format("a chip of {} materials", e["group_capacity"].get<std::size_t>()),
         e["table_entries"].get<long long>(), n);
+    if (const auto share = e.find("hardware_share"); share != e.end())
+      out += fmt::format("    {}\n", (*share)["statement"].get<std::string>());
   }
   return out;
 }

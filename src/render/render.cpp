@@ -189,7 +189,7 @@ class SceneRenderer {
   static std::vector<UnitSpec> unit_specs(const RenderOptions& o) {
     std::vector<UnitSpec> specs = o.units;
     if (specs.empty())
-      for (const std::string& name : unit_names()) specs.push_back(parse_unit_spec(name));
+      for (const std::string& name : default_unit_names()) specs.push_back(parse_unit_spec(name));
     return specs;
   }
 
@@ -664,7 +664,8 @@ RenderResult render_scene(const Scene& scene, const RenderOptions& options) {
   if (options.tile_rows < 1) throw std::invalid_argument("render: tile_rows must be >= 1");
   const std::uint64_t pixels = static_cast<std::uint64_t>(scene.camera.width) *
                                static_cast<std::uint64_t>(scene.camera.height);
-  const std::size_t units = options.units.empty() ? unit_names().size() : options.units.size();
+  const std::size_t units =
+      options.units.empty() ? default_unit_names().size() : options.units.size();
   const std::size_t masked_lights = std::min(scene.lights.size(), kMaxLightSkipMasks);
   const std::uint64_t bytes =
       render_bytes(pixels, units, options.images, options.threads, masked_lights);

@@ -158,7 +158,7 @@ std::vector<std::string> render_file_names(const RenderResult& r) {
 std::vector<std::string> render_unit_labels(const std::vector<UnitSpec>& given) {
   std::vector<UnitSpec> specs = given;
   if (specs.empty())
-    for (const std::string& name : unit_names()) specs.push_back(UnitSpec{name, {}});
+    for (const std::string& name : default_unit_names()) specs.push_back(UnitSpec{name, {}});
   // unit_info refuses an unknown name: a label becomes a file name, so only the catalogue's.
   for (UnitSpec& s : specs) s.name = unit_info(s.name).name;
   // A key's value in a spec: as given, else the catalogue's default.

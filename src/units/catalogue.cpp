@@ -11,13 +11,14 @@
 #include "units/lut/lut.h"
 #include "units/pow/pow.h"
 #include "units/schlick/schlick.h"
+#include "units/sfu/sfu.h"
 
 namespace glint {
 
 // Adding a unit: one line here (and its folder, src/units/<unit>/).
 const std::vector<const UnitDescription*>& unit_descriptions() {
   static const std::vector<const UnitDescription*> all = {
-      &pow_unit(), &schlick_unit(), &hast_unit(), &horner_unit(), &lut_unit()};
+      &pow_unit(), &schlick_unit(), &hast_unit(), &horner_unit(), &lut_unit(), &sfu_unit()};
   return all;
 }
 
@@ -107,6 +108,13 @@ std::string cosim_name(const UnitInfo& unit, const CosimCase& c) {
 std::vector<std::string> unit_names() {
   std::vector<std::string> names;
   for (const auto& u : unit_catalog()) names.push_back(u.name);
+  return names;
+}
+
+std::vector<std::string> default_unit_names() {
+  std::vector<std::string> names;
+  for (const auto& u : unit_catalog())
+    if (u.default_set) names.push_back(u.name);
   return names;
 }
 

@@ -20,8 +20,11 @@ const std::vector<const UnitDescription*>& unit_descriptions();
 // Every unit with every key (common keys first), for `glint units` and for validation.
 const std::vector<UnitInfo>& unit_catalog();
 const UnitInfo& unit_info(std::string_view name);  // throws std::invalid_argument
-// Every unit's name in catalogue order: the default set of `glint eval` and `glint sim`.
+// Every unit's name in catalogue order.
 std::vector<std::string> unit_names();
+// The units `glint eval`, `sim` and `render` run when no --unit is given, in catalogue order: every
+// unit but those whose kind opts out (UnitInfo::default_set).
+std::vector<std::string> default_unit_names();
 
 // A co-simulation case's whole spec ("lut" or "lut:bits=4,table_frac=20") and its name as the
 // tests know it ("lut.bits4": ctest rtl.lut.bits4).

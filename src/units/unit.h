@@ -50,6 +50,8 @@ struct UnitInfo {
   std::string summary;
   std::vector<UnitKey> keys;  // common keys first, then the unit's own
   std::vector<CosimCase> cosim_cases;
+  // In the set `eval`, `sim`, `render` run when no --unit is given (default_unit_names()).
+  bool default_set = true;
 };
 
 // One unit built for a scene's slots (units/slot_plan.h): a comparator threshold per slot, in front

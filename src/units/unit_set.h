@@ -50,6 +50,9 @@ namespace glint {
 // model (no stated bound against t^n), its comparator carries no root to a u scaler, and it holds
 // no shininess register.
 struct UnitKindDefaults {
+  // Run when no --unit is given. A unit outside the default set is one --unit away, and adding it
+  // changes no default output.
+  static constexpr bool kDefaultSet = true;
   template <class Datapath>
   static double error_bound(const Datapath&) {
     return std::numeric_limits<double>::quiet_NaN();
@@ -61,6 +64,12 @@ struct UnitKindDefaults {
   template <class Config, class Datapath>
   static std::optional<NRegister> n_register(const Config&, const std::vector<Datapath>&, bool) {
     return std::nullopt;
+  }
+  // What the lane stands for in hardware it shares, stated beside its own price (sfu: the share of
+  // a GPU's special-function unit one highlight uses); null: the lane is the whole of it.
+  template <class Config>
+  static nlohmann::json hardware_share(const Config&) {
+    return nullptr;
   }
   template <class Config, class Datapath>
   static std::string rtl(const hdl::DatapathPorts&, const Config&, const std::vector<Datapath>&,
@@ -237,6 +246,9 @@ class UnitSet final : public SpecularUnit {
     }
     e["tables"] = std::move(tables);
     e["table_entries"] = words;
+    // Beside the lane's price in every report that has the elaboration (eval, sim, render).
+    if (nlohmann::json share = Kind::hardware_share(cfg_); !share.is_null())
+      e["hardware_share"] = std::move(share);
     return e;
   }
 
@@ -363,7 +375,8 @@ class DescriptionOf final : public UnitDescription {
     return {Kind::kName,
             Kind::kSummary,
             Kind::Keys::list(),
-            {std::begin(Kind::kCosimCases), std::end(Kind::kCosimCases)}};
+            {std::begin(Kind::kCosimCases), std::end(Kind::kCosimCases)},
+            Kind::kDefaultSet};
   }
   std::unique_ptr<SpecularUnit> build(const KeyReader& keys, const SlotPlan& plan) const override {
     return Kind::build(keys, read_common_keys(keys), plan);

@@ -152,7 +152,8 @@ int sc_main(int argc, char* argv[]) {
   }
   if (units_arg == "all") {
     units_arg.clear();
-    for (const auto& n : glint::unit_names()) units_arg += (units_arg.empty() ? "" : ";") + n;
+    for (const auto& n : glint::default_unit_names())
+      units_arg += (units_arg.empty() ? "" : ";") + n;
   }
   glint::VectorHeader header;
   header.eps = 1e-3;

@@ -31,7 +31,9 @@ const std::string kGlint = GLINT_BINARY_DIR "/glint";
 const std::string kTraces = GLINT_SOURCE_DIR "/traces";
 const std::string kPhongBasic = kTraces + "/phong_basic.vec";
 
+// The default set (what eval, sim and render run without --unit); kOptInUnits only by --unit.
 const std::vector<std::string> kAllUnits = {"pow", "schlick", "hast", "horner", "lut"};
+const std::vector<std::string> kOptInUnits = {"sfu"};
 
 const auto quote = glint::test::shell_quote;
 const auto read_text = glint::test::read_file;
@@ -414,16 +416,22 @@ TEST_F(CliTest, UnitsListsAllUnits) {
     EXPECT_TRUE(std::regex_search(r.out, std::regex("(^|\n)" + u + " "))) << u << " missing in:\n"
                                                                           << r.out;
   }
+  for (const auto& u : kOptInUnits)
+    EXPECT_TRUE(std::regex_search(
+        r.out, std::regex("(^|\n)" + u + " .*\n  \\(not in the default set: only with --unit " + u +
+                          "\\)")))
+        << u << " not marked in:\n"
+        << r.out;
 }
 
 TEST_F(CliTest, UnitsJsonKeysHaveDefaults) {
   const json j = glint_json("units --json");
   ASSERT_TRUE(j.is_object());
   ASSERT_TRUE(j.at("units").is_array());
-  std::set<std::string> names;
+  std::set<std::string> names, opt_in;
   for (const auto& u : j.at("units")) {
     const std::string name = u.at("name");
-    names.insert(name);
+    (u.at("default_set").get<bool>() ? names : opt_in).insert(name);
     ASSERT_TRUE(u.at("keys").is_array()) << name;
     EXPECT_FALSE(u.at("keys").empty()) << name;
     std::set<std::string> keys;
@@ -437,6 +445,7 @@ TEST_F(CliTest, UnitsJsonKeysHaveDefaults) {
       EXPECT_EQ(keys.count(common), 1u) << name << " lacks key " << common;
   }
   EXPECT_EQ(names, std::set<std::string>(kAllUnits.begin(), kAllUnits.end()));
+  EXPECT_EQ(opt_in, std::set<std::string>(kOptInUnits.begin(), kOptInUnits.end()));
 }
 
 // Spelling every listed default out in a SPEC must be accepted and give the default unit.
@@ -447,6 +456,7 @@ TEST_F(CliTest, UnitsDefaultsAreAcceptedAsSpecs) {
   ASSERT_TRUE(defaults.is_object());
   std::string args;
   for (const auto& u : cat.at("units")) {
+    if (!u.at("default_set").get<bool>()) continue;  // not in `defaults`: below
     std::string spec = u.at("name").get<std::string>() + ":";
     bool first = true;
     for (const auto& k : u.at("keys")) {
@@ -465,6 +475,23 @@ TEST_F(CliTest, UnitsDefaultsAreAcceptedAsSpecs) {
     EXPECT_EQ(a.at("spec"), b.at("spec"));
     EXPECT_EQ(a.at("errors"), b.at("errors")) << a.at("unit");
     EXPECT_EQ(a.at("skipped"), b.at("skipped")) << a.at("unit");
+  }
+  // A unit outside the default set: its defaults spelt out build what its bare name builds.
+  for (const auto& u : cat.at("units")) {
+    if (u.at("default_set").get<bool>()) continue;
+    std::string spec = u.at("name").get<std::string>() + ":";
+    bool first = true;
+    for (const auto& k : u.at("keys")) {
+      spec += (first ? "" : ",") + k.at("key").get<std::string>() + "=" +
+              k.at("default").get<std::string>();
+      first = false;
+    }
+    const json bare = glint_json("eval " + quote(kPhongBasic) + " --unit " +
+                                 quote(u.at("name").get<std::string>()) + " --json");
+    const json full =
+        glint_json("eval " + quote(kPhongBasic) + " --unit " + quote(spec) + " --json");
+    EXPECT_EQ(bare.at("units")[0].at("spec"), full.at("units")[0].at("spec"));
+    EXPECT_EQ(bare.at("units")[0].at("errors"), full.at("units")[0].at("errors"));
   }
 }
 

@@ -110,7 +110,8 @@ TEST(RenderMemory, StreamingNeedsLessThanKeepingAndNoImagesLeast) {
   EXPECT_EQ(render_bytes(pixels, 5, RenderImages::kNone), 0u);
   // The stated rule of glint render (kStream) keeps a 4K render of the default units on two
   // threads under 400 MB; more threads draw more heat maps at once.
-  EXPECT_LT(render_bytes(pixels, unit_names().size(), RenderImages::kStream, 2), 400ull << 20);
+  EXPECT_LT(render_bytes(pixels, default_unit_names().size(), RenderImages::kStream, 2),
+            400ull << 20);
   EXPECT_GT(render_bytes(pixels, 5, RenderImages::kStream, 4),
             render_bytes(pixels, 5, RenderImages::kStream, 2));
   EXPECT_EQ(render_bytes(pixels, 5, RenderImages::kStream, 5),

@@ -60,7 +60,7 @@ const StageDelay& stage(const UnitCost& c, const std::string& name) {
   throw std::runtime_error("no stage " + name);
 }
 
-const std::vector<std::string> kUnits = {"schlick", "hast", "horner", "pow", "lut"};
+const std::vector<std::string> kUnits = {"schlick", "hast", "horner", "pow", "lut", "sfu"};
 
 TEST(CostModel, DelayFormulas) {
   // The fitted depths (cost_model.h): logarithmic in the width, never below one gate.
@@ -366,6 +366,29 @@ TEST(CostModel, TablesRamPricesRegistersAndKeepsResults) {
     }
     EXPECT_GE(per_slot, 2) << u << ": the tau table and the datapath's";
   }
+}
+
+// sfu: the SFU's two tables are 64 x 52-bit ROMs whatever the materials; n's fp32 significand is a
+// constant multiplier for one material and a full 24 x 24 one when the chip loads n; the lane's
+// price comes with the share of a GPU's SFU, stated apart from it.
+TEST(CostModel, SfuTablesFixedAndFmulFollowsN) {
+  const UnitCost one = cost("sfu"), three = cost("sfu", {10, 50, 200});
+  for (const UnitCost* c : {&one, &three}) {
+    const auto tables = find(*c, "table", "-bit table (A, B, C)");
+    ASSERT_EQ(tables.size(), 2u);
+    for (const Primitive* t : tables) {
+      EXPECT_EQ(t->width_a, 64);
+      EXPECT_EQ(t->width_b, 52);
+    }
+  }
+  EXPECT_LT(area_where(one, "stage 2: fp32 significand"),
+            0.5 * area_where(cost("sfu:tables=ram"), "stage 2: fp32 significand"));
+  EXPECT_EQ(find(cost("sfu:tables=ram"), "multiplier", "24 x 24").size(), 1u);
+  const auto share = build("sfu")->describe()["elaboration"]["hardware_share"];
+  EXPECT_EQ(share["table_words_used"], 128);
+  EXPECT_EQ(share["table_words"], 448);
+  EXPECT_NE(share["statement"].get<std::string>().find("not this lane's price"), std::string::npos);
+  EXPECT_FALSE(build("pow")->describe()["elaboration"].contains("hardware_share"));
 }
 
 TEST(CostModel, SchlickDividerWidths) {

@@ -3,9 +3,9 @@
 //  - Schlick is correctly rounded (<= ½ ulp of its real-valued model at the quantized t and n);
 //  - Hast and Horner are faithful (< 1 ulp of their real-valued models at the quantized input and
 //    coefficients);
-//  - pow and lut stay within the bound they state against t^n itself on every computed input;
+//  - pow, lut and sfu stay within the bound they state against t^n itself on every computed input;
 //  - every unit is monotone non-decreasing in t, returns exactly 1.0 at t = 1 (Schlick, Hast, the
-//    constrained fits, pow, lut), and exactly 0 where it skips;
+//    constrained fits, pow, lut, sfu), and exactly 0 where it skips;
 //  - every unit's comparator skips only inputs that Källberg's float test skips on real t, and
 //    only where the unit's own output is imperceptible (Källberg §3).
 #include <gtest/gtest.h>
@@ -176,11 +176,26 @@ TEST(ExhaustiveUnits, LutWithinStatedBound) {
   }
 }
 
+TEST(ExhaustiveUnits, SfuWithinStatedBound) {
+  for (double n : kShininess) {
+    for (const char* skip : {"on", "off"}) {
+      const auto u = build(std::string("sfu:skip=") + skip, material(n));
+      const Sweep s = sweep(*u, 0, n);
+      const std::string what = u->canonical_spec() + " n=" + std::to_string(n);
+      EXPECT_LE(s.max_abs_vs_pow, u->error_bound(0)) << what;
+      EXPECT_LE(s.max_ulps, u->datapath_bound_ulps(0) + 1e-9) << what;
+      expect_common(s, *u, what);
+    }
+  }
+  // What the hardware gives up to n = 1000: well inside ½ LSB of an 8-bit display.
+  EXPECT_LT(build("sfu", material(1000))->error_bound(0), 0.1 / 255);
+}
+
 TEST(ExhaustiveUnits, SkipInsideFloatTestAndImperceptible) {
   // Every unit's comparator threshold T: each real t that rounds to a code <= T is <= tau (the
   // float test skips it too), the unit's own output there is at most eps_K / c_y, and T is the
   // largest such code (either the float test's bound or the next code's output is visible).
-  for (const char* name : {"pow", "schlick", "hast", "horner", "lut"}) {
+  for (const char* name : {"pow", "schlick", "hast", "horner", "lut", "sfu"}) {
     for (double n : kShininess) {
       for (double cy : {1.0, 0.01}) {
         const MaterialParams m = material(n, cy);
@@ -202,7 +217,7 @@ TEST(ExhaustiveUnits, SkipInsideFloatTestAndImperceptible) {
 }
 
 TEST(ExhaustiveUnits, AlwaysSkipWhenLobeInvisible) {
-  for (const char* name : {"pow", "schlick", "hast", "horner", "lut"}) {
+  for (const char* name : {"pow", "schlick", "hast", "horner", "lut", "sfu"}) {
     const auto u = build(name, material(50, 5e-4));  // c_y < eps
     for (std::int64_t t = 0; t < kInputs; ++t) ASSERT_EQ(u->eval_with_skip(0, t), 0) << name;
   }

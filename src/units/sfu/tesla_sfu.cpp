@@ -50,14 +50,14 @@ std::uint32_t pack(std::uint32_t sign, int exp, std::uint32_t sig) {
   return sign << 31 | static_cast<std::uint32_t>(exp) << 23 | (sig - kOne);
 }
 
-// Shifts left until bit `lead` is the leading one, lowering *exp by each step (0 stays 0).
+// Shifts left until bit `lead` is the leading one (v has none above it), lowering *exp by each
+// step (0 stays 0). One shift by the leading-zero count: lg2's sum can need 40 steps, and the sfu
+// unit states its bound from every input code.
 std::uint64_t normalise(std::uint64_t v, int lead, int* exp) {
   if (v == 0) return 0;
-  while ((v >> lead & 1) == 0) {
-    v <<= 1;
-    --*exp;
-  }
-  return v;
+  const int steps = lead - (63 - __builtin_clzll(v));
+  *exp -= steps;
+  return v << steps;
 }
 
 // The SFU's squarer: r^2 / 2^19 from 17 partial-product rows, row i (r * 2^i) truncated to its
