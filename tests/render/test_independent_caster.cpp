@@ -8,8 +8,9 @@
 // ray/triangle test (the triangle's plane, then signed areas, where glint uses Moller-Trumbore),
 // its own normal interpolation, Phong/Blinn shading, tau (Kallberg & Larsson eq.5) and skip
 // classes, and for the torus and the bunny its own OBJ and PLY reading and angle-weighted normals
-// (a plain loop over every face at a position). It shares with glint only the teapot's tessellated geometry (the patch
-// code is not under test here) and the 8-bit display encoding (display_code8).
+// (a plain loop over every face at a position). It shares with glint only the teapot's tessellated
+// geometry (the patch code is not under test here) and the 8-bit display encoding
+// (display_code8).
 //
 // Tolerance, and why: the two casters compute the same quantities in different floating-point
 // orders (intersection algorithm, normal sums), so they differ in the last bits. A pixel can change
