@@ -27,6 +27,23 @@ double lsb_scale(int bits) {
   return std::ldexp(1.0, bits) - 1.0;
 }
 
+// Whether a row's stated bounds are bounds: false when some slot's input is finer than 2^-20 and
+// its bound was measured at sampled codes (UnitStats::bound_exact).
+bool row_bounds_exact(const nlohmann::json& row) {
+  const auto errors = row.find("errors");
+  if (errors == row.end() || !errors->contains("slots")) return true;
+  for (const nlohmann::json& s : errors->at("slots"))
+    if (!s.value("exact", true)) return false;
+  return true;
+}
+
+// The same for configuration i on every input.
+bool bounds_exact(const std::vector<nlohmann::json>& reports, std::size_t i) {
+  for (const nlohmann::json& report : reports)
+    if (!row_bounds_exact(report.at("results").at(i))) return false;
+  return true;
+}
+
 // Where the measured error of a row comes from: the part of the contract's decomposition with the
 // largest error (measured, or its bound for a bound measure).
 nlohmann::json blocking_part(const nlohmann::json& row, bool bound, double scale) {
@@ -44,24 +61,7 @@ nlohmann::json blocking_part(const nlohmann::json& row, bool bound, double scale
   }
   if (largest < 0) return nullptr;
   if (!bound) return {{"name", name}, {"max_lsb", largest * scale}};
-  // A bound is an estimate when any slot's is (UnitStats::bound_exact).
-  bool exact = true;
-  if (const auto slots = parts->find("slots"); slots != parts->end())
-    for (const nlohmann::json& s : *slots) exact = exact && s.value("exact", true);
-  return {{"name", name}, {"bound_lsb", largest * scale}, {"exact", exact}};
-}
-
-// Whether configuration i's stated bounds are bounds on every input: false when some slot's input
-// is finer than 2^-20 and its bound was measured at sampled codes (UnitStats::bound_exact).
-bool bounds_exact(const std::vector<nlohmann::json>& reports, std::size_t i) {
-  for (const nlohmann::json& report : reports) {
-    const nlohmann::json& row = report.at("results").at(i);
-    const auto errors = row.find("errors");
-    if (errors == row.end() || !errors->contains("slots")) continue;
-    for (const nlohmann::json& s : errors->at("slots"))
-      if (!s.value("exact", true)) return false;
-  }
-  return true;
+  return {{"name", name}, {"bound_lsb", largest * scale}, {"exact", row_bounds_exact(row)}};
 }
 
 bool bound_measure(const Budget& b) {
