@@ -5,6 +5,11 @@
 
 namespace glint {
 
+std::int64_t quantize_n(double n, const QFormat& format) {
+  return std::max<std::int64_t>(
+      1, Fixed::from_double(n, format, Quant::kRndConv, Overflow::kSat).raw());
+}
+
 NRegister elaborate_n_register(const QFormat& format, const std::vector<std::int64_t>& raw,
                                const std::vector<double>& target, bool fixed) {
   NRegister n;

@@ -25,6 +25,11 @@ struct NRegister {
   std::size_t worst = 0;  // the group where it is
 };
 
+// n as the key's format stores it: rounded to nearest even, saturating, and at least one ulp (the
+// smallest n the register holds: a zero would make t^0 for pow and sfu, a zero divisor for
+// schlick). The caller has refused n <= 0 and n beyond the format.
+std::int64_t quantize_n(double n, const QFormat& format);
+
 // raw[g]: group g's stored value in `format`; target[g]: the n it stands for (the material's n,
 // or n' for match=).
 NRegister elaborate_n_register(const QFormat& format, const std::vector<std::int64_t>& raw,

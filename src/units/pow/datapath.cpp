@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "units/keys.h"
+#include "units/n_register.h"
 #include "units/unit_set.h"
 
 namespace glint {
@@ -96,8 +97,7 @@ PowUnit::PowUnit(const PowConfig& cfg, const MaterialParams& m,
         "pow: {}: shininess {} outside the n register (at most {:.6g})",
         key_values({{"n", cfg.n_format.name()}}), m.shininess, cfg.n_format.max_value()));
   n_ = m.shininess;
-  n_raw_ = Fixed::from_double(n_, cfg.n_format, Quant::kRndConv, Overflow::kSat).raw();
-  if (n_raw_ == 0) n_raw_ = 1;
+  n_raw_ = quantize_n(n_, cfg.n_format);
   fi_ = cfg.in.frac_bits;
   one_in_ = cfg.in.raw_one();
   one_out_ = cfg.out.raw_one();

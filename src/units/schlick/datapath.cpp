@@ -7,6 +7,7 @@
 
 #include "reference/reference.h"
 #include "units/keys.h"
+#include "units/n_register.h"
 
 namespace glint {
 
@@ -49,8 +50,7 @@ SchlickUnit::SchlickUnit(const SchlickConfig& cfg, const MaterialParams& m, doub
   }
   n_ = n_prime;
   material_n_ = m.shininess;
-  n_raw_ = Fixed::from_double(n_prime, cfg.n_format, Quant::kRndConv, Overflow::kSat).raw();
-  if (n_raw_ == 0) n_raw_ = 1;  // the smallest representable n, never a zero divisor
+  n_raw_ = quantize_n(n_prime, cfg.n_format);
   one_in_ = cfg.in.raw_one();
   out_max_ = cfg.out.raw_one();
   n_frac_ = cfg.n_format.frac_bits;

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "units/keys.h"
+#include "units/n_register.h"
 
 namespace glint {
 
@@ -54,8 +55,7 @@ SfuUnit::SfuUnit(const SfuConfig& cfg, const MaterialParams& m) : cfg_(cfg) {
         "sfu: {}: shininess {} outside the n register (at most {:.6g})",
         key_values({{"n", cfg.n_format.name()}}), m.shininess, cfg.n_format.max_value()));
   n_ = m.shininess;
-  n_raw_ = Fixed::from_double(n_, cfg.n_format, Quant::kRndConv, Overflow::kSat).raw();
-  if (n_raw_ == 0) n_raw_ = 1;  // the smallest n the register holds: never t^0
+  n_raw_ = quantize_n(n_, cfg.n_format);
   n_fp32_ = sfu_to_fp32(n_raw_, cfg.n_format.frac_bits);
   one_in_ = cfg.in.raw_one();
   double worst = 0;
