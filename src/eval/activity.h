@@ -1,0 +1,64 @@
+// Switching activity of a lane on a request stream (issue 26 item 3): how many register bits
+// toggle, and how many are clocked, stage by stage, when the requests go through the pipeline in
+// order, one per initiation interval, without stalls.
+//
+// Toggles come from the bit-accurate staged evaluation (eval_staged, the values the SystemC model
+// traces and glint rtl's registers hold): a register of width w holding request i's value after
+// request i - 1's changes popcount((v_i ^ v_{i-1}) & (2^w - 1)) bits. Dynamic energy is a sum of
+// such toggles weighted by each part's switched capacitance (the weights, at a node, are not
+// here); what the tau skip saves is exactly these toggles, so the skip's effect depends on what
+// the hardware does with a skipped request (Gating):
+//   none     the datapath is fed every request; the comparator only zeroes the result: a skipped
+//            request toggles the stages as a computed one does;
+//   operand  a skipped request does not enter the datapath: its stage registers keep the last
+//            computed request's values (operand isolation / enable-held registers), no toggles;
+//   clock    as operand, and the stage registers are clock-gated on the skipped request's cycles:
+//            their clock load is not switched either.
+// Every register bit is clocked once a cycle (a cycle per II of each request) except where clock
+// gating stops it: clocked_bits counts that load, which clock energy is proportional to.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace glint {
+
+class SpecularUnit;
+
+enum class Gating : std::uint8_t { kNone, kOperand, kClock };
+const char* to_string(Gating g);  // "none", "operand", "clock"
+// "none", "operand" or "clock"; throws std::invalid_argument naming the value otherwise.
+Gating parse_gating(const std::string& text);
+
+struct StageActivity {
+  std::string name;                // the stage's name in the unit's layout
+  int bits = 0;                    // register bits of the stage (all its positions)
+  std::uint64_t toggles = 0;       // register bit toggles over the stream
+  std::uint64_t clocked_bits = 0;  // register bits clocked over the stream (bits x cycles)
+};
+
+struct LaneActivity {
+  Gating gating = Gating::kNone;
+  std::size_t requests = 0;  // the stream's requests
+  std::size_t computed = 0;  // those the comparator kept
+  std::uint64_t cycles = 0;  // requests x II
+  std::vector<StageActivity> stages;
+
+  std::uint64_t toggles() const;
+  std::uint64_t clocked_bits() const;
+};
+
+// One request: the slot it reads and its t in the unit's input format.
+struct ActivityRequest {
+  std::size_t slot = 0;
+  std::int64_t t_raw = 0;
+};
+
+// The stream's activity through `unit`'s pipeline, requests in order. The registers start at 0
+// (the reset state), so the first request's set bits count as toggles.
+LaneActivity measure_activity(const SpecularUnit& unit, const std::vector<ActivityRequest>& stream,
+                              Gating gating);
+
+}  // namespace glint
