@@ -17,6 +17,7 @@
 #include <string_view>
 
 #include "cli/cli.h"
+#include "eval/activity.h"
 #include "eval/chip_report.h"
 #include "eval/parallel.h"
 #include "eval/sim_report.h"
@@ -42,6 +43,7 @@ struct SimOptions {
   int display_bits = 8;
   Chip chip;  // --chip
   EpsMeasure eps_measure = EpsMeasure::kLuminance;
+  std::string activity;  // --activity GATING: empty, none, operand or clock
   bool json = false;
 };
 
@@ -59,6 +61,7 @@ struct SimPlan {
   OutputFile* report = nullptr;
   OutputFile* dump = nullptr;
   TraceOutputs trace;
+  std::optional<Gating> gating;  // --activity
 };
 
 // A decimal unsigned 64-bit integer, digits only: no sign (std::stoull would wrap "-1" to
@@ -91,6 +94,13 @@ void parse_vcd_window(const std::string& text, ClockedOptions& co) {
 // most one of them (or --json) on standard output. Options only (the fuzzer): no output declared.
 void check_sim_options(const SimOptions& o, SimPlan& plan) {
   plan.specs = specs_for_chip(parse_unit_options(o.units), o.chip);
+  if (!o.activity.empty()) {
+    try {
+      plan.gating = parse_gating(o.activity);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("--activity: ") + e.what());
+    }
+  }
   if (!(o.sink_ready >= kMinSinkReady && o.sink_ready <= 1))
     throw std::invalid_argument(fmt::format(
         "--sink-ready must be in [{}, 1] (a run takes ~vectors / p cycles)", kMinSinkReady));
@@ -129,7 +139,8 @@ struct SimLanes {
   SlotMap slots;
   std::vector<std::unique_ptr<SpecularUnit>> owned;
   std::vector<const SpecularUnit*> units;
-  std::vector<LaneAccumulator> acc;  // refers to *owned: built once, never moved out of
+  std::vector<LaneAccumulator> acc;       // refers to *owned: built once, never moved out of
+  std::vector<ActivityCounter> activity;  // per lane with --activity, else empty
 };
 
 void make_lanes(const VectorHeader& header, const std::vector<UnitSpec>& specs, int display_bits,
@@ -197,6 +208,7 @@ SimRun run_clocked_mode(const SimOptions& o, ClockedOptions co, const Rereadable
     lanes.acc[r.lane].add(slot, make_reference(lanes.slots, slot, r.row.t), r.t_raw, r.skipped,
                           r.out_raw);
     if (dump) dump->row(r.lane, r.row, r.t_raw, r.skipped, r.out_raw, r.timing);
+    if (!lanes.activity.empty()) lanes.activity[r.lane].add(slot, r.t_raw);
   };
   SimRun run;
   run.timing = run_clocked(lanes.units, lanes.slots, open, co, on_result);
@@ -219,10 +231,12 @@ SimRun run_fast_mode(const SimOptions& o, VectorReader& reader, SimLanes& lanes,
     }
     return ok;
   };
+  // A result at a time (the engine's row-at-a-time path) only for what needs each one.
   std::function<void(const FastResult&)> on_result;
-  if (dump) {
+  if (dump || !lanes.activity.empty()) {
     on_result = [&](const FastResult& r) {
-      dump->row(r.lane, *r.row, r.t_raw, r.skipped, r.out_raw, r.timing);
+      if (dump) dump->row(r.lane, *r.row, r.t_raw, r.skipped, r.out_raw, r.timing);
+      if (!lanes.activity.empty()) lanes.activity[r.lane].add(lanes.slots.slot(*r.row), r.t_raw);
     };
   }
   FastOptions fo;
@@ -253,6 +267,8 @@ nlohmann::json build_report(const SimOptions& o, bool clocked, const SimLanes& l
   for (std::size_t i = 0; i < lanes.units.size(); ++i) {
     list.push_back(unit_sim_report(*lanes.units[i], run.timing[i], lanes.acc[i].stats(),
                                    lanes.acc[i].digest()));
+    if (!lanes.activity.empty())
+      list.back()["activity"] = activity_json(lanes.activity[i].activity());
   }
   report["units"] = list;
   return report;
@@ -280,6 +296,8 @@ void write_outputs(const SimOptions& o, SimPlan& plan, std::uint64_t rows,
     const nlohmann::json& e = u.at("elaboration");
     if (const auto share = e.find("hardware_share"); share != e.end())
       out << fmt::format("    {}\n", (*share)["statement"].get<std::string>());
+    if (const auto a = u.find("activity"); a != u.end())
+      out << "    " << format_activity(*a) << "\n";
   }
 }
 
@@ -304,6 +322,8 @@ int run_sim(const SimOptions& o) {
   } catch (const ResourceLimitError& e) {
     refuse_size(o.vectors, e);  // more slots or contract work than a run may take
   }
+  if (plan.gating)
+    for (const SpecularUnit* u : lanes.units) lanes.activity.emplace_back(*u, *plan.gating);
   std::unique_ptr<SimDump> dump;
   if (plan.dump) dump = std::make_unique<SimDump>(*plan.dump, reader->header(), lanes);
   const bool progress = isatty(STDERR_FILENO);
@@ -353,6 +373,11 @@ void add_sim_command(CLI::App& app, int& status) {
   add_display_bits_option(sub, o->display_bits);
   add_chip_option(sub, o->chip);
   add_eps_measure_option(sub, o->eps_measure);
+  sub->add_option("--activity", o->activity,
+                  "GATING: also count each lane's register bit toggles and clocked bits per stage "
+                  "on the stream (a result at a time: slower); what a skipped request does: none "
+                  "(fed to the datapath), operand (held out of it, as glint rtl's lane), clock "
+                  "(held out and clock-gated)");
   sub->add_flag("--json", o->json, "Print the report as one JSON document on stdout");
   sub->callback([sub, o, &status] {
     o->batch_given = sub->count("--batch") > 0;

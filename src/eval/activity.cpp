@@ -1,5 +1,7 @@
 #include "eval/activity.h"
 
+#include <fmt/format.h>
+
 #include <bitset>
 #include <stdexcept>
 
@@ -49,55 +51,88 @@ std::uint64_t register_bits(std::int64_t value, int width) {
 
 }  // namespace
 
-LaneActivity measure_activity(const SpecularUnit& unit, const std::vector<ActivityRequest>& stream,
-                              Gating gating) {
+ActivityCounter::ActivityCounter(const SpecularUnit& unit, Gating gating)
+    : unit_(unit), ii_(static_cast<std::uint64_t>(unit.timing().ii)) {
   const StageLayout& layout = unit.stages();
-  const int ii = unit.timing().ii;
-  LaneActivity a;
-  a.gating = gating;
-  a.requests = stream.size();
-  a.cycles = static_cast<std::uint64_t>(stream.size()) * static_cast<std::uint64_t>(ii);
-
-  // Flat register index -> (stage, width): positions 1..L, each position's registers in order.
-  std::vector<std::size_t> stage_of(layout.size());
-  std::vector<int> width_of(layout.size());
-  for (const Stage& s : layout.stages()) {
-    StageActivity sa;
-    sa.name = s.name;
-    a.stages.push_back(sa);
-  }
+  activity_.gating = gating;
+  for (const Stage& s : layout.stages()) activity_.stages.push_back(StageActivity{s.name});
+  stage_of_.resize(layout.size());
+  width_of_.resize(layout.size());
   for (int p = 1; p <= layout.latency(); ++p) {
     const std::size_t si = layout.stage_index_at(p);
     const Stage& s = layout.stages()[si];
     for (std::size_t r = 0; r < s.registers.size(); ++r) {
       const std::size_t i = layout.offset(p) + r;
-      stage_of[i] = si;
-      width_of[i] = s.registers[r].format.width();
-      a.stages[si].bits += width_of[i];
+      stage_of_[i] = si;
+      width_of_[i] = s.registers[r].format.width();
+      activity_.stages[si].bits += width_of_[i];
     }
   }
+  values_.resize(layout.size());
+  held_.assign(layout.size(), 0);
+}
 
-  std::vector<std::int64_t> values(layout.size()), held(layout.size(), 0);
-  for (const ActivityRequest& q : stream) {
-    const bool skipped = unit.skip(q.slot, q.t_raw);
-    if (!skipped) ++a.computed;
-    const bool enters = !skipped || gating == Gating::kNone;
-    if (enters) {
-      unit.eval_staged(q.slot, q.t_raw, values.data());
-      for (std::size_t i = 0; i < values.size(); ++i) {
-        const std::uint64_t changed =
-            register_bits(values[i], width_of[i]) ^ register_bits(held[i], width_of[i]);
-        a.stages[stage_of[i]].toggles += std::bitset<64>(changed).count();
-        held[i] = values[i];
-      }
-    }
-    const bool clocked = enters || gating != Gating::kClock;
-    if (clocked) {
-      for (StageActivity& s : a.stages)
-        s.clocked_bits += static_cast<std::uint64_t>(s.bits) * static_cast<std::uint64_t>(ii);
+void ActivityCounter::add(std::size_t slot, std::int64_t t_raw) {
+  LaneActivity& a = activity_;
+  ++a.requests;
+  a.cycles += ii_;
+  const bool skipped = unit_.skip(slot, t_raw);
+  if (!skipped) ++a.computed;
+  const bool enters = !skipped || a.gating == Gating::kNone;
+  if (enters) {
+    unit_.eval_staged(slot, t_raw, values_.data());
+    for (std::size_t i = 0; i < values_.size(); ++i) {
+      const std::uint64_t changed =
+          register_bits(values_[i], width_of_[i]) ^ register_bits(held_[i], width_of_[i]);
+      a.stages[stage_of_[i]].toggles += std::bitset<64>(changed).count();
+      held_[i] = values_[i];
     }
   }
-  return a;
+  if (enters || a.gating != Gating::kClock) {
+    for (StageActivity& s : a.stages) s.clocked_bits += static_cast<std::uint64_t>(s.bits) * ii_;
+  }
+}
+
+nlohmann::json activity_json(const LaneActivity& a) {
+  nlohmann::json stages = nlohmann::json::array();
+  int bits = 0;
+  for (const StageActivity& s : a.stages) {
+    stages.push_back({{"stage", s.name},
+                      {"bits", s.bits},
+                      {"toggles", s.toggles},
+                      {"clocked_bits", s.clocked_bits}});
+    bits += s.bits;
+  }
+  const auto per = [](std::uint64_t x, std::uint64_t n) {
+    return n ? static_cast<double>(x) / static_cast<double>(n) : 0.0;
+  };
+  return {{"gating", to_string(a.gating)},
+          {"requests", a.requests},
+          {"computed", a.computed},
+          {"cycles", a.cycles},
+          {"register_bits", bits},
+          {"toggles", a.toggles()},
+          {"clocked_bits", a.clocked_bits()},
+          {"toggles_per_request", per(a.toggles(), a.requests)},
+          {"toggles_per_computed", per(a.toggles(), a.computed)},
+          {"clocked_fraction", per(a.clocked_bits(), static_cast<std::uint64_t>(bits) * a.cycles)},
+          {"stages", stages}};
+}
+
+std::string format_activity(const nlohmann::json& a) {
+  return fmt::format(
+      "activity (gating {}): {:.1f} register bit toggles per request, {:.1f} per computed one; "
+      "{} register bits, clocked on {:.1f} % of their cycles",
+      a.at("gating").get<std::string>(), a.at("toggles_per_request").get<double>(),
+      a.at("toggles_per_computed").get<double>(), a.at("register_bits").get<int>(),
+      100.0 * a.at("clocked_fraction").get<double>());
+}
+
+LaneActivity measure_activity(const SpecularUnit& unit, const std::vector<ActivityRequest>& stream,
+                              Gating gating) {
+  ActivityCounter counter(unit, gating);
+  for (const ActivityRequest& q : stream) counter.add(q.slot, q.t_raw);
+  return counter.activity();
 }
 
 }  // namespace glint

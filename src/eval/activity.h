@@ -20,6 +20,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -56,8 +57,29 @@ struct ActivityRequest {
   std::int64_t t_raw = 0;
 };
 
-// The stream's activity through `unit`'s pipeline, requests in order. The registers start at 0
-// (the reset state), so the first request's set bits count as toggles.
+// The activity of a request stream through one unit's pipeline, a request at a time in stream
+// order. The registers start at 0 (the reset state), so the first request's set bits count as
+// toggles.
+class ActivityCounter {
+ public:
+  ActivityCounter(const SpecularUnit& unit, Gating gating);
+  void add(std::size_t slot, std::int64_t t_raw);
+  const LaneActivity& activity() const { return activity_; }
+
+ private:
+  const SpecularUnit& unit_;
+  std::uint64_t ii_ = 1;
+  LaneActivity activity_;
+  std::vector<std::size_t> stage_of_;  // per flat register index of the staged values
+  std::vector<int> width_of_;
+  std::vector<std::int64_t> values_, held_;
+};
+
+// The report's "activity" entry (src/eval/sim_report.md) and its line in the text report.
+nlohmann::json activity_json(const LaneActivity& a);
+std::string format_activity(const nlohmann::json& activity);
+
+// The same over a whole stream.
 LaneActivity measure_activity(const SpecularUnit& unit, const std::vector<ActivityRequest>& stream,
                               Gating gating);
 

@@ -351,8 +351,9 @@ class Runner:
             self.json_file(sim_doc, "glint_sim_report", os.path.join(self.work, "sim.json"),
                            "glint sim --mode clocked --report hard_cases.vec")
         self.json_stdout(sim_doc, "glint_sim_report",
-                         ["sim", self.src("traces/multi_light.vec"), "--chip", "ram:materials=16,slots=16", "--json"],
-                         "glint sim --chip ram:materials=16,slots=16 multi_light.vec")
+                         ["sim", self.src("traces/multi_light.vec"), "--chip", "ram:materials=16,slots=16",
+                          "--activity", "clock", "--json"],
+                         "glint sim --chip ram:materials=16,slots=16 --activity clock multi_light.vec")
         # sweep: a vector file with a refused configuration (schlick match=width cannot hold the
         # Gaussian lobe's n'), a scene (image errors), and one shard of a fixed-capacity sweep.
         sweep_doc = "src/sweep/sweep_report.md"
