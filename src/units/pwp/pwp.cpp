@@ -16,36 +16,11 @@
 #include <algorithm>
 
 #include "units/pwp/datapath.h"
+#include "units/pwp/rtl.h"
 #include "units/unit_set.h"
 
 namespace glint {
 namespace {
-
-// Width of bank j: every group's c_j, two's complement when any is negative.
-int bank_width(const std::vector<PwpUnit>& units, int j) {
-  std::int64_t hi = 0;
-  bool negative = false;
-  for (const PwpUnit& u : units)
-    for (std::size_t k = 0; k < u.segment_count(); ++k) {
-      const std::int64_t c = u.coeff(k, j);
-      negative = negative || c < 0;
-      hi = std::max(hi, c < 0 ? -c : c);
-    }
-  int bits = 1;
-  while (bits < 62 && (std::int64_t{1} << bits) <= hi) ++bits;
-  return bits + (negative ? 1 : 0);
-}
-
-// Bank j's words, group-major, each group's 2^segments entries (the segments a group does not use,
-// when its span holds fewer codes, read 0).
-std::vector<std::int64_t> bank_words(const std::vector<PwpUnit>& units, int segments, int j) {
-  std::vector<std::int64_t> w;
-  const std::size_t rows = std::size_t{1} << segments;
-  for (const PwpUnit& u : units) {
-    for (std::size_t k = 0; k < rows; ++k) w.push_back(k < u.segment_count() ? u.coeff(k, j) : 0);
-  }
-  return w;
-}
 
 struct Pwp : UnitKindDefaults {
   using Config = PwpConfig;
@@ -149,10 +124,10 @@ struct Pwp : UnitKindDefaults {
     const bool known = !L.tables_ram && L.groups == static_cast<int>(units.size());
     // Bank j: c_j of every segment of every group, read in the stage that adds it.
     const auto bank = [&](int j) {
-      const std::vector<std::int64_t> words = bank_words(units, c.segments, j);
-      return b.slot_table(rows, bank_width(units, j), L.groups, true,
+      const PwpBank k = pwp_bank(units, c.segments, j);
+      return b.slot_table(rows, k.width, L.groups, true,
                           fmt::format("coefficient bank c_{} (2^segments per datapath group)", j),
-                          known ? &words : nullptr);
+                          known ? &k.words : nullptr);
     };
 
     // Stage 1: t - t0 and the split of v at the group's offset width (span tables as lut's), c_d.
@@ -169,7 +144,9 @@ struct Pwp : UnitKindDefaults {
     b.op("add");
     b.op("shift");
     const int carried = std::max(1, c.segments) + L.group_bits + 2;  // index, group, t<=t0, t=1
-    b.reg(std::max(1, rb) + wacc + carried, "stage 1: x, c_d, index, group, flags");
+    // acc = c_d << (fa - cf): the register holds c_d's bits (its low ones are constant zeros).
+    const PwpBank top = pwp_bank(units, c.segments, d);
+    b.reg(std::max(1, rb) + top.width + carried, "stage 1: x, c_d, index, group, flags");
     b.stage("stage 1", {sp, sub, sh, cd});
 
     // Multiply-add stages: acc x rounded to fa bits (the last: exact), + c_j from its bank.
@@ -178,9 +155,16 @@ struct Pwp : UnitKindDefaults {
       const bool last = s == d + 1;
       std::vector<Seg> p;
       const Seg cj = bank(j);
-      p.push_back(
-          rb > 0 ? parallel(b.multiplier(wacc, rb, fmt::format("stage {}: acc x", s), 1, true), cj)
-                 : cj);
+      // The first product multiplies x by the register loaded with c_d: from a ROM of known,
+      // non-negative contents it has one partial-product row per bit some c_d sets (as horner's
+      // first multiply-add); otherwise the signed accumulator.
+      const std::string what = fmt::format("stage {}: acc x", s);
+      Seg mul;
+      if (rb > 0 && s == 2 && known && !top.is_signed)
+        mul = b.table_multiplier(rb, top.words, what);
+      else if (rb > 0)
+        mul = b.multiplier(s == 2 ? top.width : wacc, rb, what, 1, true);
+      p.push_back(rb > 0 ? parallel(mul, cj) : cj);
       b.op("table_read");
       if (rb > 0) b.op("mul");
       p.push_back(b.adder(wacc + (last ? rb : 0), fmt::format("stage {}: + c_{}", s, j)));
@@ -201,6 +185,10 @@ struct Pwp : UnitKindDefaults {
             {"offset_bits", u.offset_bits()},
             {"blended_segments", u.blended_segments()},
             {"chord_segments", u.chord_segments()}};
+  }
+  static std::string rtl(const hdl::DatapathPorts& p, const Config& c,
+                         const std::vector<Datapath>& units, const StageLayout& layout) {
+    return pwp_rtl(p, c, units, layout);
   }
 };
 
