@@ -68,6 +68,13 @@ PwpUnit::PwpUnit(const PwpConfig& cfg, const MaterialParams& m) : cfg_(cfg) {
   guard_given_ = cfg.guard >= 0 && !cfg.guard_auto;
   const int guard = cfg.guard >= 0 ? cfg.guard : pwp_min_guard(cfg_);
   const int cf = cfg_.coef_frac;
+  if (cf > kPwpMaxCoefFrac)
+    // refusal: pwp.coef_frac
+    throw std::invalid_argument(fmt::format(
+        "pwp: {}: at most {} coefficient fraction bits (the fits' coefficients, up to 2^7 in "
+        "magnitude, then stay well inside 64-bit integers)",
+        key_values({{"coef_frac", auto_value(!cfg.coef_frac_auto, cf)}, {"out", cfg.out.name()}}),
+        kPwpMaxCoefFrac));
   n_ = m.shininess;
   const int fi = cfg.in.frac_bits;
   one_in_ = cfg.in.raw_one();
@@ -122,7 +129,12 @@ PwpUnit::PwpUnit(const PwpConfig& cfg, const MaterialParams& m) : cfg_(cfg) {
       place();
       continue;
     }
-    const std::vector<double> fit = fit_segment(n_, end(k), end(k + 1), d);
+    std::vector<double> fit = fit_segment(n_, end(k), end(k + 1), d);
+    // A fit of a rise normalised to [0, 1] has coefficients of a few units; one that is not finite
+    // or far beyond (Remez gone astray) is replaced by the chord.
+    if (!std::all_of(fit.begin(), fit.end(),
+                     [](double v) { return std::isfinite(v) && std::fabs(v) < 0x1p7; }))
+      fit = chord;
     std::vector<std::int64_t> high(stride_, 0);
     for (int j = 2; j <= d; ++j) high[j] = std::llround(std::ldexp(fit[j], cf));
     // Not monotone once quantized: blended towards the chord, (1 - i/16) fit + (i/16) chord, at the

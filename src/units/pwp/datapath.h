@@ -67,6 +67,9 @@ struct PwpConfig {
 
 // The widest input pwp takes: its build checks every code of the span for monotonicity.
 inline constexpr int kPwpMaxInFrac = 20;
+// The widest coefficients (coef_frac, also when resolved from out): the integer arithmetic of the
+// quantization stays far from 64 bits.
+inline constexpr int kPwpMaxCoefFrac = 48;
 
 // coef_frac and guard resolved from auto: cf = out + 2; guard faithful ((d - 1) 2^-(g+1) <= ¼)
 // and at least cf - out (the coefficients are added into the accumulator exactly).
