@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -27,11 +28,14 @@ double t_from_v(double t0, double v) {
   return v <= 0.5 ? t0 + h * v : 1.0 - h * (1.0 - v);
 }
 
+// t^n on [t0, 1] seen from v, or (fit_function) any function of v; n then only scales Remez's
+// rounding floor.
 struct Target {
   double t0 = 0.0;
   double n = 1.0;
+  const std::function<double(double)>* fn = nullptr;
   double t(double v) const { return t_from_v(t0, v); }
-  double y(double v) const { return glossy_scalar(t(v), n); }
+  double y(double v) const { return fn != nullptr ? (*fn)(v) : glossy_scalar(t(v), n); }
 };
 
 struct CoeffFit {
@@ -511,15 +515,13 @@ double sample_max_error(const std::vector<double>& coeffs, const FitOptions& o,
 
 }  // namespace
 
-FitResult fit_power(const FitOptions& o) {
-  check_options(o);
+namespace {
+
+FitResult fit_target(const FitOptions& o, const Target& target) {
   Subspace sub;
   sub.zero = o.constrain_zero;
   sub.one = o.constrain_one;
   sub.m = o.degree + 1 - (sub.zero ? 1 : 0) - (sub.one ? 1 : 0);
-  Target target;
-  target.n = o.shininess;
-  target.t0 = o.domain == FitDomain::kTau ? o.tau : 0.0;
 
   FitResult r;
   r.variable = o.domain == FitDomain::kTau ? FitVariable::kU : FitVariable::kT;
@@ -570,6 +572,31 @@ FitResult fit_power(const FitOptions& o) {
     r.sample_max_error = sample_max_error(r.coeffs, o, target);
     r.ls_sample_max_error = sample_max_error(reference.coeffs, o, target);
   }
+  return r;
+}
+
+}  // namespace
+
+FitResult fit_power(const FitOptions& o) {
+  check_options(o);
+  Target target;
+  target.n = o.shininess;
+  target.t0 = o.domain == FitDomain::kTau ? o.tau : 0.0;
+  return fit_target(o, target);
+}
+
+FitResult fit_function(const FitOptions& o, const std::function<double(double)>& y) {
+  check_options(o);
+  if (o.method == FitMethod::kRobust)
+    throw std::invalid_argument("fit: fit_function takes least squares or minimax");
+  FitOptions opt = o;
+  opt.domain = FitDomain::kTau;  // v in [0, 1], both ends in the domain
+  opt.tau = 0.0;
+  Target target;
+  target.n = o.shininess;
+  target.fn = &y;
+  FitResult r = fit_target(opt, target);
+  r.skipped_error_bound = 0.0;
   return r;
 }
 

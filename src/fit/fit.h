@@ -22,6 +22,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string_view>
 #include <vector>
 
@@ -122,6 +123,13 @@ struct FitResult {
 
 // Fits t^n as configured. Throws std::invalid_argument for bad options.
 FitResult fit_power(const FitOptions& options);
+
+// Fits any function y(v) on v in [0, 1] as fit_power fits t^n on the tau domain (the pieces of a
+// piecewise unit: their target normalised to y(0) = 0, y(1) = 1, so that the constraints pin both
+// ends). method: least squares or minimax; `shininess` only scales Remez's rounding floor (t^n
+// amplifies the rounding of t n-fold); domain and tau are not read. The result's to_variable and
+// skipped_error_bound do not apply.
+FitResult fit_function(const FitOptions& options, const std::function<double(double)>& y);
 
 // A robust fit of t^n whose largest error on its samples exceeds the least-squares fit's on the
 // same samples by more than that error itself (twice as large) or by more than kRobustLoss of the

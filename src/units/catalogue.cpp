@@ -10,6 +10,7 @@
 #include "units/keys.h"
 #include "units/lut/lut.h"
 #include "units/pow/pow.h"
+#include "units/pwp/pwp.h"
 #include "units/schlick/schlick.h"
 #include "units/sfu/sfu.h"
 
@@ -18,7 +19,8 @@ namespace glint {
 // Adding a unit: one line here (and its folder, src/units/<unit>/).
 const std::vector<const UnitDescription*>& unit_descriptions() {
   static const std::vector<const UnitDescription*> all = {
-      &pow_unit(), &schlick_unit(), &hast_unit(), &horner_unit(), &lut_unit(), &sfu_unit()};
+      &pow_unit(), &schlick_unit(), &hast_unit(), &horner_unit(),
+      &lut_unit(), &sfu_unit(),     &pwp_unit()};
   return all;
 }
 

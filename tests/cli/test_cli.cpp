@@ -33,7 +33,7 @@ const std::string kPhongBasic = kTraces + "/phong_basic.vec";
 
 // The default set (what eval, sim and render run without --unit); kOptInUnits only by --unit.
 const std::vector<std::string> kAllUnits = {"pow", "schlick", "hast", "horner", "lut"};
-const std::vector<std::string> kOptInUnits = {"sfu"};
+const std::vector<std::string> kOptInUnits = {"sfu", "pwp"};
 
 const auto quote = glint::test::shell_quote;
 const auto read_text = glint::test::read_file;

@@ -60,7 +60,7 @@ const StageDelay& stage(const UnitCost& c, const std::string& name) {
   throw std::runtime_error("no stage " + name);
 }
 
-const std::vector<std::string> kUnits = {"schlick", "hast", "horner", "pow", "lut", "sfu"};
+const std::vector<std::string> kUnits = {"schlick", "hast", "horner", "pow", "lut", "sfu", "pwp"};
 
 TEST(CostModel, DelayFormulas) {
   // The fitted depths (cost_model.h): logarithmic in the width, never below one gate.
@@ -98,9 +98,21 @@ TEST(CostModel, RomCostFollowsContents) {
 }
 
 TEST(CostModel, InventoryIsConsistent) {
-  const std::vector<std::string> specs = {
-      "schlick", "schlick:divider=iterative", "schlick:skip=off", "hast", "hast:d=1", "hast:d=2",
-      "horner",  "horner:domain=full",        "horner:degree=1",  "pow",  "lut",      "lut:bits=3"};
+  const std::vector<std::string> specs = {"schlick",
+                                          "schlick:divider=iterative",
+                                          "schlick:skip=off",
+                                          "hast",
+                                          "hast:d=1",
+                                          "hast:d=2",
+                                          "horner",
+                                          "horner:domain=full",
+                                          "horner:degree=1",
+                                          "pow",
+                                          "lut",
+                                          "lut:bits=3",
+                                          "pwp",
+                                          "pwp:degree=1",
+                                          "pwp:degree=3,segments=6"};
   for (const auto& spec : specs) {
     for (const std::vector<double>& slots : {std::vector<double>{50}, {10, 50, 200}}) {
       SCOPED_TRACE(spec + " slots " + std::to_string(slots.size()));
@@ -252,6 +264,39 @@ TEST(CostModel, LutTableDoublesWithBits) {
   const double ratio = (t7[0]->ge + t7[1]->ge) / (t6[0]->ge + t6[1]->ge);
   EXPECT_GT(ratio, 1.2);
   EXPECT_LT(ratio, 2.2);
+}
+
+// pwp: one coefficient bank per coefficient, 2^segments rows per datapath group, each read in
+// the stage that adds its coefficient; one multiply-add per degree. On a loaded chip (three
+// materials, tables=ram) the banks are registers whatever their contents, so the lane grows with
+// both keys.
+TEST(CostModel, PwpBanksFollowSegmentsAndDegree) {
+  const std::vector<double> shin = {10, 20, 50};
+  double prev = 0;
+  for (int d = 1; d <= 3; ++d) {
+    const UnitCost c = unit_cost(*build("pwp:degree=" + std::to_string(d), shin, 3));
+    EXPECT_GT(c.area_ge, prev) << "degree " << d;
+    prev = c.area_ge;
+    const auto banks = find(c, "table", "coefficient bank");
+    ASSERT_EQ(banks.size(), static_cast<std::size_t>(d + 1));
+    for (const Primitive* b : banks) {
+      EXPECT_EQ(b->width_a, 16);  // 2^4 rows, the default segments
+      EXPECT_EQ(b->count, 3);     // one per material
+    }
+    EXPECT_EQ(find(c, "multiplier", "acc x").size(), static_cast<std::size_t>(d));
+    EXPECT_EQ(c.ops_per_computed.at("mul"), d);
+    EXPECT_EQ(c.stages.size(), static_cast<std::size_t>(d + 2));  // comparator, lookup, d macs
+  }
+  prev = 0;
+  for (int seg = 2; seg <= 6; ++seg) {
+    const UnitCost c = unit_cost(*build("pwp:segments=" + std::to_string(seg), shin, 3));
+    EXPECT_GT(c.area_ge, prev) << "segments " << seg;
+    prev = c.area_ge;
+    for (const Primitive* b : find(c, "table", "coefficient bank")) EXPECT_EQ(b->width_a, 1 << seg);
+  }
+  // The higher coefficients are smaller: c_2's bank is narrower than c_0's (t^n at coef_frac).
+  const UnitCost def = cost("pwp");
+  EXPECT_LT(find(def, "table", "bank c_2")[0]->width_b, find(def, "table", "bank c_0")[0]->width_b);
 }
 
 // Banks: the two nodes a request reads (j and j + 1) are one even and one odd entry, so the lut's

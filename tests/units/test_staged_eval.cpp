@@ -84,6 +84,12 @@ TEST(StagedEval, Lut) {
     check_spec(spec);
 }
 
+TEST(StagedEval, Pwp) {
+  for (const char* spec : {"pwp", "pwp:degree=1", "pwp:degree=3,segments=6,in=uq1.13",
+                           "pwp:segments=0,degree=3,skip=off,out=uq1.12"})
+    check_spec(spec);
+}
+
 // The specs each unit declares it is co-simulated with (kCosimCases): a new unit is covered here
 // by declaring them.
 TEST(StagedEval, EveryDeclaredCase) {

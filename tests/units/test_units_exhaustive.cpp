@@ -1,16 +1,17 @@
 // The accuracy contract of every datapath unit, exhaustively over all 2^16 inputs of the default
 // 16-bit input format (uq1.15, including the raws above 1.0 that the front end clamps):
 //  - Schlick is correctly rounded (<= ½ ulp of its real-valued model at the quantized t and n);
-//  - Hast and Horner are faithful (< 1 ulp of their real-valued models at the quantized input and
-//    coefficients);
+//  - Hast, Horner and pwp are faithful (< 1 ulp of their real-valued models at the quantized input
+//    and coefficients; pwp within its stated budget when a guard is given);
 //  - pow, lut and sfu stay within the bound they state against t^n itself on every computed input;
 //  - every unit is monotone non-decreasing in t, returns exactly 1.0 at t = 1 (Schlick, Hast, the
-//    constrained fits, pow, lut, sfu), and exactly 0 where it skips;
+//    constrained fits, pow, lut, sfu, pwp), and exactly 0 where it skips;
 //  - every unit's comparator skips only inputs that Källberg's float test skips on real t, and
 //    only where the unit's own output is imperceptible (Källberg §3).
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <nlohmann/json.hpp>
 #include <vector>
 
 #include "reference/reference.h"
@@ -191,11 +192,79 @@ TEST(ExhaustiveUnits, SfuWithinStatedBound) {
   EXPECT_LT(build("sfu", material(1000))->error_bound(0), 0.1 / 255);
 }
 
+// pwp at its default and at eleven other specs: every segment count from one segment to 2^10,
+// every degree, skip off (the span is all of [0, 1]), narrow and wide outputs, given coefficient
+// widths and guards (a guard of 0 at degree 3 is refused where its output would step back: it is
+// not in the list).
+const char* const kPwpSpecs[] = {"pwp",
+                                 "pwp:degree=1",
+                                 "pwp:degree=3",
+                                 "pwp:segments=0,degree=3",
+                                 "pwp:segments=2",
+                                 "pwp:segments=6,degree=1",
+                                 "pwp:segments=8",
+                                 "pwp:segments=10,degree=3",
+                                 "pwp:skip=off",
+                                 "pwp:skip=off,segments=6,degree=3",
+                                 "pwp:out=uq1.10,segments=3",
+                                 "pwp:out=uq1.20,coef_frac=24,degree=3",
+                                 "pwp:coef_frac=15,guard=0,degree=1",
+                                 "pwp:guard=8,degree=3"};
+
+TEST(ExhaustiveUnits, PwpWithinBudgetMonotone) {
+  for (const char* spec : kPwpSpecs) {
+    for (double n : kShininess) {
+      const auto u = build(spec, material(n));
+      const Sweep s = sweep(*u, 0, n);
+      const std::string what = u->canonical_spec() + " n=" + std::to_string(n);
+      EXPECT_LE(s.max_ulps, u->datapath_bound_ulps(0) + 1e-9) << what;
+      EXPECT_LT(s.max_ulps, 1.0) << what;
+      expect_common(s, *u, what);
+    }
+  }
+}
+
+TEST(ExhaustiveUnits, PwpDegreeOneIsCorrectlyRounded) {
+  // No inner rounding: the interpolation is formed exactly and rounded once, as lut's.
+  for (double n : kShininess) {
+    const auto u = build("pwp:degree=1", material(n));
+    EXPECT_EQ(u->datapath_bound_ulps(0), 0.5);
+    EXPECT_LE(sweep(*u, 0, n).max_ulps, 0.5 + 1e-9) << n;
+  }
+}
+
+TEST(ExhaustiveUnits, PwpRepairedSegmentsStayMonotone) {
+  // Over all of [0, 1] (skip=off) the segments far below the lobe rise by less than their minimax
+  // error, and a concave lobe (n < 1) is steep at t = 0: some quantized segments are not monotone
+  // there and are blended towards their chord. The unit says how many, and stays monotone.
+  int blended = 0;
+  for (double n : {0.3, 50.0}) {
+    const auto u = build("pwp:skip=off", material(n));
+    blended += u->describe()["slots"][0]["blended_segments"].get<int>();
+    const Sweep s = sweep(*u, 0, n);
+    EXPECT_LE(s.max_ulps, u->datapath_bound_ulps(0) + 1e-9) << n;
+    expect_common(s, *u, "pwp:skip=off n=" + std::to_string(n));
+  }
+  EXPECT_GT(blended, 0);
+}
+
+TEST(ExhaustiveUnits, PwpDefaultWithinOneDisplayLsb) {
+  // The default (16 quadratic segments over the span) against t^n itself: under 1 LSB of an 8-bit
+  // display for every shininess of the list, and more segments or a higher degree do better.
+  for (double n : kShininess) {
+    const double def = sweep(*build("pwp", material(n)), 0, n).max_abs_vs_pow;
+    EXPECT_LT(def, 1.0 / 255) << n;
+    if (n < 3) continue;  // t^n with n <= degree: every fit is exact up to rounding
+    EXPECT_LT(sweep(*build("pwp:degree=3", material(n)), 0, n).max_abs_vs_pow, def) << n;
+    EXPECT_LT(sweep(*build("pwp:segments=6", material(n)), 0, n).max_abs_vs_pow, def) << n;
+  }
+}
+
 TEST(ExhaustiveUnits, SkipInsideFloatTestAndImperceptible) {
   // Every unit's comparator threshold T: each real t that rounds to a code <= T is <= tau (the
   // float test skips it too), the unit's own output there is at most eps_K / c_y, and T is the
   // largest such code (either the float test's bound or the next code's output is visible).
-  for (const char* name : {"pow", "schlick", "hast", "horner", "lut", "sfu"}) {
+  for (const char* name : {"pow", "schlick", "hast", "horner", "lut", "sfu", "pwp"}) {
     for (double n : kShininess) {
       for (double cy : {1.0, 0.01}) {
         const MaterialParams m = material(n, cy);
@@ -217,7 +286,7 @@ TEST(ExhaustiveUnits, SkipInsideFloatTestAndImperceptible) {
 }
 
 TEST(ExhaustiveUnits, AlwaysSkipWhenLobeInvisible) {
-  for (const char* name : {"pow", "schlick", "hast", "horner", "lut", "sfu"}) {
+  for (const char* name : {"pow", "schlick", "hast", "horner", "lut", "sfu", "pwp"}) {
     const auto u = build(name, material(50, 5e-4));  // c_y < eps
     for (std::int64_t t = 0; t < kInputs; ++t) ASSERT_EQ(u->eval_with_skip(0, t), 0) << name;
   }

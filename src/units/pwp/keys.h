@@ -1,0 +1,30 @@
+// pwp's keys (key_table.h): each declared once; PwpConfig takes its defaults from them.
+#pragma once
+
+#include <vector>
+
+#include "units/key_table.h"
+
+namespace glint {
+
+struct PwpKeys {
+  static constexpr IntKey segments{
+      "segments", 4, 0, 10,
+      "log2 of the segment count K over [t0, 1] (the index: the top bits of t - t0)"};
+  static constexpr IntKey degree{"degree", 2, 1, 3,
+                                 "polynomial degree per segment, in the offset below the index"};
+  static constexpr IntKey coef_frac{
+      "coef_frac", kAutoInt, 1, 40, "coefficient fraction bits (auto: out + 2)", true};
+  static constexpr IntKey guard{
+      "guard",
+      kAutoInt,
+      0,
+      24,
+      "accumulator bits below the output's LSB (auto: faithful, at least coef_frac - out, "
+      "raised until the output is monotone)",
+      true};
+
+  static std::vector<UnitKey> list() { return key_list(segments, degree, coef_frac, guard); }
+};
+
+}  // namespace glint

@@ -1,0 +1,15 @@
+// The one place pwp fits its segments: today src/fit's Remez exchange; a fit with the coefficient
+// formats as constraints (Sollya's fpminimax) can replace it here without touching the datapath.
+#pragma once
+
+#include <vector>
+
+namespace glint {
+
+// t^n on [a, b] (0 <= a < b <= 1) as a polynomial of degree 1..3 in x = (t - a) / (b - a), equal
+// to t^n at both ends (so that neighbouring segments meet), minimax in between: the fit runs on
+// the normalised target (t^n - a^n) / (b^n - a^n), which both ends pin to 0 and 1. Monomial
+// coefficients in x, c[0] = a^n.
+std::vector<double> fit_segment(double n, double a, double b, int degree);
+
+}  // namespace glint
