@@ -42,6 +42,7 @@ struct SimOptions {
   int display_bits = 8;
   Chip chip;  // --chip
   EpsMeasure eps_measure = EpsMeasure::kLuminance;
+  std::string node;  // --node: area and critical path at this node too
   bool json = false;
 };
 
@@ -252,7 +253,7 @@ nlohmann::json build_report(const SimOptions& o, bool clocked, const SimLanes& l
   nlohmann::json list = nlohmann::json::array();
   for (std::size_t i = 0; i < lanes.units.size(); ++i) {
     list.push_back(unit_sim_report(*lanes.units[i], run.timing[i], lanes.acc[i].stats(),
-                                   lanes.acc[i].digest()));
+                                   lanes.acc[i].digest(), !o.node.empty()));
   }
   report["units"] = list;
   return report;
@@ -280,6 +281,7 @@ void write_outputs(const SimOptions& o, SimPlan& plan, std::uint64_t rows,
     const nlohmann::json& e = u.at("elaboration");
     if (const auto share = e.find("hardware_share"); share != e.end())
       out << fmt::format("    {}\n", (*share)["statement"].get<std::string>());
+    if (u.contains("node")) out << "    " << node_line(u.at("node")) << "\n";
   }
 }
 
@@ -353,6 +355,7 @@ void add_sim_command(CLI::App& app, int& status) {
   add_display_bits_option(sub, o->display_bits);
   add_chip_option(sub, o->chip);
   add_eps_measure_option(sub, o->eps_measure);
+  add_node_option(sub, o->node);
   sub->add_flag("--json", o->json, "Print the report as one JSON document on stdout");
   sub->callback([sub, o, &status] {
     o->batch_given = sub->count("--batch") > 0;
