@@ -1,6 +1,6 @@
 #!/bin/sh
 # Re-derives the node constants from scratch: the primitives mapped to OSU 0.18 um and timed by
-# OpenSTA (primitives.py --liberty osu018, ~8 minutes of one core), fitted by node_fit.py, and
+# OpenSTA (primitives.py --liberty osu018, 3 minutes of one core), fitted by node_fit.py, and
 # compares the header with the stored src/cost/node_osu018.h and the CSV with the stored one.
 # The ctest calibration_node_primitives (configuration resynth) runs it:
 #   ctest --test-dir build -C resynth -R calibration_node_primitives --output-on-failure
