@@ -71,6 +71,9 @@ void add_chip_option(CLI::App* sub, Chip& chip);
 [[noreturn]] void refuse_chip(const Chip& chip, const std::exception& e);
 // specs_on_chip, its refusal named by refuse_chip: called before any output is made.
 std::vector<UnitSpec> specs_for_chip(std::vector<UnitSpec> specs, const Chip& chip);
+// --node NAME (cost/node.h): also state each lane's area in um2 and its critical path in ns and
+// MHz at that node, from the proxy's constants calibrated against its library. Empty: not asked.
+void add_node_option(CLI::App* sub, std::string& node);
 // --eps-measure luminance|channel: what eps is a threshold of (reference/pixel_error.h).
 void add_eps_measure_option(CLI::App* sub, EpsMeasure& measure);
 

@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "cli/cli.h"
+#include "cost/node.h"
 #include "io/atomic_file.h"
 #include "io/input_error.h"
 #include "units/slot_plan.h"
@@ -68,6 +69,18 @@ void require_backpressure_for_seed(bool seed_given, double sink_ready) {
     throw std::invalid_argument(
         "--seed sets the pattern of a sink that is not always ready: it needs --sink-ready below "
         "1");
+}
+
+void add_node_option(CLI::App* sub, std::string& node) {
+  std::string names;
+  for (const std::string& n : node_names()) names += (names.empty() ? "" : ", ") + n;
+  sub->add_option("--node", node,
+                  fmt::format("Also state each lane's area in um2 and critical path in ns and MHz "
+                              "at this node, from the cost proxy's constants calibrated against "
+                              "its library ({}: OSU 0.18 um, mapped by Yosys and timed by "
+                              "OpenSTA; src/cost/README.md)",
+                              names))
+      ->check(CLI::IsMember(node_names()));
 }
 
 void add_chip_option(CLI::App* sub, Chip& chip) {

@@ -10,6 +10,7 @@
 #include "cli/cli.h"
 #include "eval/chip_report.h"
 #include "eval/parallel.h"
+#include "eval/sim_report.h"
 #include "image/image.h"
 #include "io/output_set.h"
 #include "io/vectors.h"
@@ -32,6 +33,7 @@ struct RenderCommandOptions {
   Chip chip;
   EpsMeasure eps_measure = EpsMeasure::kLuminance;
   HeatScale heat_scale = HeatScale::kShared;
+  std::string node;  // --node
   bool json = false;
   bool html = false;
 };
@@ -46,6 +48,7 @@ int run_render(const RenderCommandOptions& o) {
   options.units = specs_for_chip(options.units, o.chip);
   options.threads = o.threads > 0 ? o.threads : default_threads();
   options.chip = o.chip;
+  options.node = !o.node.empty();
   options.eps_measure = o.eps_measure;
   options.heat_scale = o.heat_scale;
   options.progress = isatty(STDERR_FILENO);
@@ -164,6 +167,9 @@ int run_render(const RenderCommandOptions& o) {
         100.0 * u.error.differing_fraction, u.error.highlight_ratio, u.error.core_ratio,
         100.0 * r.unit_skipped_fraction(u), u.cost.area_ge, u.spec);
   }
+  if (!o.node.empty())
+    for (const UnitRender& u : r.units)
+      out << fmt::format("{:<{}} {}\n", u.label, label_width, node_line(u.cost.node_json()));
   out << fmt::format("images and report.json{} in {}\n", o.html ? " (and report.html)" : "",
                      o.out_dir);
   return kExitOk;
@@ -191,6 +197,7 @@ void add_render_command(CLI::App& app, int& status) {
       ->type_name("FORMAT");
   add_threads_option(sub, o->threads);
   add_chip_option(sub, o->chip);
+  add_node_option(sub, o->node);
   add_eps_measure_option(sub, o->eps_measure);
   sub->add_option_function<std::string>(
          "--heat-scale",

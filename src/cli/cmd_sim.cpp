@@ -44,6 +44,7 @@ struct SimOptions {
   Chip chip;  // --chip
   EpsMeasure eps_measure = EpsMeasure::kLuminance;
   std::string activity;  // --activity GATING: empty, none, operand or clock
+  std::string node;      // --node: area and critical path at this node too
   bool json = false;
 };
 
@@ -266,7 +267,7 @@ nlohmann::json build_report(const SimOptions& o, bool clocked, const SimLanes& l
   nlohmann::json list = nlohmann::json::array();
   for (std::size_t i = 0; i < lanes.units.size(); ++i) {
     list.push_back(unit_sim_report(*lanes.units[i], run.timing[i], lanes.acc[i].stats(),
-                                   lanes.acc[i].digest()));
+                                   lanes.acc[i].digest(), !o.node.empty()));
     if (!lanes.activity.empty())
       list.back()["activity"] = activity_json(lanes.activity[i].activity());
   }
@@ -298,6 +299,7 @@ void write_outputs(const SimOptions& o, SimPlan& plan, std::uint64_t rows,
       out << fmt::format("    {}\n", (*share)["statement"].get<std::string>());
     if (const auto a = u.find("activity"); a != u.end())
       out << "    " << format_activity(*a) << "\n";
+    if (u.contains("node")) out << "    " << node_line(u.at("node")) << "\n";
   }
 }
 
@@ -378,6 +380,7 @@ void add_sim_command(CLI::App& app, int& status) {
                   "on the stream (a result at a time: slower); what a skipped request does: none "
                   "(fed to the datapath), operand (held out of it, as glint rtl's lane), clock "
                   "(held out and clock-gated)");
+  add_node_option(sub, o->node);
   sub->add_flag("--json", o->json, "Print the report as one JSON document on stdout");
   sub->callback([sub, o, &status] {
     o->batch_given = sub->count("--batch") > 0;

@@ -31,6 +31,7 @@ struct SizeOptions {
   int jobs = 0;
   std::size_t top = 1;
   bool no_image = false;
+  std::string node;  // --node
   bool json = false;
   WidenLimits widen;
   bool no_widen = false;
@@ -85,6 +86,7 @@ int run_size_command(const SizeOptions& o) {
   SweepSettings settings;
   settings.display_bits = o.display_bits;
   settings.chip = o.chip;
+  settings.node = !o.node.empty();
   settings.eps_measure = o.eps_measure;
   settings.jobs = o.jobs > 0 ? o.jobs : default_threads();
   std::function<void(const std::string&)> progress;
@@ -167,6 +169,7 @@ void add_size_command(CLI::App& app, int& status) {
       ->allow_extra_args(false);
   add_display_bits_option(sub, o->display_bits);
   add_chip_option(sub, o->chip);
+  add_node_option(sub, o->node);
   add_eps_measure_option(sub, o->eps_measure);
   sub->add_option("--jobs", o->jobs, "Threads (default: every core); results do not depend on it")
       ->check(CLI::Range(1, 256));

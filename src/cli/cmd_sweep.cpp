@@ -31,6 +31,7 @@ struct SweepCommandOptions {
   double sink_ready = 1.0;
   std::uint64_t seed = 1;
   bool seed_given = false;
+  std::string node;  // --node
   bool json = false;
 };
 
@@ -52,6 +53,7 @@ int run_sweep_command(const SweepCommandOptions& o) {
   if (!o.shard.empty()) std::tie(job.shard, job.shards) = parse_shard(o.shard);
   job.settings.display_bits = o.display_bits;
   job.settings.chip = o.chip;
+  job.settings.node = !o.node.empty();
   job.settings.eps_measure = o.eps_measure;
   job.settings.jobs = o.jobs > 0 ? o.jobs : default_threads();
   job.settings.sink = SinkReady{o.sink_ready, o.seed};
@@ -124,6 +126,7 @@ void add_sweep_command(CLI::App& app, int& status) {
       ->capture_default_str();
   add_display_bits_option(sub, o->display_bits);
   add_chip_option(sub, o->chip);
+  add_node_option(sub, o->node);
   add_eps_measure_option(sub, o->eps_measure);
   sub->add_option("--jobs", o->jobs,
                   "Threads over configurations (default: every core); results do not depend on "

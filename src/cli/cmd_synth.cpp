@@ -19,10 +19,12 @@
 #include "cli/rtl_input.h"
 #include "cli/synth_sta.h"
 #include "cost/liberty.h"
+#include "cost/node.h"
 #include "hdl/sdc.h"
 #include "io/input_error.h"
 #include "io/output_set.h"
 #include "units/catalogue.h"
+#include "units/lane_cost.h"
 
 namespace glint::cli {
 namespace {
@@ -411,6 +413,17 @@ int run_synth(const SynthOptions& o) {
                      {"startpoint", point(path.start)},
                      {"endpoint", point(path.end)}};
     }
+    // The built-in node: the cost proxy's own figures for it beside the measured ones, from the
+    // constants calibrated on it (cost/node.h).
+    if (const NodeConstants* node = find_node(o.liberty)) {
+      const nlohmann::json n = unit_cost(*d.unit).node_json();
+      if (n.at("node") == node->name)
+        j["proxy"] = {{"node", n.at("node")},
+                      {"area_um2", n.at("area_um2")},
+                      {"critical_path_ns", n.at("critical_path_ns")},
+                      {"critical_path", n.at("critical_path")},
+                      {"max_clock_mhz", n.at("max_clock_mhz")}};
+    }
   }
   if (report) report->stream() << j.dump(2) << "\n";
   out.commit();
@@ -440,6 +453,12 @@ int run_synth(const SynthOptions& o) {
         t["endpoint"]["name"].get<std::string>(), t["endpoint"]["stage"].get<std::string>(),
         t["slack_ns"].get<double>(), t["clock_period_ns"].get<double>());
   }
+  if (j.contains("proxy"))
+    std::cout << fmt::format("  the cost proxy at {}: {:.0f} um2, critical path {:.2f} ns ({})\n",
+                             j["proxy"]["node"].get<std::string>(),
+                             j["proxy"]["area_um2"].get<double>(),
+                             j["proxy"]["critical_path_ns"].get<double>(),
+                             j["proxy"]["critical_path"].get<std::string>());
   for (const auto& s : dr.stages)
     std::cout << fmt::format("  {:<20} {:>6} flip-flops  depth {:>4}\n",
                              s["stage"].get<std::string>(), s["flip_flops"].get<long>(),

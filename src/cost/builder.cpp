@@ -1,5 +1,7 @@
 #include "cost/builder.h"
 
+#include <fmt/format.h>
+
 #include <optional>
 
 namespace glint {
@@ -11,16 +13,19 @@ void comparator_stage(CostBuilder& b, const LaneShape& L, bool carry_root) {
   std::optional<Seg> tau, root;
   const int w = (L.skip ? wi : 0) + (L.slot_to_group ? L.group_bits : 0);
   if (w > 0) {
+    // Read by the slot id from the lane's input port, not a register: at the node it is priced
+    // as a table read by a computed address (no weak flip-flop driving its muxes).
     tau = b.slot_table(L.slots, w, 1, true,
                        !L.skip           ? "group id table (per slot)"
                        : L.slot_to_group ? "tau table (per slot, with its group id)"
-                                         : "tau table (per slot)");
+                                         : "tau table (per slot)",
+                       nullptr, 1, true);
     b.request_op("table_read");
   }
   // hast/horner: the u scaler's root is the datapath group's (its slots' smallest tau), not a
   // slot's threshold.
   if (carry_root) {
-    root = b.slot_table(L.groups, wi, 1, true, "root table (per datapath group)");
+    root = b.slot_table(L.groups, wi, 1, true, "root table (per datapath group)", nullptr, 1, true);
     b.request_op("table_read");
   }
   std::vector<Seg> path;
@@ -65,6 +70,21 @@ void merge_buffer(CostBuilder& b, const LaneShape& L) {
   const int counters = 2 * tag + count + (L.ii > 1 ? clog2(L.ii) : 0);
   b.reg(counters, "credit, issue, head (and II) counters", true);
   b.adder(counters, "counter incrementers");
+  // The head register selects the leaving entry among all B of them (a mux it drives unbuffered,
+  // as a RAM's read address: its node delay grows with the B x width muxes), then the choice
+  // between the entry and a result arriving at the head, to the output port.
+  const NodeConstants& n = b.node();
+  const Seg head_tag{"head == tag", 0, n.comparator.delay.at(tag, tag, 0)};
+  if (L.buffer > 1)
+    b.lane_path("merge buffer read", {{fmt::format("read mux {}x{}", L.buffer, w + sources), 0,
+                                       b.select_ns(n.ram, L.buffer, w + sources)},
+                                      {"arrival mux", 0, b.select_ns(n.mux, 2, w)}});
+  // Writing an entry: the head's valid bit read, the retire, then the write enable of the entry's
+  // w + sources flip-flops.
+  b.lane_path("merge buffer write",
+              {L.buffer > 1 ? Seg{"valid bit read", 0, b.select_ns(n.ram, L.buffer, 1)} : head_tag,
+               {"retire to every entry's decode", 0, b.select_ns(n.mux, 2, L.buffer)},
+               {"entry enable", 0, b.select_ns(n.mux, 2, w + sources)}});
 }
 
 }  // namespace glint

@@ -16,19 +16,24 @@
 #include <vector>
 
 #include "cost/cost_model.h"
+#include "cost/node.h"
 #include "fixed/fixed_point.h"
 
 namespace glint {
 
-// One element on a stage's path.
+// One element on a stage's path: its delay in gate levels and at the node (cost/node.h), and
+// whether it is an adder or a multiplier (a carry chain: see CostBuilder::close).
 struct Seg {
+  enum class Part { kOther, kAdder, kMultiplier };
   std::string label;
   double delay = 0;
+  double ns = 0;
+  Part part = Part::kOther;
 };
 
 // Two things side by side: the stage waits for the slower.
 inline Seg parallel(const Seg& a, const Seg& b) {
-  return {"(" + a.label + " || " + b.label + ")", std::max(a.delay, b.delay)};
+  return {"(" + a.label + " || " + b.label + ")", std::max(a.delay, b.delay), std::max(a.ns, b.ns)};
 }
 
 // Things one after the other, as one segment.
@@ -37,6 +42,7 @@ inline Seg series(const std::vector<Seg>& segs) {
   for (const Seg& g : segs) {
     out.label += (out.label.empty() ? "" : " + ") + g.label;
     out.delay += g.delay;
+    out.ns += g.ns;
   }
   return out;
 }
@@ -44,19 +50,21 @@ inline Seg series(const std::vector<Seg>& segs) {
 // Collects the inventory, the stage paths and the operation counts of one lane.
 class CostBuilder {
  public:
-  CostBuilder() : k_(cost_constants()) {}
+  CostBuilder() : k_(cost_constants()), n_(node_osu018()) {}
   // Per-slot tables as registers with a write port (LaneShape::tables_ram) or as case ROMs.
   void set_tables_ram(bool ram) { tables_ram_ = ram; }
 
   // ---- primitives: each returns its path segment ----
   Seg adder(int w, const std::string& where) {
-    add({"adder", w, 0, 1, w * k_.add_bit_ge, where});
-    return {fmt::format("add {}", w), adder_delay(w)};
+    add({"adder", w, 0, 1, w * k_.add_bit_ge, where}, n_.adder);
+    return {fmt::format("add {}", w), adder_delay(w), n_.adder.delay.at(w, w, 0),
+            Seg::Part::kAdder};
   }
   // is_signed: two's-complement operands (the RTL's `signed` product: a wider tree).
   Seg multiplier(int a, int b, const std::string& where, int count = 1, bool is_signed = false) {
-    add({"multiplier", a, b, count, count * multiplier_ge(a, b, is_signed), where});
-    return {fmt::format("mul {}x{}", a, b), multiplier_delay(a, b)};
+    add({"multiplier", a, b, count, count * multiplier_ge(a, b, is_signed), where}, n_.multiplier);
+    return {fmt::format("mul {}x{}", a, b), multiplier_delay(a, b),
+            n_.multiplier.delay.at(a + b, std::min(a, b), 0), Seg::Part::kMultiplier};
   }
   // A multiplier whose b operand is the constant k (a per-material value when the scene has one
   // material: Yosys folds its one-entry table and builds shift-and-add rows for k's one bits).
@@ -70,8 +78,9 @@ class CostBuilder {
     const int ones = __builtin_popcountll(m);
     if (ones <= 1) return {fmt::format("mul {}x{} (shift)", a, k), 0};  // a power of two: wires
     const double ge = multiplier_ge(a, bits, is_signed) * std::min(1.0, 0.85 * ones / bits);
-    add({"multiplier", a, bits, 1, ge, where + " (by a constant)"});
-    return {fmt::format("mul {}xk{}", a, bits), multiplier_delay(a, ones)};
+    add({"multiplier", a, bits, 1, ge, where + " (by a constant)"}, n_.multiplier);
+    return {fmt::format("mul {}xk{}", a, bits), multiplier_delay(a, ones),
+            n_.multiplier.delay.at(a + ones, std::min(a, ones), 0), Seg::Part::kMultiplier};
   }
   // A multiplier whose b operand is read from a ROM of these (non-negative) values, one per
   // datapath group: one value is a constant multiplier; otherwise a bit that is 0 in every entry
@@ -89,42 +98,49 @@ class CostBuilder {
   Seg divider(int rows, int divisor, const std::string& where) {
     // A row as the RTL writes it: one subtractor of the partial remainder's D + 1 bits whose
     // borrow is the quotient bit, and the restore mux.
-    add({"divider", rows, divisor, 1, rows * (divisor + 1) * (k_.add_bit_ge + k_.mux2_ge), where});
-    return {fmt::format("div row {}", divisor + 1), divider_row_delay(divisor)};
+    add({"divider", rows, divisor, 1, rows * (divisor + 1) * (k_.add_bit_ge + k_.mux2_ge), where},
+        n_.divider);
+    return {fmt::format("div row {}", divisor + 1), divider_row_delay(divisor),
+            n_.divider.delay.at(divisor + 1, divisor + 1, 0)};
   }
   Seg comparator(int w, const std::string& where) {
-    add({"comparator", w, 0, 1, w * k_.cmp_bit_ge, where});
-    return {fmt::format("cmp {}", w), comparator_delay(w)};
+    add({"comparator", w, 0, 1, w * k_.cmp_bit_ge, where}, n_.comparator);
+    return {fmt::format("cmp {}", w), comparator_delay(w), n_.comparator.delay.at(w, w, 0)};
   }
   Seg mux(int w, int inputs, const std::string& where) {
-    add({"mux", w, inputs, 1, w * (inputs - 1) * k_.mux2_ge, where});
-    return {fmt::format("mux{} {}", inputs, w), mux_delay(inputs)};
+    add({"mux", w, inputs, 1, w * (inputs - 1) * k_.mux2_ge, where}, n_.mux);
+    return {fmt::format("mux{} {}", inputs, w), mux_delay(inputs), select_ns(n_.mux, inputs, w)};
   }
   Seg shifter(int w, int levels, const std::string& where) {
-    add({"shifter", w, levels, 1, w * levels * k_.shift_bit_ge, where});
-    return {fmt::format("shift {}x{}", w, levels), static_cast<double>(levels)};
+    add({"shifter", w, levels, 1, w * levels * k_.shift_bit_ge, where}, n_.shifter);
+    return {fmt::format("shift {}x{}", w, levels), static_cast<double>(levels),
+            n_.shifter.delay.at(levels, w, 0)};
   }
   Seg lzd(int w, const std::string& where) {
-    add({"lzd", w, 0, 1, w * k_.lzd_bit_ge, where});
-    return {fmt::format("lzd {}", w), std::max(1.0, w - 2.0)};
+    add({"lzd", w, 0, 1, w * k_.lzd_bit_ge, where}, n_.lzd);
+    return {fmt::format("lzd {}", w), std::max(1.0, w - 2.0), n_.lzd.delay.at(w, w, 0)};
   }
   // n two-input gates of glue logic (AND/OR: the flow's $_AND_, $_ANDNOT_, ...; 6 transistors).
   Seg gates(int n, const std::string& where) {
-    add({"gates", n, 0, 1, n * k_.gate_ge, where});
-    return {fmt::format("gates {}", n), 1};
+    add({"gates", n, 0, 1, n * k_.gate_ge, where}, n_.gates);
+    return {fmt::format("gates {}", n), 1, n_.gates.delay.at(1, 1, 0)};
   }
   // A fixed-function ROM of known contents (the same for every material: pow's log2 and exp2).
   Seg rom(const std::vector<std::int64_t>& words, int w, const std::string& where, int copies = 1) {
     const int entries = static_cast<int>(words.size());
-    add({"table", entries, w, copies, copies * rom_ge(words, w), where});
-    return {fmt::format("rom {}x{}", entries, w), table_delay(entries)};
+    add({"table", entries, w, copies, copies * rom_ge(words, w), where}, n_.rom);
+    return {fmt::format("rom {}x{}", entries, w), table_delay(entries),
+            n_.rom.delay.at(w, entries, 0)};
   }
   // Per-slot storage, `banks` of `entries` words. shared_port: the banks are one table addressed
   // by (bank, entry); otherwise every bank has its own read port. As a ROM (the scene's materials
   // fixed at synthesis) of contents the caller knows (`words`, all banks, bank-major) or not; as
-  // registers with a write port (ram: a chip of fixed capacity).
+  // registers with a write port (ram: a chip of fixed capacity). read_banks: a RAM read as that
+  // many arrays, each with its own read mux (lut's even and odd t^n banks). computed_address: its
+  // read address is computed in the stage (lut's from t), not read from the id register.
   Seg slot_table(int entries, int w, int banks, bool shared_port, const std::string& where,
-                 const std::vector<std::int64_t>* words = nullptr) {
+                 const std::vector<std::int64_t>* words = nullptr, int read_banks = 1,
+                 bool computed_address = false) {
     const bool ram = tables_ram_;
     const int e = shared_port ? entries * banks : entries;
     const int tables = shared_port ? 1 : banks;
@@ -141,34 +157,63 @@ class CostBuilder {
     } else if (e > 2) {
       ge = tables * static_cast<double>(e) * w * k_.rom_bit_ge;
     }
-    add({"table", entries, w, banks, ge, where});
-    return {fmt::format("{} {}x{}", ram ? "ram" : "rom", e, w),
-            ram ? mux_delay(e) : table_delay(e)};
+    add({"table", entries, w, banks, ge, where}, ram ? n_.ram : n_.rom);
+    // Loaded through a write port from the lane's inputs: the entry's decode, then its enable to
+    // the w flip-flops of every table written with it.
+    if (ram)
+      lane_path(where + ": write port", {{"decode", 0, clog2(e) * n_.gates.delay.at(1, 1, 0)},
+                                         {"enable", 0, select_ns(n_.mux, 2, w * tables)}});
+    // A RAM's read is a mux of its entries whose select drives every mux of its array
+    // unbuffered. A table addressed by the group or slot id alone shares that register with the
+    // stage's other such tables: close() prices the select's load of all of them.
+    const double loads = static_cast<double>(e) * w / read_banks;
+    if (ram && shared_port && banks == 1) {
+      id_loads_ += loads;
+      id_loads_max_ = std::max(id_loads_max_, loads);
+    }
+    return {fmt::format("{} {}x{}", ram ? "ram" : "rom", e, w), ram ? mux_delay(e) : table_delay(e),
+            !ram               ? n_.rom.delay.at(w, e, 0)
+            : computed_address ? n_.ram_computed.delay.at(clog2(e), e, loads)
+                               : n_.ram.delay.at(clog2(e), e, loads)};
   }
   // A pipeline register written by every computed request (or every request).
   // Per-request registers are the lane's: they hold under backpressure (flip-flops with enable).
   void reg(int w, const std::string& where, bool per_request = false, int count = 1) {
-    add({"register", w, 0, count, count * w * (per_request ? k_.dffe_ge : k_.dff_ge), where});
+    add({"register", w, 0, count, count * w * (per_request ? k_.dffe_ge : k_.dff_ge), where},
+        per_request ? n_.dffe : n_.dff);
     (per_request ? request_ : computed_)["reg_bits"] += w;
   }
   // State registers written `writes` times per computed request (iterative divider).
   void state_reg(int w, const std::string& where, double writes) {
-    add({"register", w, 0, 1, w * k_.dffe_ge, where});
+    add({"register", w, 0, 1, w * k_.dffe_ge, where}, n_.dffe);
     computed_["reg_bits"] += w * writes;
   }
+
+  const NodeConstants& node() const { return n_; }
 
   void op(const std::string& kind, double n = 1) { computed_[kind] += n; }
   void request_op(const std::string& kind, double n = 1) { request_[kind] += n; }
 
   // Closes a stage: its path in series plus the register overhead.
   void stage(const std::string& name, const std::vector<Seg>& path) {
-    StageDelay s{name, k_.reg_delay, ""};
-    for (const Seg& g : path) {
-      s.delay += g.delay;
-      s.path += g.label + " + ";
-    }
-    s.path += "reg";
+    StageDelay s = close(name, path);
+    // The id register loaded by every id-addressed table of the stage, not only the one on the
+    // path: the load term of all of them in place of the largest's.
+    if (id_loads_ > id_loads_max_)
+      s.ns += n_.ram.delay.at(0, 1, id_loads_) - n_.ram.delay.at(0, 1, id_loads_max_);
+    id_loads_ = id_loads_max_ = 0;
     stages_.push_back(std::move(s));
+  }
+  // A path of the lane's own control (merge buffer, table write port) from a register to a
+  // register or a port: priced at the node beside the stages (a real node's worst path is often
+  // one of them), not in the gate-level critical path the generic calibration holds.
+  void lane_path(const std::string& name, const std::vector<Seg>& path) {
+    lane_paths_.push_back(close(name, path));
+  }
+  // A mux of `inputs` words of `w` bits whose select comes from one register: the flow does not
+  // buffer it, so its delay grows with the muxes it drives (cost/node.h).
+  double select_ns(const NodePart& p, int inputs, int w) const {
+    return p.delay.at(clog2(inputs), inputs, static_cast<double>(inputs) * w);
   }
 
   UnitCost finish() {
@@ -182,6 +227,15 @@ class CostBuilder {
         c.critical_stage = s.stage;
       }
     }
+    c.lane_paths = std::move(lane_paths_);
+    c.node = n_.name;
+    for (const Primitive& p : c.inventory) c.area_um2 += p.um2;
+    for (const auto* list : {&c.stages, &c.lane_paths})
+      for (const StageDelay& s : *list)
+        if (s.ns > c.critical_path_ns) {
+          c.critical_path_ns = s.ns;
+          c.critical_path_node = s.stage;
+        }
     for (auto& [kind, n] : computed_)
       if (n != 0) c.ops_per_computed[kind] = n;
     for (auto& [kind, n] : request_)
@@ -190,15 +244,38 @@ class CostBuilder {
   }
 
  private:
-  void add(Primitive p) {
+  void add(Primitive p, const NodePart& node) {
     if (p.ge <= 0) return;  // zero-width parts (e.g. no interpolation bits) are not built
+    p.um2 = p.ge * node.um2_per_ge;
     inv_.push_back(std::move(p));
+  }
+  // An adder next to a multiplier on a path counts half its node delay: the flow's carry chains
+  // are ripple-like, and an adder's low bits feed the multiplier's first rows (or take its
+  // product's low bits) while its carries still run, as the gate-level model assumes for horner's
+  // + c_k (its residuals: node_fit.py).
+  StageDelay close(const std::string& name, const std::vector<Seg>& path) const {
+    StageDelay s{name, k_.reg_delay, "", n_.reg_ns};
+    for (std::size_t i = 0; i < path.size(); ++i) {
+      const Seg& g = path[i];
+      const auto multiplier_at = [&](std::size_t j) {
+        return j < path.size() && path[j].part == Seg::Part::kMultiplier;
+      };
+      const bool overlaps =
+          g.part == Seg::Part::kAdder && (multiplier_at(i + 1) || (i > 0 && multiplier_at(i - 1)));
+      s.delay += g.delay;
+      s.ns += overlaps ? g.ns / 2 : g.ns;
+      s.path += g.label + " + ";
+    }
+    s.path += "reg";
+    return s;
   }
 
   const CostConstants& k_;
+  const NodeConstants& n_;
   bool tables_ram_ = false;
   std::vector<Primitive> inv_;
-  std::vector<StageDelay> stages_;
+  std::vector<StageDelay> stages_, lane_paths_;
+  double id_loads_ = 0, id_loads_max_ = 0;  // RAM reads by the id register in the open stage
   std::map<std::string, double> computed_, request_;
 };
 

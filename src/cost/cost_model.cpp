@@ -123,6 +123,22 @@ nlohmann::json UnitCost::to_json() const {
           {"inventory", std::move(inv)}};
 }
 
+nlohmann::json UnitCost::node_json() const {
+  nlohmann::json paths = nlohmann::json::array();
+  for (const auto* list : {&stages, &lane_paths})
+    for (const StageDelay& s : *list)
+      paths.push_back({{"path", s.stage}, {"ns", s.ns}, {"parts", s.path}});
+  nlohmann::json area = nlohmann::json::object();
+  for (const Primitive& p : inventory) area[p.kind] = area.value(p.kind, 0.0) + p.um2;
+  return {{"node", node},
+          {"area_um2", area_um2},
+          {"area_um2_by_kind", std::move(area)},
+          {"critical_path_ns", critical_path_ns},
+          {"max_clock_mhz", critical_path_ns > 0 ? 1000.0 / critical_path_ns : 0.0},
+          {"critical_path", critical_path_node},
+          {"paths", std::move(paths)}};
+}
+
 UnitCost UnitCost::from_json(const nlohmann::json& j) {
   UnitCost c;
   for (const auto& p : j.at("inventory")) c.inventory.push_back(Primitive::from_json(p));

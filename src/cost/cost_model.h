@@ -97,6 +97,7 @@ struct Primitive {
   int count = 1;      // identical copies (tables: banks, e.g. one per slot)
   double ge = 0;      // gate equivalents of all `count` of them
   std::string where;  // e.g. "u scaler", "stage 3", "log2 table"
+  double um2 = 0;     // at the node (cost/node.h); in node_json, not in to_json
 
   nlohmann::json to_json() const;
   static Primitive from_json(const nlohmann::json& j);
@@ -107,6 +108,7 @@ struct StageDelay {
   std::string stage;  // "comparator", "stage 1", ...
   double delay = 0;   // gates of logic depth (glint synth's measure)
   std::string path;   // e.g. "table 2 + mul 18x16 + add 33 + reg"
+  double ns = 0;      // at the node (cost/node.h), register overhead included
 };
 
 struct UnitCost {
@@ -117,8 +119,18 @@ struct UnitCost {
   std::vector<StageDelay> stages;  // every stage, in pipeline order
   std::map<std::string, double> ops_per_computed;
   std::map<std::string, double> ops_per_request;
+  // At the node (cost/node.h): the lane's own control paths beside the stages, the area in um2,
+  // and the slowest of stages and lane paths in ns. Not in to_json (the generic figures every
+  // report and golden holds); node_json() has them.
+  std::vector<StageDelay> lane_paths;
+  std::string node;
+  double area_um2 = 0;
+  double critical_path_ns = 0;
+  std::string critical_path_node;  // the stage or lane path it is
 
   nlohmann::json to_json() const;
+  // {"node", "area_um2", "critical_path_ns", "max_clock_mhz", "critical_path", "paths"}.
+  nlohmann::json node_json() const;
   static UnitCost from_json(const nlohmann::json& j);
 };
 

@@ -11,7 +11,7 @@
 namespace glint {
 
 nlohmann::json unit_sim_report(const SpecularUnit& unit, const TimingStats& t, const UnitStats& s,
-                               std::uint64_t digest) {
+                               std::uint64_t digest, bool node) {
   const UnitCost cost = unit_cost(unit);
   nlohmann::json ops = nlohmann::json::object();
   for (const auto& [kind, n] : cost.ops_per_computed)
@@ -19,7 +19,7 @@ nlohmann::json unit_sim_report(const SpecularUnit& unit, const TimingStats& t, c
   for (const auto& [kind, n] : cost.ops_per_request)
     ops[kind] = ops.value(kind, 0.0) + n * static_cast<double>(t.results);
   const nlohmann::json description = unit.describe();
-  return {
+  nlohmann::json r = {
       {"unit", s.name},
       {"spec", unit.canonical_spec()},
       {"config", description["config"]},
@@ -40,6 +40,15 @@ nlohmann::json unit_sim_report(const SpecularUnit& unit, const TimingStats& t, c
       {"errors", s.errors_json()},
       {"digest", fmt::format("{:016x}", digest)},
   };
+  if (node) r["node"] = cost.node_json();
+  return r;
+}
+
+std::string node_line(const nlohmann::json& n) {
+  return fmt::format("at {}: {:.0f} um2, critical path {:.2f} ns ({}), {:.0f} MHz",
+                     n.at("node").get<std::string>(), n.at("area_um2").get<double>(),
+                     n.at("critical_path_ns").get<double>(),
+                     n.at("critical_path").get<std::string>(), n.at("max_clock_mhz").get<double>());
 }
 
 std::string format_sim_table(const nlohmann::json& report) {

@@ -21,8 +21,12 @@ inline constexpr int kSimReportVersion = 5;
 
 // One unit's report: config, elaboration, counts, timing, operations, area and critical path,
 // errors.
+// node: with the lane's figures at the node (UnitCost::node_json) as "node".
 nlohmann::json unit_sim_report(const SpecularUnit& unit, const TimingStats& timing,
-                               const UnitStats& stats, std::uint64_t digest);
+                               const UnitStats& stats, std::uint64_t digest, bool node = false);
+
+// One line of a lane's figures at the node (UnitCost::node_json): area, critical path, clock.
+std::string node_line(const nlohmann::json& node);
 
 // The table printed on stdout.
 std::string format_sim_table(const nlohmann::json& report);

@@ -519,6 +519,7 @@ class SceneRenderer {
     for (std::size_t u = 0; u < units_; ++u)
       shared_scale = std::max(shared_scale, acc_[u].result().max_lsb);
     out_.heat_scale = options_.heat_scale;
+    out_.node = options_.node;
     for (std::size_t u = 0; u < units_; ++u) {
       UnitRender r;
       r.label = labels[u];

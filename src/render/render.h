@@ -60,7 +60,8 @@ enum class RenderImages {
 struct RenderOptions {
   std::vector<UnitSpec> units;  // empty: every unit at its defaults
   int threads = 1;
-  Chip chip;                                        // --chip (units/chip.h)
+  bool node = false;  // --node: each lane's area and critical path at the node in the report
+  Chip chip;          // --chip (units/chip.h)
   EpsMeasure eps_measure = EpsMeasure::kLuminance;  // --eps-measure (reference/pixel_error.h)
   HeatScale heat_scale = HeatScale::kShared;        // --heat-scale
   int tile_rows = 16;     // rows ray-cast and evaluated together (memory: one tile's requests)
@@ -132,6 +133,7 @@ struct RenderResult {
   double eps = 1e-3;
   std::optional<SceneReproduces> reproduces;
   HeatScale heat_scale = HeatScale::kShared;
+  bool node = false;  // units[].node in the report (RenderOptions::node)
   // skip_mask: each visible pixel coloured by the fraction of its lights skipped (facing away,
   // t <= 0 or tau); light_skip_masks: one per light (the first kMaxLightSkipMasks), each pixel by
   // how that light's pair went (Källberg & Larsson's Fig.1 view); legend: the masks' colours and

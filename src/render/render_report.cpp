@@ -258,6 +258,7 @@ nlohmann::json RenderResult::to_json() const {
                           {"critical_path", u.cost.critical_path},
                           {"errors", u.stats.errors_json()},
                           {"description", u.stats.description}});
+    if (node) units_json.back()["node"] = u.cost.node_json();
   }
   return {{"glint_render_report", kRenderReportVersion},
           {"scene", scene_name},

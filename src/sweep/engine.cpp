@@ -155,6 +155,14 @@ std::vector<nlohmann::json> SweepEngine::results() const {
           {"errors", s.errors_json()},
           {"digest", fmt::format("{:016x}", block.ev->digest(u))},
       };
+      if (settings_.node) {
+        const nlohmann::json n = cost.node_json();
+        out[block.members[u]]["node"] = {{"node", n.at("node")},
+                                         {"area_um2", n.at("area_um2")},
+                                         {"critical_path_ns", n.at("critical_path_ns")},
+                                         {"critical_path", n.at("critical_path")},
+                                         {"max_clock_mhz", n.at("max_clock_mhz")}};
+      }
     }
   }
   return out;

@@ -28,7 +28,8 @@ struct SweepSettings {
   Chip chip;             // --chip: the chip every configuration is built on
   EpsMeasure eps_measure = EpsMeasure::kLuminance;  // --eps-measure
   int jobs = 1;                                     // threads (results do not depend on it)
-  SinkReady sink;  // sink backpressure of the timing model (default: always ready)
+  SinkReady sink;     // sink backpressure of the timing model (default: always ready)
+  bool node = false;  // --node: each row's area and critical path at the node ("node")
   // Configurations per Evaluator (built on the threads by block), and rows per window of the
   // engine (each thread keeps ~16 bytes per row of it).
   std::size_t block = 64;

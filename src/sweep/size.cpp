@@ -106,12 +106,14 @@ nlohmann::json choice_json(const SizeRun& run, std::size_t i, const std::vector<
     }
     measures[b.measure.name] = per_input;
   }
-  return {{"index", i},
-          {"unit", row.at("unit")},
-          {"spec", row.at("spec")},
-          {"canonical_spec", row.at("canonical_spec")},
-          {"value", run.pick.value[i]},
-          {"measures", measures}};
+  nlohmann::json choice = {{"index", i},
+                           {"unit", row.at("unit")},
+                           {"spec", row.at("spec")},
+                           {"canonical_spec", row.at("canonical_spec")},
+                           {"value", run.pick.value[i]},
+                           {"measures", measures}};
+  if (row.contains("node")) choice["node"] = row.at("node");  // --node, on the first input
+  return choice;
 }
 
 }  // namespace

@@ -15,9 +15,11 @@ Takes ~10 minutes on one core.
 """
 import argparse
 import csv
+import os
 import random
 import sys
 
+from node_flow import synthesize_node
 from yosys_flow import synthesize
 
 WIDTHS = [4, 8, 12, 17, 21, 25, 29, 33, 37, 41]
@@ -27,8 +29,19 @@ MULS = [(8, 8), (12, 6), (16, 4), (19, 19), (24, 12), (17, 17), (21, 17), (25, 1
 ENTRIES = [1, 2, 3, 5, 9, 17, 33, 65, 129, 257]
 
 
+class Module:
+    """A primitive: its ports and body. str() is the combinational module `top` the generic flow
+    synthesizes; node_flow registers its ports for the node's timing."""
+
+    def __init__(self, ports, body):
+        self.ports, self.body = ports, body
+
+    def __str__(self):
+        return f"module top({', '.join(self.ports)});\n{self.body}\nendmodule\n"
+
+
 def comb(ports, body):
-    return f"module top({', '.join(ports)});\n{body}\nendmodule\n"
+    return Module(ports, body)
 
 
 def adder(w):
@@ -145,17 +158,57 @@ def jobs(rng):
             yield "ram", e, w, "write port", ram(e, w)
 
 
+def node_jobs(rng):
+    """A smaller sweep for the node (each primitive through both flows): the shapes the lanes use."""
+    yield "wire", 1, 0, "", comb(["input a", "output y"], "assign y = a;")
+    for w in [4, 8, 12, 17, 25, 33, 41]:
+        yield "adder", w, 0, "", adder(w)
+        yield "comparator", w, 0, "", comparator(w)
+    for w in [8, 17, 25, 33]:
+        yield "divider_row", w, 0, "", divider_row(w)
+    for a, b in [(8, 8), (12, 6), (16, 4), (17, 17), (24, 12), (25, 17), (33, 17), (33, 25),
+                 (41, 33)]:
+        yield "multiplier", a, b, "unsigned", multiplier(a, b, False)
+    for a, b in [(12, 6), (17, 17), (33, 25)]:
+        yield "multiplier", a, b, "signed", multiplier(a, b, True)
+    for a in [12, 24]:
+        for kb in [8, 16]:
+            k = rng.randrange(1 << (kb - 1), 1 << kb) | 1
+            yield "const_multiplier", a, kb, f"k={k} ones={bin(k).count('1')}", \
+                const_multiplier(a, k, kb)
+    for w in [8, 16, 32]:
+        for k in [2, 3, 5, 8, 16]:
+            yield "mux", w, k, "", mux(w, k)
+        yield "register", w, 0, "", register(w, False)
+        yield "register", w, 0, "enable", register(w, True)
+    for w in [16, 24]:
+        for levels in [3, 5]:
+            yield "shifter", w, levels, "", shifter(w, levels)
+        yield "lzd", w, 0, "", lzd(w)
+    for e in [5, 17, 65, 257]:
+        for smooth in (False, True):
+            yield "rom", e, 16, "smooth" if smooth else "random", \
+                rom(e, 16, rom_contents(e, 16, smooth, rng))
+    for e in [2, 5, 17, 65, 257]:
+        for w in [8, 16, 24]:
+            yield "ram", e, w, "write port", ram(e, w)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("-o", "--output", required=True)
     ap.add_argument("--only", help="one kind (adder, multiplier, rom, ...)")
+    ap.add_argument("--liberty", help="also map each primitive to this library (osu018 or a "
+                    "file) and time it with OpenSTA: area_um2 and ns beside GE and depth")
     args = ap.parse_args()
     rng = random.Random(10)  # fixed contents: the same modules every run
+    if args.liberty:
+        return node_main(args, rng)
     rows = []
     for kind, a, b, variant, verilog in jobs(rng):
         if args.only and kind != args.only:
             continue
-        r = synthesize(verilog, "top")
+        r = synthesize(str(verilog), "top")
         rows.append([kind, a, b, variant, r["ge"], r["depth"], r["cells"], r["flip_flops"]])
         print(f"{kind} {a} {b} {variant}: {r['ge']:.1f} GE depth {r['depth']}", file=sys.stderr,
               flush=True)
@@ -168,5 +221,29 @@ def main():
         w.writerows(rows)
 
 
+def node_main(args, rng):
+    rows = []
+    for kind, a, b, variant, m in node_jobs(rng):
+        if args.only and kind != args.only:
+            continue
+        g = synthesize(str(m), "top")
+        own = a * b if kind == "ram" else a if kind == "register" else 0
+        n = synthesize_node(m.ports, m.body, args.liberty, own)
+        rows.append([kind, a, b, variant, g["ge"], g["depth"], round(n["area_um2"], 1),
+                     round(n["ns"], 4), n["cells"]])
+        print(f"{kind} {a} {b} {variant}: {g['ge']:.1f} GE depth {g['depth']}, "
+              f"{n['area_um2']:.0f} um2 {n['ns']:.3f} ns", file=sys.stderr, flush=True)
+    with open(args.output, "w", newline="") as f:
+        f.write(f"# Primitives between registers at the node: GE and depth of glint synth's generic "
+                f"flow, area (less the wrapper's flip-flops) and register-to-register ns of "
+                f"--liberty {args.liberty} (node_flow.py).\n# Regenerate: python3 "
+                f"tests/calibration/primitives.py --liberty {args.liberty} -o "
+                f"tests/calibration/primitives_{os.path.basename(args.liberty)}.csv\n")
+        w = csv.writer(f, lineterminator="\n")
+        w.writerow(["kind", "a", "b", "variant", "ge", "depth", "area_um2", "ns", "cells"])
+        w.writerows(rows)
+    return 0
+
+
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

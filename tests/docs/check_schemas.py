@@ -355,6 +355,9 @@ class Runner:
                          ["sim", self.src("traces/multi_light.vec"), "--chip", "ram:materials=16,slots=16",
                           "--activity", "clock", "--json"],
                          "glint sim --chip ram:materials=16,slots=16 --activity clock multi_light.vec")
+        self.json_stdout(sim_doc, "glint_sim_report",
+                         ["sim", self.src("traces/multi_light.vec"), "--node", "osu018", "--json"],
+                         "glint sim --node osu018 multi_light.vec")
         # sweep: a vector file with a refused configuration (schlick match=width cannot hold the
         # Gaussian lobe's n'), a scene (image errors), and one shard of a fixed-capacity sweep.
         sweep_doc = "src/sweep/sweep_report.md"
@@ -362,7 +365,7 @@ class Runner:
             ("vectors", [self.src("traces/contract_cases.vec"), "--grid",
                          "schlick:match=none|width", "--grid", "lut:bits=4..5", "--grid", "pow"]),
             ("scene", ["--scene", self.src("traces/scenes/small.json"), "--grid",
-                       "lut:bits=4..5", "--grid", "hast"]),
+                       "lut:bits=4..5", "--grid", "hast", "--node", "osu018"]),
             ("shard", [self.src("traces/phong_basic.vec"), "--grid", "lut:bits=4..7",
                        "--shard", "1/2", "--chip", "ram:materials=4,slots=4"]),
         ]
@@ -377,7 +380,8 @@ class Runner:
         # size: one family meets the budget, one does not (spec null); exit 1 would be none.
         self.json_stdout(sweep_doc, "glint_size_report",
                          ["size", "--budget", "lsb8<=1", "--grid", "lut:bits=6..7", "--grid",
-                          "hast:d=2", self.src("traces/phong_basic.vec"), "--json"],
+                          "hast:d=2", self.src("traces/phong_basic.vec"), "--json", "--node",
+                          "osu018"],
                          "glint size", ok=(0, 1))
         # size with nothing meeting a bound budget on the grids as given (widening would meet it):
         # the closest configurations at their grid's end.
@@ -389,7 +393,7 @@ class Runner:
         # render: the small scene's report.json (with --float: its float_images object).
         render_doc = "src/render/render_report.md"
         if self.run(["render", self.src("traces/scenes/small.json"), "-o", "render",
-                     "--float", "pfm"]) is not None:
+                     "--float", "pfm", "--node", "osu018"]) is not None:
             self.json_file(render_doc, "glint_render_report",
                            os.path.join(self.work, "render", "report.json"), "glint render")
         # The teapot reproduces a paper's figure (reproduces.*); one unit keeps it quick.

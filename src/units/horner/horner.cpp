@@ -179,6 +179,7 @@ struct Horner : UnitKindDefaults {
         // domain: 44-46 gates against 36 for the product alone).
         Seg add = b.adder(wacc, fmt::format("stage {}: + c_{}", s, k));
         add.delay /= 2;
+        add.ns /= 2;
         sp.push_back(add);
         b.op("add");
       }

@@ -111,7 +111,8 @@ struct Lut : UnitKindDefaults {
     Seg tab;
     if (L.tables_ram) {
       tab = b.slot_table(entries + 1, tw, L.groups, true,
-                         "stage 1: t^n table, even and odd banks (per datapath group)");
+                         "stage 1: t^n table, even and odd banks (per datapath group)", nullptr, 2,
+                         true);
     } else {
       const int half = (1 << (bits - 1)) + 1;
       const std::size_t stride = std::size_t{1} << bits;

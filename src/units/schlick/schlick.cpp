@@ -150,7 +150,10 @@ struct Schlick : UnitKindDefaults {
     // carries run while the product's high bits settle, about half an adder's depth after it, as
     // horner's `+ c_k` (horner.cpp; here on the calibration set's tables=ram schlick lanes, 42-43
     // gates for the stage).
-    if (!known) add.delay /= 2;
+    if (!known) {
+      add.delay /= 2;
+      add.ns /= 2;
+    }
     b.reg(wd + wi, "stage 1: D and t");
     b.op("table_read");
     b.op("mul");

@@ -1,0 +1,28 @@
+#include "cost/node.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "cost/node_osu018.h"
+
+namespace glint {
+
+double NodeDelay::at(double x, double y, double loads) const {
+  return std::max(0.0, c0 + per_x * x + per_log2 * std::log2(std::max(y, 1.0)) + per_load * loads +
+                           per_load2 * loads * loads);
+}
+
+const NodeConstants& node_osu018() {
+  static const NodeConstants k = make_osu018();
+  return k;
+}
+
+const NodeConstants* find_node(const std::string& name) {
+  return name == node_osu018().name ? &node_osu018() : nullptr;
+}
+
+std::vector<std::string> node_names() {
+  return {node_osu018().name};
+}
+
+}  // namespace glint

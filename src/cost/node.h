@@ -1,0 +1,51 @@
+// The cost proxy at a real node: area in um2 and path delays in ns of the library `glint synth
+// --liberty` maps to, from per-part constants measured on primitives mapped to that library and
+// timed by OpenSTA (tests/calibration/primitives.py --liberty, fitted by node_fit.py --primitives;
+// src/cost/README.md, "At a real node"). GE and gate levels stay the proxy's generic measure; these
+// are the same parts priced at the node.
+//
+// Why per part and not one ns per level: the flow (abc -liberty, no buffering) maps an adder to a
+// carry chain whose delay grows with its width while a comparator's stays almost flat, and a
+// register that selects among many words (a RAM read, the merge buffer's head) drives every mux
+// of its array unbuffered: its delay grows with the number of loads, not with logic depth.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace glint {
+
+// Delay of one part on a path: c0 + per_x x + per_log2 log2(y) + per_load loads + per_load2
+// loads^2, where x, y and the loads are the part's own measures (cost/builder.h, per kind). The
+// square: an unbuffered net's slew grows with its load and slows the gates it drives in turn (a
+// RAM read of 65 x 16 bits: 52 ns, of 257 x 16: 788 ns on OSU 0.18 um).
+struct NodeDelay {
+  double c0 = 0, per_x = 0, per_log2 = 0, per_load = 0, per_load2 = 0;
+  double at(double x, double y, double loads) const;
+};
+
+// One kind of part: library um2 per proxy GE, and its delay.
+struct NodePart {
+  double um2_per_ge = 0;
+  NodeDelay delay;
+};
+
+struct NodeConstants {
+  std::string name;     // what --node takes: "osu018"
+  std::string library;  // what it is, for reports
+  // A register-to-register path with nothing between: clock-to-Q and setup (ns).
+  double reg_ns = 0;
+  // ram: a register array read by a register (the id, the merge buffer's head); ram_computed: by
+  // an address computed in the stage (lut's t^n banks).
+  NodePart adder, comparator, multiplier, divider, mux, shifter, lzd, gates, rom, ram, ram_computed,
+      dff, dffe;
+};
+
+// The built-in node (the only one with constants).
+const NodeConstants& node_osu018();
+// The node of that name, or nullptr.
+const NodeConstants* find_node(const std::string& name);
+// Names --node accepts.
+std::vector<std::string> node_names();
+
+}  // namespace glint

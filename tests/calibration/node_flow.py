@@ -1,0 +1,87 @@
+# The node measure of a primitive, for primitives.py --liberty: the primitive between registers
+# (every input and output a DFF of the library, as in a lane, where a part is driven by a
+# register and drives one), mapped by `glint synth --liberty`'s flow (src/cli/cmd_synth.cpp,
+# yosys_script: dfflibmap + abc -liberty) and timed by OpenSTA with a clock of 10 ns and no port
+# delays (src/hdl/sdc.cpp). The area is the library's, less the wrapper's flip-flops; the delay is
+# the worst register-to-register path, clock-to-Q and setup included.
+import os
+import re
+import subprocess
+import tempfile
+
+OSU018 = "/usr/share/qflow/tech/osu018/osu018_stdcells.lib"
+PORT = re.compile(r"(input|output)\s+(?:reg\s+)?(signed\s+)?(?:\[(\d+):0\]\s+)?(\w+)")
+
+
+def library(name):
+    return OSU018 if name == "osu018" else name
+
+
+def cell_area(lib_text, cell):
+    m = re.search(r"cell\s*\(\s*" + cell + r"\s*\)\s*\{\s*area\s*:\s*([0-9.]+)", lib_text)
+    return float(m.group(1))
+
+
+def registered(ports, body):
+    """A module `top` whose every port but clk is registered around `core` (ports, body)."""
+    core = f"module core({', '.join(ports)});\n{body}\nendmodule\n"
+    decl, conn, regs, flops = ["input clk"], [], [], 0
+    for p in ports:
+        d, signed, hi, name = PORT.match(p).groups()
+        if name == "clk":
+            conn.append(".clk(clk)")
+            continue
+        w = int(hi) + 1 if hi is not None else 1
+        rng = f"[{w - 1}:0] " if hi is not None else ""
+        flops += w
+        decl.append(f"{d} {rng}{name}_p")
+        regs.append(f"reg {rng}{name}_q;")
+        if d == "input":
+            regs.append(f"always @(posedge clk) {name}_q <= {name}_p;")
+        else:
+            regs.append(f"wire {rng}{name}_w;\nalways @(posedge clk) {name}_q <= {name}_w;\n"
+                        f"assign {name}_p = {name}_q;")
+        conn.append(f".{name}({name}_{'q' if d == 'input' else 'w'})")
+    top = (f"module top({', '.join(decl)});\n" + "\n".join(regs) +
+           f"\ncore u(" + ", ".join(conn) + ");\nendmodule\n")
+    return core + top, flops
+
+
+def synthesize_node(ports, body, lib, own_flops=0):
+    """dict(area_um2, ns, cells) of the primitive at the node (wrapper flip-flops left out;
+    own_flops: the primitive's own, a register's or a RAM's)."""
+    lib = library(lib)
+    verilog, _ = registered(ports, body)
+    with tempfile.TemporaryDirectory(prefix="glint-node.") as d:
+        src, stat = os.path.join(d, "top.v"), os.path.join(d, "stat.txt")
+        net, sdc, tcl = (os.path.join(d, n) for n in ("net.v", "top.sdc", "sta.tcl"))
+        open(src, "w").write(verilog)
+        script = os.path.join(d, "synth.ys")
+        open(script, "w").write(
+            f"read_liberty -lib {lib}\nread_verilog {src}\nsynth -flatten -top top\n"
+            f"dfflibmap -liberty {lib}\nabc -liberty {lib}\nopt_clean -purge\n"
+            f"tee -q -o {stat} stat -liberty {lib}\nsetundef -zero\nsplitnets -ports\n"
+            f"opt_clean\nrename -wire\n"
+            f"write_verilog -noattr -noexpr -nohex -nodec -simple-lhs {net}\n")
+        subprocess.run(["yosys", "-q", "-l", os.path.join(d, "log"), "-s", script], check=True,
+                       stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        text = open(stat).read()
+        area = float(re.search(r"Chip area for (?:top )?module '[^']*':\s+([0-9.eE+-]+)",
+                               text).group(1))
+        cells = int(re.search(r"Number of cells:\s+([0-9]+)", text).group(1))
+        open(sdc, "w").write("create_clock -name clk -period 10 [get_ports clk]\n"
+                             "set_input_delay 0 -clock clk [delete_from_list [all_inputs] "
+                             "[get_ports clk]]\nset_output_delay 0 -clock clk [all_outputs]\n")
+        open(tcl, "w").write(f"read_liberty {lib}\nread_verilog {net}\nlink_design top\n"
+                             f"read_sdc {sdc}\nreport_checks -path_delay max -digits 4 "
+                             f"-from [all_registers -clock_pins] -to [all_registers "
+                             f"-data_pins]\n")
+        rep = subprocess.run(["sta", "-no_splash", "-exit", tcl], check=True, cwd=d,
+                             capture_output=True, text=True, stdin=subprocess.DEVNULL).stdout
+    slack = float(re.search(r"(-?[0-9.]+)\s+slack", rep).group(1))
+    dff = cell_area(open(lib).read(), "DFFPOSX1")
+    # The wrapper's flip-flops that are left: Yosys removes those of constant or unused bits (a
+    # ROM's constant output bits), so count the netlist's and keep the primitive's own.
+    m = re.search(r"DFFPOSX1\s+([0-9]+)", text)
+    left = (int(m.group(1)) if m else 0) - own_flops
+    return {"area_um2": area - left * dff, "ns": 10.0 - slack, "cells": cells}
