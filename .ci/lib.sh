@@ -4,10 +4,11 @@
 # What building and running glint needs (Debian packages). gtkwave: vcd2fst for --vcd t.fst;
 # libassimp-dev: PLY, glTF and STL meshes; libpng-dev: the PNG encoder; libopenexr-dev: render
 # --float exr; yosys: glint synth; qflow-tech-osu018 and opensta: its built-in node (OSU 0.18 um
-# cells) and their timing; verilator: the RTL co-simulations; ninja-build and ccache: the builds.
+# cells) and their timing; verilator: the RTL co-simulations; ninja-build and ccache: the builds;
+# libsollya-dev: horner's fixed-point fits (fpminimax) and certified sup norms (src/fit/sollya_fit.h).
 GLINT_PACKAGES=(g++ cmake ninja-build ccache pkg-config libsystemc-dev libfmt-dev libcli11-dev
   nlohmann-json3-dev libtinyobjloader-dev libassimp-dev libstb-dev libpng-dev libopenexr-dev
-  fonts-dejavu-core libfast-float-dev gtkwave yosys qflow-tech-osu018 opensta)
+  fonts-dejavu-core libfast-float-dev gtkwave yosys qflow-tech-osu018 opensta libsollya-dev)
 # What the test suite and the benchmarks need on top: GoogleTest, Google Benchmark, RapidCheck,
 # MPFR (the 200-bit oracle), libspng (png_speed's comparison of encoders), GNU parallel (the
 # sharded-sweep test), Verilator, Python 3 (the documentation checks), Valgrind (the instruction

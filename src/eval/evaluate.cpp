@@ -498,6 +498,36 @@ std::string format_eval_table(const std::vector<UnitStats>& stats) {
   return out;
 }
 
+namespace {
+
+// Which engine fitted the slots' coefficients and Sollya's certified sup norm of their error, for
+// units whose slots say (horner: fit_engine, sup_norm); nothing for the others.
+std::string format_fit_engines(const nlohmann::json& description) {
+  const auto slots = description.find("slots");
+  if (slots == description.end()) return {};
+  std::size_t fitted = 0, sollya = 0, certified = 0;
+  double sup = 0;
+  for (const nlohmann::json& slot : *slots) {
+    if (const auto e = slot.find("fit_engine"); e != slot.end()) {
+      ++fitted;
+      if (*e == "sollya") ++sollya;
+    }
+    if (const auto n = slot.find("sup_norm"); n != slot.end()) {
+      ++certified;
+      sup = std::max(sup, (*n)["hi"].get<double>());
+    }
+  }
+  if (fitted == 0) return {};
+  std::string out = fmt::format(
+      "    fits: Sollya's fpminimax on {} of {} slots, glint's on the rest", sollya, fitted);
+  if (certified > 0)
+    out += fmt::format("; |P_q - t^n| <= {:.4g} certified (Sollya supnorm) on {} of them", sup,
+                       certified);
+  return out + "\n";
+}
+
+}  // namespace
+
 std::string format_elaboration(const std::vector<UnitStats>& stats) {
   std::string out;
   for (const auto& s : stats) {
@@ -525,6 +555,7 @@ std::string format_elaboration(const std::vector<UnitStats>& stats) {
         e["table_entries"].get<long long>(), n);
     if (const auto share = e.find("hardware_share"); share != e.end())
       out += fmt::format("    {}\n", (*share)["statement"].get<std::string>());
+    out += format_fit_engines(s.description);
   }
   return out;
 }

@@ -336,12 +336,12 @@ class Runner:
         for trace in ("eight_lights.vec", "contract_cases.vec", "gaussian.vec"):
             self.json_stdout(eval_doc, "glint_eval_report",
                              ["eval", self.src("traces/" + trace), "--json"], "glint eval " + trace)
-        # eval with a chip capacity, units whose config has non-default keys and the units outside
-        # the default set (sfu, pwp).
+        # eval with a chip capacity, units whose config has non-default keys (a horner that keeps
+        # Sollya's fits: sup_norm) and the units outside the default set (sfu, pwp).
         self.json_stdout(eval_doc, "glint_eval_report",
                          ["eval", self.src("traces/phong_basic.vec"), "--chip", "ram:materials=4,slots=4", "--unit",
                           "hast:match=minimax,tables=ram", "--unit", "hast:root=0.9", "--unit", "sfu", "--unit", "pwp",
-                          "--json"],
+                          "--unit", "horner:degree=6,guard=2", "--json"],
                          "glint eval --chip ram:materials=4,slots=4 phong_basic.vec")
         # sim: fast (JSON on stdout), clocked (--report), and a chip of fixed capacity.
         self.json_stdout(sim_doc, "glint_sim_report",

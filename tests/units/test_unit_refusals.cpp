@@ -38,6 +38,14 @@ std::vector<MaterialParams> many_materials() {
   return out;
 }
 
+// n = 1.5 at eps 1e-6: tau 1e-4, next to t^n's branch point at 0.
+std::vector<MaterialParams> low_shininess() {
+  const TauResult t = tau_power(1.5, 1e-6, 1.0);
+  MaterialParams m{1.5, t.tau, false};
+  m.name = "dull";
+  return {m};
+}
+
 std::vector<MaterialParams> zero_shininess() {
   return {MaterialParams{0.0, 0.0, false}};
 }
@@ -98,6 +106,18 @@ const std::vector<Refusal> kRefusals = {
      "horner:guard=0,degree=10,in=uq1.20",
      phong_materials,
      {"unit 'horner'", "'guard' = '0'", "'in' = 'uq1.20'", "'degree' = '10'"}},
+    {"horner.fit_sollya_spec",
+     "horner:fit=sollya,domain=full,method=ls",
+     phong_materials,
+     {"unit 'horner'", "key 'fit' = 'sollya'", "domain=full", "method=ls"}},
+    {"horner.fit_sollya",
+     "horner:fit=sollya,degree=5",
+     phong_materials,
+     {"unit 'horner'", "key 'fit' = 'sollya'", "white", "not proven monotone"}},
+    {"horner.fit_sollya_branch",
+     "horner:fit=sollya",
+     low_shininess,
+     {"unit 'horner'", "key 'fit' = 'sollya'", "t^1.5", "branch point"}},
     {"lut.table_frac",
      "lut:out=uq1.39",
      phong_materials,

@@ -49,6 +49,15 @@ struct HornerCoefficients {
   double sample_max_error = 0.0;
   double ls_sample_max_error = 0.0;
   bool robust_rejects = false;
+  // Where the coefficients come from (fit_engine.h): "glint", the method's fit (fit.h) that the
+  // datapath rounds to nearest, or "sollya", fpminimax's fit already on the datapath's grid.
+  const char* engine = "glint";
+  // Sollya's certified enclosure [sup_lo, sup_hi] of max |P_q(u) - t^n| over u in [0, 1], P_q the
+  // coefficients as the datapath holds them (before the clamp, which only lowers it); set where
+  // the slot holds Sollya's fit (sup_certified false otherwise).
+  bool sup_certified = false;
+  double sup_lo = 0.0;
+  double sup_hi = 0.0;
 };
 
 struct HornerConfig {

@@ -13,6 +13,7 @@
 #include <algorithm>
 
 #include "units/horner/datapath.h"
+#include "units/horner/fit_engine.h"
 #include "units/horner/rtl.h"
 #include "units/horner/slots.h"
 #include "units/u_scaler_cost.h"
@@ -75,12 +76,21 @@ struct Horner : UnitKindDefaults {
     const std::string method = keys.read(Keys::method);
     const std::string domain = keys.read(Keys::domain);
     const bool constrain = keys.read(Keys::constrain);
+    const std::string fit = keys.read(Keys::fit);
     HornerConfig c{common.in, common.out, keys.read(Keys::guard), common.skip};
     HornerFitSpec spec;
     spec.degree = degree;
     spec.method = parse_fit_method(method);
     spec.tau_domain = domain == "tau";
     spec.constrain = constrain;
+    spec.engine = parse_horner_fit_engine(fit);
+    if (spec.engine == HornerFitEngine::kSollya && !sollya_fits(spec))
+      // refusal: horner.fit_sollya_spec
+      keys.fail(std::string(Keys::fit.name), fit,
+                fmt::format("Sollya fits method=minimax on domain=tau with a free coefficient "
+                            "(degree >= 2 with constrain=on), not method={}, domain={}, degree "
+                            "{}, constrain={}; use fit=best or fit=glint",
+                            method, domain, degree, constrain ? "on" : "off"));
     // One fit per datapath group, on the group's [tau_q, 1]: the smallest tau of its slots, so
     // every input any of their comparators lets through lies in the fitted domain.
     std::vector<HornerUnit> units = build_horner_slots(spec, c, plan.groups);
@@ -89,6 +99,7 @@ struct Horner : UnitKindDefaults {
     put_key(config, Keys::method, method);
     put_key(config, Keys::domain, domain);
     put_key(config, Keys::constrain, constrain);
+    put_key(config, Keys::fit, fit);
     put_key(config, Keys::guard, c.guard);
     // u scaler stage, then one multiply-add stage per degree.
     const UnitTiming timing{degree + 1, 1, 0};
@@ -198,14 +209,18 @@ struct Horner : UnitKindDefaults {
     return horner_rtl(p, units, layout);
   }
   static nlohmann::json describe_slot(const Datapath& u) {
-    return {{"root_raw", u.scaler().root_raw()},
-            {"k", u.scaler().k_value()},
-            {"k_int_bits", u.scaler().k_int_bits()},
-            {"k_frac_bits", u.scaler().k_frac()},
-            {"coefficients", u.coefficients().c},
-            {"coefficients_raw", u.coeff_raw()},
-            {"coefficient_format", u.coeff_format().name()},
-            {"acc_int_bits", u.acc_int_bits()}};
+    nlohmann::json slot{{"root_raw", u.scaler().root_raw()},
+                        {"k", u.scaler().k_value()},
+                        {"k_int_bits", u.scaler().k_int_bits()},
+                        {"k_frac_bits", u.scaler().k_frac()},
+                        {"coefficients", u.coefficients().c},
+                        {"coefficients_raw", u.coeff_raw()},
+                        {"coefficient_format", u.coeff_format().name()},
+                        {"acc_int_bits", u.acc_int_bits()},
+                        {"fit_engine", u.coefficients().engine}};
+    if (u.coefficients().sup_certified)
+      slot["sup_norm"] = {{"lo", u.coefficients().sup_lo}, {"hi", u.coefficients().sup_hi}};
+    return slot;
   }
   static bool carries_root(const Config& c) { return c.tau_domain; }
 };

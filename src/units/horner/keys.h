@@ -23,10 +23,19 @@ struct HornerKeys {
       "fit domain: tau ([tau_q, 1], u = (t-tau_q)/(1-tau_q), tau_q the root code) | full"};
   static constexpr FlagKey constrain{"constrain", true,
                                      "on: P(1) = 1 and, on the tau domain, P(tau) = 0"};
+  static constexpr std::string_view kFits[] = {"best", "glint", "sollya"};
+  static constexpr ChoiceKey fit{
+      "fit", "best", kFits,
+      "coefficients: best (of glint and sollya, per slot: the lower error after rounding) | "
+      "glint (the method's fit, rounded to nearest) | sollya (fpminimax on the coefficients' "
+      "grid; method=minimax, domain=tau only)",
+      false};
   static constexpr IntKey guard{
       "guard", kAutoInt, 0, 20, "guard bits (auto: faithful bound from the coefficients)", true};
 
-  static std::vector<UnitKey> list() { return key_list(degree, method, domain, constrain, guard); }
+  static std::vector<UnitKey> list() {
+    return key_list(degree, method, domain, constrain, fit, guard);
+  }
 };
 
 }  // namespace glint

@@ -12,6 +12,7 @@
 #include <tuple>
 #include <utility>
 
+#include "units/horner/fit_engine.h"
 #include "units/keys.h"
 #include "units/unit_set.h"
 #include "units/warning.h"
@@ -220,6 +221,7 @@ std::vector<HornerUnit> build_horner_slots(const HornerFitSpec& spec, HornerConf
       continue;
     }
     if (!regrow || attempt >= 3) {
+      choose_fit_engines(spec, c, slots, fits, units);
       cfg = c;
       warn_robust(spec, slots, fits);
       return units;

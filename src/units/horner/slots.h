@@ -3,6 +3,8 @@
 // shared guard, and the monotonicity repair (horner.cpp calls it; datapath.h has the budget).
 #pragma once
 
+#include <cstdint>
+#include <string_view>
 #include <vector>
 
 #include "fit/fit.h"
@@ -11,13 +13,20 @@
 
 namespace glint {
 
-// Every field is part of fit_slot's memo key (slots.cpp): a new field goes there too.
+// Key fit: which coefficients a slot keeps (fit_engine.h).
+enum class HornerFitEngine : std::uint8_t { kBest, kGlint, kSollya };
+HornerFitEngine parse_horner_fit_engine(std::string_view text);
+
+// Every field but engine (the choice made after fitting, fit_engine.h) is part of fit_slot's memo
+// key (slots.cpp): a new field goes there too.
 struct HornerFitSpec {
   int degree = HornerKeys::degree.def;
   FitMethod method = FitMethod::kMinimax;
   bool tau_domain = HornerKeys::domain.def == "tau";
   bool constrain = HornerKeys::constrain.def;
+  HornerFitEngine engine = HornerFitEngine::kBest;
 };
+static_assert(HornerKeys::fit.def == "best", "HornerFitSpec::engine is the key's default");
 static_assert(HornerKeys::method.def == "minimax", "HornerFitSpec::method is the key's default");
 
 // The lower end of a slot's fit domain: tau_q, the value of the u scaler's root code
