@@ -86,7 +86,7 @@ struct SlotContract {
 void classify_contract(SlotContract& c);
 
 // Measures and bounds every part for one slot (cost: a few evaluations per code above the
-// threshold, ~1-10 ms for a 16-bit input; at most ~2^22 codes' for a wider one).
+// threshold, ~1-10 ms for a 16-bit input; at most ~2^21 codes' worth for a wider one).
 SlotContract slot_contract(const SpecularUnit& unit, std::size_t slot, const SlotMap& slots);
 
 // A display depth's LSB: errors in LSBs of a `bits`-bit output are err * (2^bits - 1).

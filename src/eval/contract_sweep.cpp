@@ -49,14 +49,10 @@ class Sweep {
   // has no code inside; past the budget, a piece's enclosure joins the part's pending bound.
   void refine(Part part, std::int64_t a, const Values& va, std::int64_t b, const Values& vb,
               std::uint64_t budget_end) {
-    struct Piece {
-      std::int64_t a, b;
-      Values va, vb;
-    };
-    std::vector<Piece> stack{{a, b, va, vb}};
-    while (!stack.empty()) {
-      const Piece p = stack.back();
-      stack.pop_back();
+    stack_.assign(1, {a, b, va, vb});
+    while (!stack_.empty()) {
+      const Piece p = stack_.back();
+      stack_.pop_back();
       if (p.b - p.a <= 1 || excess(part, p.va, p.vb) <= 0) continue;
       if (out_.evaluations >= budget_end) {
         double& pending = part == Part::kParameter ? pending_parameter_ : pending_approximation_;
@@ -66,8 +62,8 @@ class Sweep {
       }
       const std::int64_t mid = p.a + (p.b - p.a) / 2;
       const Values vm = at(mid);
-      stack.push_back({mid, p.b, vm, p.vb});
-      stack.push_back({p.a, mid, p.va, vm});
+      stack_.push_back({mid, p.b, vm, p.vb});
+      stack_.push_back({p.a, mid, p.va, vm});
     }
   }
 
@@ -82,9 +78,15 @@ class Sweep {
   }
 
  private:
+  struct Piece {
+    std::int64_t a, b;
+    Values va, vb;
+  };
+
   const SlotFunctions& fn_;
   double h_;
   SweptParts out_;
+  std::vector<Piece> stack_;  // refine's pieces still to look at
   double pending_parameter_ = 0, pending_approximation_ = 0;
 };
 
@@ -108,16 +110,19 @@ SweptParts sweep_parts(const SlotFunctions& fn, std::int64_t first, std::int64_t
   }
 
   // Evenly spaced codes, with the first two (the input part's argument starts above code 0's
-  // cell, contract_sweep.h) and 1.0.
+  // cell, contract_sweep.h) and 1.0: code_at(0) = first, code_at(1) = first + 1, then first +
+  // (i - 1) step below 1.0, and 1.0 last.
   const std::int64_t step = (count + sample_limit - 1) / sample_limit;
-  std::vector<std::int64_t> codes{first, first + 1};
-  for (std::int64_t c = first + step; c < one; c += step) codes.push_back(c);
-  codes.push_back(one);
+  const std::size_t samples = static_cast<std::size_t>((one - 1 - first) / step) + 3;
+  const auto code_at = [&](std::size_t i) -> std::int64_t {
+    if (i < 2) return first + static_cast<std::int64_t>(i);
+    return i + 1 == samples ? one : first + static_cast<std::int64_t>(i - 1) * step;
+  };
   std::vector<Values> values;
-  values.reserve(codes.size());
-  for (const std::int64_t c : codes) {
-    values.push_back(sweep.at(c));
-    sweep.fold_input(c, values.back().r);
+  values.reserve(samples);
+  for (std::size_t i = 0; i < samples; ++i) {
+    values.push_back(sweep.at(code_at(i)));
+    sweep.fold_input(code_at(i), values.back().r);
   }
   if (!monotone) {
     sweep.out().certified = false;
@@ -125,26 +130,43 @@ SweptParts sweep_parts(const SlotFunctions& fn, std::int64_t first, std::int64_t
     return sweep.finish();
   }
 
-  // Per part, the intervals whose enclosure exceeds the sampled bound, largest excess first:
-  // refining them raises the bound soonest, which settles the others without evaluations. The
+  // Part by part, the intervals whose enclosure exceeds the running bound are refined, largest
+  // excess first (by its binary exponent: a counting sort, where a full sort of 2^20 intervals
+  // cost as much as their refinement): they raise the bound soonest, which settles most others
+  // without an evaluation, and past the budget the enclosures left are the smallest. The
   // approximation part first, with half the budget: its largest values sit at a few extrema of
   // F - r, found in few evaluations, where the parameter part (M and F nearly equal) may need
-  // every code, and should not starve it.
+  // every code and should not starve it.
   const std::uint64_t sampled_evaluations = sweep.out().evaluations;
+  // Bucket b holds excesses in [2^(b - 63), 2^(b - 62)) (values lie in [0, 1]); smaller ones in 0.
+  constexpr int kBuckets = 64;
+  std::vector<int> bucket_of(samples - 1);
+  std::vector<std::uint32_t> order(samples - 1);
   for (const Part part : {Part::kApproximation, Part::kParameter}) {
-    std::vector<std::pair<double, std::size_t>> open;
-    for (std::size_t i = 0; i + 1 < codes.size(); ++i) {
-      if (codes[i + 1] - codes[i] <= 1) continue;
-      const double e = sweep.excess(part, values[i], values[i + 1]);
-      if (e > 0) open.emplace_back(e, i);
-    }
-    std::sort(open.begin(), open.end(), [](const auto& x, const auto& y) {
-      return x.first != y.first ? x.first > y.first : x.second < y.second;
-    });
     const std::uint64_t budget_end =
         sampled_evaluations + (part == Part::kApproximation ? refine_budget / 2 : refine_budget);
-    for (const auto& [e, i] : open)
-      sweep.refine(part, codes[i], values[i], codes[i + 1], values[i + 1], budget_end);
+    std::vector<std::uint32_t> next(kBuckets, 0);  // counts, then each bucket's next place
+    for (std::size_t i = 0; i + 1 < samples; ++i) {
+      const double e = sweep.excess(part, values[i], values[i + 1]);
+      int& b = bucket_of[i];
+      b = !(e > 0) || code_at(i + 1) - code_at(i) <= 1
+              ? -1
+              : kBuckets - 1 - std::clamp(-std::ilogb(e), 0, kBuckets - 1);
+      if (b >= 0) ++next[static_cast<std::size_t>(b)];
+    }
+    std::uint32_t total = 0;
+    for (int b = kBuckets - 1; b >= 0; --b) {  // the largest bucket first
+      const std::uint32_t n = next[static_cast<std::size_t>(b)];
+      next[static_cast<std::size_t>(b)] = total;
+      total += n;
+    }
+    for (std::size_t i = 0; i + 1 < samples; ++i)
+      if (bucket_of[i] >= 0)
+        order[next[static_cast<std::size_t>(bucket_of[i])]++] = static_cast<std::uint32_t>(i);
+    for (std::uint32_t k = 0; k < total; ++k) {
+      const std::size_t i = order[k];
+      sweep.refine(part, code_at(i), values[i], code_at(i + 1), values[i + 1], budget_end);
+    }
   }
   return sweep.finish();
 }
