@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "eval/contract_sweep.h"
 #include "eval/evaluate.h"
 
 namespace glint {
@@ -124,29 +125,20 @@ SlotContract slot_contract(const SpecularUnit& unit, std::size_t slot, const Slo
   const std::int64_t top = std::min(c.threshold_raw, one);
   if (top >= 0) c.bound.skip = ref((static_cast<double>(top) + 0.5) * h);
 
-  // The codes the comparator keeps: all of them up to kExactInputBits, else evenly spaced ones.
+  // The codes the comparator keeps: all of them up to kExactInputBits, else evenly spaced ones,
+  // certified where the unit's models are monotone (contract_sweep.h).
   const std::int64_t first = std::max<std::int64_t>(top + 1, 0);
-  const std::int64_t count = one - first + 1;
   // A uq1.F input has 2^F + 1 codes in [0, 1] (1.0 included): up to F = kExactInputBits, all.
   const std::int64_t limit = (std::int64_t{1} << kExactInputBits) + 1;
-  const std::int64_t step = count > limit ? (count + limit - 1) / limit : 1;
-  c.exact = step == 1;
-  const auto cell_bottom = [&](std::int64_t code) {
-    return code == 0 ? ref(-1.0) : ref((static_cast<double>(code) - 0.5) * h);
-  };
-  double lower_edge = cell_bottom(first);
-  for (std::int64_t code = first; code <= one; code += step) {
-    const double t = static_cast<double>(code) * h;
-    const double r = ref(t);
-    if (step != 1) lower_edge = cell_bottom(code);
-    const double upper_edge = ref(t + 0.5 * h);
-    const double f = unit.float_model(slot, t);
-    const double model = unit.model(slot, code);
-    c.bound.input = std::max({c.bound.input, r - lower_edge, upper_edge - r});
-    c.bound.parameter = std::max(c.bound.parameter, std::fabs(model - f));
-    c.bound.approximation = std::max(c.bound.approximation, std::fabs(f - r));
-    lower_edge = upper_edge;
-  }
+  const bool sampled = one - first + 1 > limit;
+  const SlotFunctions fn{[&](std::int64_t code) { return unit.model(slot, code); },
+                         [&](double t) { return unit.float_model(slot, t); }, ref};
+  const SweptParts parts =
+      sweep_parts(fn, first, one, h, sampled && unit.models_monotone(slot), limit);
+  c.bound.input = parts.input;
+  c.bound.parameter = parts.parameter;
+  c.bound.approximation = parts.approximation;
+  c.exact = parts.certified;
   c.datapath_ulps = unit.datapath_bound_ulps(slot);
   c.bound.datapath = c.datapath_ulps * unit.out_format().ulp();
 

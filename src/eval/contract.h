@@ -10,9 +10,10 @@
 //               + [r(t_c) - r(t)]   input quantization: t rounded to the input format
 // with M = SpecularUnit::model (real arithmetic at the quantized parameters), F = float_model
 // (exact parameters) and r the reference lobe (t^n, or Källberg eq.7 for Gaussian materials). The
-// parameter and approximation parts are measured at every code the comparator keeps, the input
-// part over each code's whole rounding cell (r is monotone, so the cell's ends bound it), so by
-// the triangle inequality |y - r(t)| never exceeds their sum plus the datapath budget.
+// parameter and approximation parts are bounded over every code the comparator keeps (measured at
+// each, or certified from sampled ones: contract_sweep.h), the input part over each code's whole
+// rounding cell (r is monotone, so the cell's ends bound it), so by the triangle inequality
+// |y - r(t)| never exceeds their sum plus the datapath budget.
 // A skipped t gives 0 where r(t) <= r at the top of the threshold code's cell, which the unit's
 // threshold keeps at or below tau (unit_threshold_raw), i.e. <= eps_K / c_y: the skip part. The
 // total bound is the larger of the skip part and the sum of the other four.
@@ -53,7 +54,8 @@ inline constexpr double kNoContractFraction = 0.25;
 const char* to_string(ContractKind kind);  // "correctly_rounded", "faithful", "bound", "none"
 
 // Inputs with up to this many fraction bits (2^20 + 1 codes in [0, 1]) are measured at every code;
-// finer ones at ~2^20 evenly spaced codes (SlotContract::exact = false: the parts are then
+// finer ones at ~2^20 evenly spaced codes, which the enclosure of contract_sweep.h certifies where
+// the unit's models are monotone (SlotContract::exact = false elsewhere: the parts are then
 // estimates, not bounds).
 inline constexpr int kExactInputBits = 20;
 
@@ -70,6 +72,7 @@ struct SlotContract {
   double datapath_ulps = 0.0;
   ContractKind kind = ContractKind::kFaithful;
   std::string reason;
+  // The parts are bounds: every code swept, or the sampled codes certified (contract_sweep.h).
   bool exact = true;
 
   // The bound on the slot's pixel error (reference/pixel_error.h): the whole lobe when always
@@ -83,7 +86,7 @@ struct SlotContract {
 void classify_contract(SlotContract& c);
 
 // Measures and bounds every part for one slot (cost: a few evaluations per code above the
-// threshold, ~1-10 ms for a 16-bit input).
+// threshold, ~1-10 ms for a 16-bit input; at most ~2^21 codes' worth for a wider one).
 SlotContract slot_contract(const SpecularUnit& unit, std::size_t slot, const SlotMap& slots);
 
 // A display depth's LSB: errors in LSBs of a `bits`-bit output are err * (2^bits - 1).

@@ -461,9 +461,6 @@ std::string bound_cell(double v, bool exact) {
   return (exact ? "" : "~") + lsb_cell(v);
 }
 
-constexpr const char* kEstimateNote =
-    "~ an estimate, not a bound: inputs finer than 2^-20 are measured at ~2^20 sampled codes\n";
-
 bool any_estimate(const std::vector<UnitStats>& stats) {
   for (const auto& s : stats)
     if (!s.bound_exact()) return true;

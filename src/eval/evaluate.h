@@ -204,8 +204,9 @@ struct UnitStats {
   // Bounds over the computed slots (always-skipped ones apart), and the weakest datapath contract.
   ErrorParts bound() const;
   double weighted_bound() const;  // over every slot, always-skipped ones included
-  // Whether bound() is a bound: false when some computed slot's input is finer than
-  // kExactInputBits, whose parts are measured at sampled codes (estimates; "~" in text tables).
+  // Whether bound() is a bound: false when some computed slot's parts are estimates, measured at
+  // sampled codes of an input finer than kExactInputBits that the enclosure could not certify
+  // (SlotContract::exact; "~" in text tables).
   bool bound_exact() const;
   ContractKind contract() const;
   // The datapath part in output ulps (fixed result vs the unit's own real model).
@@ -439,6 +440,11 @@ class Evaluator {
 std::string format_elaboration(const std::vector<UnitStats>& stats);
 
 // The summary table printed by `glint eval`, and the table of error parts printed after it.
+// The note under a text table that marks an estimated bound "~" (eval's, size's, sweep's).
+inline constexpr const char* kEstimateNote =
+    "~ an estimate, not a bound: sampled codes of an input finer than 2^-20, for a unit whose "
+    "models are not known to be monotone\n";
+
 std::string format_eval_table(const std::vector<UnitStats>& stats);
 std::string format_parts_table(const std::vector<UnitStats>& stats);
 

@@ -213,6 +213,18 @@ bool is_error_measure(const MeasureRef& m) {
   return error && !excluded;
 }
 
+bool is_bound_measure(const MeasureRef& m) {
+  return m.pointer.find("bound") != std::string::npos;
+}
+
+bool row_bounds_exact(const nlohmann::json& row) {
+  const auto errors = row.find("errors");
+  if (errors == row.end() || !errors->is_object() || !errors->contains("slots")) return true;
+  for (const nlohmann::json& s : errors->at("slots"))
+    if (s.is_object() && !s.value("exact", true)) return false;
+  return true;
+}
+
 std::vector<Budget> parse_budgets(std::string_view text, bool scene, const std::string& option) {
   std::vector<Budget> out;
   const std::string whole(text);

@@ -63,6 +63,14 @@ std::optional<double> measure_value(const nlohmann::json& row, const MeasureRef&
 // PSNR or the highlight ratios).
 bool is_error_measure(const MeasureRef& m);
 
+// A measure of the contract's stated bounds (bound_lsb, weighted.bound_lsb, parts.*.bound, ...):
+// its value is an estimate in a row whose bounds are (row_bounds_exact).
+bool is_bound_measure(const MeasureRef& m);
+// Whether a row's stated bounds are bounds: false when some slot's are estimates (its "exact":
+// sampled codes of an input finer than 2^-20 that the enclosure could not certify,
+// eval/contract.md). A row without slots (refused) states none: true.
+bool row_bounds_exact(const nlohmann::json& row);
+
 // A comma-separated list of conditions MEASURE OP VALUE (OP one of <=, <, >=, >), all of which
 // must hold: "max_lsb8<=1,mismatch_fraction<0.01". Errors name `option` (a golden's budgets name
 // their field instead: glint regress).

@@ -4,9 +4,12 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 
 #include "eval/chip_report.h"
+#include "eval/evaluate.h"
+#include "sweep/measures.h"
 #include "sweep/plot.h"
 #include "sweep/report.h"
 
@@ -122,6 +125,11 @@ std::string format_sweep_summary(const nlohmann::json& report) {
     out += fmt::format(
         "{} configurations refused by this input (no row ran through them; \"refused\" says why)\n",
         refused);
+  // A bound measure's value is an estimate where a slot's bound is (row_bounds_exact): marked "~".
+  const std::optional<MeasureRef> measure =
+      find_measure(report.at("error_measure").get<std::string>(), input.at("kind") == "scene");
+  const bool bound = measure && is_bound_measure(*measure);
+  bool estimates = false;
   for (const Objective& o : kObjectives) {
     out += fmt::format("Pareto front, error vs {} ({}):\n", o.name,
                        o.minimise ? "both minimised" : "error minimised, throughput maximised");
@@ -142,11 +150,13 @@ std::string format_sweep_summary(const nlohmann::json& report) {
     // the CSV flag every one of them.
     for (std::size_t i = 0; i < front.size();) {
       const nlohmann::json& r = *front[i];
-      out += fmt::format("  {:>5} {:>11} {:>10} {:>10} {:>12} {:>7}  {}\n",
-                         r.at("index").get<std::size_t>(), cell(r.at("error"), "{:.4g}"),
-                         cell(r.at("area_ge"), "{:.0f}"), cell(r.at("throughput"), "{:.4f}"),
-                         cell(r.at("area_latency"), "{:.0f}"), r.at("latency").get<int>(),
-                         r.at("spec").get<std::string>());
+      const bool estimate = bound && !r.at("error").is_null() && !row_bounds_exact(r);
+      estimates = estimates || estimate;
+      out += fmt::format(
+          "  {:>5} {:>11} {:>10} {:>10} {:>12} {:>7}  {}\n", r.at("index").get<std::size_t>(),
+          (estimate ? "~" : "") + cell(r.at("error"), "{:.4g}"), cell(r.at("area_ge"), "{:.0f}"),
+          cell(r.at("throughput"), "{:.4f}"), cell(r.at("area_latency"), "{:.0f}"),
+          r.at("latency").get<int>(), r.at("spec").get<std::string>());
       std::size_t j = i + 1;
       while (j < front.size() && front[j]->at("error") == r.at("error") &&
              front[j]->at(o.key) == r.at(o.key))
@@ -160,6 +170,7 @@ std::string format_sweep_summary(const nlohmann::json& report) {
       i = j;
     }
   }
+  if (estimates) out += kEstimateNote;
   return out;
 }
 

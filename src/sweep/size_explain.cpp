@@ -27,17 +27,7 @@ double lsb_scale(int bits) {
   return std::ldexp(1.0, bits) - 1.0;
 }
 
-// Whether a row's stated bounds are bounds: false when some slot's input is finer than 2^-20 and
-// its bound was measured at sampled codes (UnitStats::bound_exact).
-bool row_bounds_exact(const nlohmann::json& row) {
-  const auto errors = row.find("errors");
-  if (errors == row.end() || !errors->contains("slots")) return true;
-  for (const nlohmann::json& s : errors->at("slots"))
-    if (!s.value("exact", true)) return false;
-  return true;
-}
-
-// The same for configuration i on every input.
+// Whether configuration i's stated bounds are bounds on every input (row_bounds_exact).
 bool bounds_exact(const std::vector<nlohmann::json>& reports, std::size_t i) {
   for (const nlohmann::json& report : reports)
     if (!row_bounds_exact(report.at("results").at(i))) return false;
@@ -65,7 +55,7 @@ nlohmann::json blocking_part(const nlohmann::json& row, bool bound, double scale
 }
 
 bool bound_measure(const Budget& b) {
-  return b.measure.pointer.find("bound") != std::string::npos;
+  return is_bound_measure(b.measure);
 }
 
 // The slot with the weakest guarantee (the largest stated bound, weighted by what reaches the pixel
@@ -337,7 +327,7 @@ std::string format_explanation(const nlohmann::json& e) {
   }
   if (!c.at("slot").is_null()) {
     const nlohmann::json& s = c.at("slot");
-    // "~": the slot's input is finer than 2^-20 and its bound was measured at sampled codes.
+    // "~": the slot's bound was measured at sampled codes and could not be certified.
     const std::string estimate = s.value("exact", true) ? "" : "~";
     out += fmt::format("    weakest slot: {}, {} (bound {}{}, {} of it {}{}){}\n",
                        s.at("slot").get<int>(), s.at("name").get<std::string>(), estimate,

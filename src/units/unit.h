@@ -95,6 +95,11 @@ class SpecularUnit {
   // The unit's error budget against its own real-valued model(): |eval - model| <= this many
   // output ulps on every input code (½: correctly rounded; < 1: faithful).
   virtual double datapath_bound_ulps(std::size_t slot) const = 0;
+  // model() is non-decreasing in the input code and float_model() in t on [0, 1], as the kind
+  // proves for this slot (its models_monotone). The contract certifies inputs too wide to sweep
+  // code by code from this (eval/contract.md, "Exhaustive, certified or estimated"); false: not
+  // known, and such a slot's parts stay estimates.
+  virtual bool models_monotone(std::size_t slot) const = 0;
   // Structured description: config, per-slot constants (tables sizes, coefficients, widths) and
   // the elaboration (what the scene made the unit build, and why).
   virtual nlohmann::json describe() const = 0;

@@ -13,7 +13,8 @@
 //   static std::vector<Stage> stages(const Config&, const std::vector<Datapath>&, UnitTiming);
 //   static void cost(CostBuilder&, const LaneShape&, const Config&, const std::vector<Datapath>&);
 //   static nlohmann::json describe_slot(const Datapath&);
-// and, where UnitKindDefaults' do not fit, error_bound, carries_root, n_register and rtl (below).
+// and, where UnitKindDefaults' do not fit, error_bound, models_monotone, carries_root, n_register
+// and rtl (below).
 // Its Datapath has eval(t), run(t, probe) (eval is run with NoProbe), model, float_model and
 // datapath_bound_ulps() (its error budget: |eval - model| in output ulps). build() reads the keys
 // (KeyReader::read), writes each resolved value back (put_key) and ends with make_unit_set<Kind>,
@@ -56,6 +57,11 @@ struct UnitKindDefaults {
   template <class Datapath>
   static double error_bound(const Datapath&) {
     return std::numeric_limits<double>::quiet_NaN();
+  }
+  // model() and float_model() non-decreasing in t (unit.h): not known unless the kind proves it.
+  template <class Datapath>
+  static bool models_monotone(const Datapath&) {
+    return false;
   }
   template <class Config>
   static bool carries_root(const Config&) {
@@ -148,6 +154,7 @@ class UnitSet final : public SpecularUnit {
   const StageLayout& stages() const override { return layout_; }
   double error_bound(std::size_t s) const override { return Kind::error_bound(dp(s)); }
   double datapath_bound_ulps(std::size_t s) const override { return dp(s).datapath_bound_ulps(); }
+  bool models_monotone(std::size_t s) const override { return Kind::models_monotone(dp(s)); }
   UnitTiming timing() const override { return timing_; }
   bool comparator_enabled() const override { return skip_; }
   bool tables_ram() const override { return tables_ram_; }

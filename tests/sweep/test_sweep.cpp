@@ -19,6 +19,7 @@
 #include "sweep/engine.h"
 #include "sweep/grid.h"
 #include "sweep/measures.h"
+#include "sweep/outputs.h"
 #include "sweep/pareto.h"
 #include "sweep/report.h"
 #include "sweep/size.h"
@@ -542,6 +543,36 @@ TEST(SweepSize, ExplanationMarksEstimatedBounds) {
                                        grids, configs, cost, false);
   EXPECT_FALSE(m.at("reached")[0].contains("exact"));
   EXPECT_EQ(glint::format_explanation(m).find("best ~"), std::string::npos);
+}
+
+// glint sweep's fronts mark a bound measure's value "~" in a row whose bounds are estimates, as
+// eval's and size's text do; a certified bound, or a measured error, carries no mark.
+TEST(SweepSummary, MarksEstimatedBounds) {
+  json r5 = hand_row(0, 200, 0.015, 0.014, 0.001), r6 = hand_row(1, 300, 0.008, 0.007, 0.001);
+  for (json* r : {&r5, &r6}) {
+    (*r)["refused"] = nullptr;
+    (*r)["throughput"] = 1.0;
+    (*r)["area_latency"] = (*r)["area_ge"];
+    (*r)["latency"] = 1;
+  }
+  const auto summary = [](const json& a, const json& b, const char* measure) {
+    json report = hand_report({a, b});
+    report["input"]["rows"] = 10;
+    report["input"]["kind"] = "vectors";
+    report["shard"] = nullptr;
+    report["configurations"] = 2;
+    report["error_measure"] = measure;
+    glint::mark_pareto(report);
+    return glint::format_sweep_summary(report);
+  };
+  r6["errors"]["slots"][1]["exact"] = false;
+  const std::string marked = summary(r5, r6, "bound_lsb");
+  EXPECT_NE(marked.find(" ~4.08 "), std::string::npos) << marked;
+  EXPECT_EQ(marked.find("~7.65"), std::string::npos) << marked;
+  EXPECT_NE(marked.find(glint::kEstimateNote), std::string::npos) << marked;
+  EXPECT_EQ(summary(r5, r6, "max_lsb").find('~'), std::string::npos);
+  r6["errors"]["slots"][1]["exact"] = true;
+  EXPECT_EQ(summary(r5, r6, "bound_lsb").find('~'), std::string::npos);
 }
 
 TEST(SweepSize, RelativeMissAndTheCheapestK) {

@@ -220,6 +220,9 @@ struct Hast : UnitKindDefaults {
             {"k_frac_bits", u.scaler().k_frac()}};
   }
   static bool carries_root(const Config&) { return true; }
+  // model = u^d with u the scaler's exact value, non-decreasing and in [0, 1]; float_model =
+  // ((t - tau) / (1 - tau))^d above tau, 0 below.
+  static bool models_monotone(const Datapath&) { return true; }
   static std::string rtl(const hdl::DatapathPorts& p, const Config& c,
                          const std::vector<Datapath>& units, const StageLayout& layout) {
     return hast_rtl(p, c, units, layout);

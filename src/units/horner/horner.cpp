@@ -12,6 +12,7 @@
 
 #include <algorithm>
 
+#include "fit/monotone.h"
 #include "units/horner/datapath.h"
 #include "units/horner/fit_engine.h"
 #include "units/horner/rtl.h"
@@ -223,6 +224,11 @@ struct Horner : UnitKindDefaults {
     return slot;
   }
   static bool carries_root(const Config& c) { return c.tau_domain; }
+  // clamp(P, 0, 1) of the quantized (model) and fitted (float_model) coefficients, in u
+  // non-decreasing in t, each proven non-decreasing on [0, 1] by Bernstein bounds.
+  static bool models_monotone(const Datapath& u) {
+    return u.polynomial_monotone() && check_monotone(u.coefficients().c) == Monotonicity::kProven;
+  }
 };
 
 }  // namespace

@@ -21,6 +21,7 @@
 // check), so 32 bits hold them.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -78,6 +79,8 @@ class LutUnit {
   std::int64_t entry(std::int64_t j) const;
   std::size_t entries() const { return (std::size_t{1} << cfg_.bits) + 1; }
   std::size_t kept_entries() const { return table_.size() - 1; }
+  // Every entry (the padding copy included) at least the one before it.
+  bool entries_non_decreasing() const { return std::is_sorted(table_.begin(), table_.end()); }
   // Memory of the kept entries (with the padding entry): what the limit of units/unit_set.h counts.
   std::size_t table_bytes() const { return table_.size() * sizeof(table_[0]); }
   double model(std::int64_t t_raw) const;  // the rounded entries interpolated exactly, at t_q

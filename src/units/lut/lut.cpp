@@ -165,6 +165,9 @@ struct Lut : UnitKindDefaults {
             {"error_bound", u.error_bound()}};
   }
   static double error_bound(const Datapath& u) { return u.error_bound(); }
+  // Both are 0 up to t0, then the chord through their nodes: the exact t^n at each node
+  // (float_model) and the rounded entries (model), non-decreasing when the entries are.
+  static bool models_monotone(const Datapath& u) { return u.entries_non_decreasing(); }
   static std::string rtl(const hdl::DatapathPorts& p, const Config& c,
                          const std::vector<Datapath>& units, const StageLayout& layout) {
     return lut_rtl(p, c, units, layout);

@@ -238,6 +238,8 @@ struct Pow : UnitKindDefaults {
             {"error_bound", u.error_bound()}};
   }
   static double error_bound(const Datapath& u) { return u.error_bound(); }
+  // model = t_q^n_q (t clamped to [0, 1]) and float_model = t^n, with n, n_q >= 0.
+  static bool models_monotone(const Datapath&) { return true; }
 };
 
 }  // namespace

@@ -206,6 +206,9 @@ struct Schlick : UnitKindDefaults {
             {"n_raw", u.n_raw()},
             {"n_q", u.shininess_q()}};
   }
+  // S = t / (n - n t + t) at n_q (model) and n' (float_model), both > 0, for t clamped to
+  // [0, 1]: dS/dt = n / (n - n t + t)^2 > 0.
+  static bool models_monotone(const Datapath&) { return true; }
 };
 
 }  // namespace

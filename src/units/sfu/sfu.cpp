@@ -223,6 +223,9 @@ struct Sfu : UnitKindDefaults {
             {"error_bound", u.error_bound()}};
   }
   static double error_bound(const Datapath& u) { return u.error_bound(); }
+  // model = t_q^n_q (0 at t <= 0) and float_model = t^n: the fp32 datapath itself is not the
+  // model, so its own order does not enter.
+  static bool models_monotone(const Datapath&) { return true; }
 };
 
 }  // namespace
