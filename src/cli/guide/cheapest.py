@@ -170,7 +170,10 @@ def main():
         + ", ".join(f"`{u}` ({p})" for u, p in PAPERS.items() if u in units)
         + "; `pow` and `lut` are the textbook baselines"
         + (", `pwp` the piecewise polynomial." if "pwp" in units else ".")
-        + " Energy is not in the table: glint has no energy model at the node yet (issue 26).",
+        + " Energy is not in the table: glint has no energy model at the node yet (issue 26)."
+        + " `sfu` and `pwp` have no lanes in the cost calibration set yet, so their areas are the "
+        "proxy's uncalibrated estimate; `glint synth SPEC --vectors FILE` gives Yosys's figure "
+        "for any cell's spec.",
         "",
     ]
     for chip, what, tab in sections:
