@@ -99,17 +99,20 @@ class PwpUnit {
     const std::int64_t k = v >> rb_;
     const std::int64_t x = v & x_mask_;
     const std::int64_t* c = &c_raw_[static_cast<std::size_t>(k) * stride_];
-    std::int64_t acc = c[cfg_.degree] << align_;
+    std::int64_t acc = c[cfg_.degree] * (std::int64_t{1} << align_);
     probe(1, 0, k);
     probe(1, 1, x);
     probe(1, 2, acc);
     int position = 2;
     for (int j = cfg_.degree - 1; j >= 1; --j, ++position) {
-      acc = ((acc * x + half_x_) >> rb_) + (c[j] << align_);
+      acc = ((acc * x + half_x_) >> rb_) + c[j] * (std::int64_t{1} << align_);
       probe(position, 0, x);
       probe(position, 1, acc);
     }
-    const std::int64_t q = (acc * x + (c[0] << c0_shift_) + half_out_) >> out_shift_;
+    // Coefficients may be negative: scaled by a product, as a left shift of a negative value is
+    // undefined before C++20.
+    const std::int64_t q =
+        (acc * x + c[0] * (std::int64_t{1} << c0_shift_) + half_out_) >> out_shift_;
     const std::int64_t result = q < 0 ? 0 : (q > one_out_ ? one_out_ : q);
     probe(position, 0, result);
     return result;
