@@ -6,14 +6,13 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <map>
-#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <tuple>
 #include <utility>
 
 #include "fit/sollya_fit.h"
+#include "units/horner/memo.h"
 #include "units/keys.h"
 #include "units/unit_set.h"
 
@@ -52,29 +51,6 @@ std::uint64_t bits_of(double x) {
 struct Trial {
   std::vector<FixedPointFit> fits;
   bool skipped = false;  // fit=best and Sollya could not win (trial_for): no fits tried
-};
-
-// A bounded, thread-safe memo per process, as fit_slot's (slots.cpp).
-template <class Key, class Value>
-class Memo {
- public:
-  template <typename Run>
-  Value get(const Key& key, Run&& run) {
-    {
-      const std::lock_guard<std::mutex> lock(mutex_);
-      if (const auto it = values_.find(key); it != values_.end()) return it->second;
-    }
-    Value v = run();  // outside the lock: two threads may compute alike, both equal
-    const std::lock_guard<std::mutex> lock(mutex_);
-    if (values_.size() >= kMaxEntries) values_.clear();
-    values_.emplace(key, v);
-    return v;
-  }
-
- private:
-  static constexpr std::size_t kMaxEntries = 4096;
-  std::mutex mutex_;
-  std::map<Key, Value> values_;
 };
 
 // Sollya's certified sup norm of the held polynomial's error (tens of ms; seconds near a branch

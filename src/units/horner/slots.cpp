@@ -6,13 +6,12 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <map>
-#include <mutex>
 #include <stdexcept>
 #include <tuple>
 #include <utility>
 
 #include "units/horner/fit_engine.h"
+#include "units/horner/memo.h"
 #include "units/keys.h"
 #include "units/unit_set.h"
 #include "units/warning.h"
@@ -54,28 +53,7 @@ namespace {
 // full domain, where tau is 0), and a --grid's value check builds each value once more: one memo
 // per process. Doubles are keyed by their bits (a NaN would break a map's ordering). Bounded: a
 // long sweep or fuzz run that fills it starts it afresh, so memory stays ~1 MB.
-class FitMemo {
- public:
-  using Key = std::tuple<int, FitMethod, bool, bool, std::uint64_t, std::uint64_t, std::uint64_t>;
-
-  template <typename Fit>
-  HornerCoefficients get(const Key& key, Fit&& fit) {
-    {
-      const std::lock_guard<std::mutex> lock(mutex_);
-      if (const auto it = fits_.find(key); it != fits_.end()) return it->second;
-    }
-    HornerCoefficients c = fit();  // outside the lock: two threads may fit alike, both equal
-    const std::lock_guard<std::mutex> lock(mutex_);
-    if (fits_.size() >= kMaxEntries) fits_.clear();
-    fits_.emplace(key, c);
-    return c;
-  }
-
- private:
-  static constexpr std::size_t kMaxEntries = 4096;
-  std::mutex mutex_;
-  std::map<Key, HornerCoefficients> fits_;
-};
+using FitKey = std::tuple<int, FitMethod, bool, bool, std::uint64_t, std::uint64_t, std::uint64_t>;
 
 std::uint64_t bits_of(double x) {
   std::uint64_t b = 0;
@@ -86,9 +64,9 @@ std::uint64_t bits_of(double x) {
 }  // namespace
 
 HornerCoefficients fit_slot(const HornerFitSpec& spec, double n, double tau, double min_slope) {
-  static FitMemo memo;
-  const FitMemo::Key key{spec.degree, spec.method,  spec.tau_domain,   spec.constrain,
-                         bits_of(n),  bits_of(tau), bits_of(min_slope)};
+  static Memo<FitKey, HornerCoefficients> memo;
+  const FitKey key{spec.degree, spec.method,  spec.tau_domain,   spec.constrain,
+                   bits_of(n),  bits_of(tau), bits_of(min_slope)};
   return memo.get(key, [&] {
     const FitOptions o = horner_fit_options(spec, n, tau, min_slope);
     const FitResult r = fit_power(o);
