@@ -11,9 +11,12 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <mutex>
 
+#include "image/stb_guard.h"
 #include "image/truetype_check.h"
 #include "io/input_error.h"
 
@@ -77,34 +80,51 @@ void Font::init(const unsigned char* data, std::size_t size, const std::string& 
   } catch (const FontError& e) {
     throw InputError(file, 0, field, e.what());
   }
+  file_ = file;
   info_ = std::make_unique<stbtt_fontinfo>();
-  if (!stbtt_InitFont(info_.get(), data, facts.offset))
-    throw InputError(file, 0, field, "not a TrueType font stb_truetype can read");
-  glyphs_ = facts.glyph_count;
-  // stb sizes a glyph's bitmap by the box in its header, and its rasteriser asserts (Debian's
-  // libstb keeps assertions) when the outline leaves that box: real fonts have such glyphs (stb
-  // scales transformed components twice; DejaVu Sans Condensed, Mono Bold). Each outline, as stb
-  // builds it, is measured once here (check_truetype made the calls safe and bounded).
-  for (int g = 0; g < glyphs_; ++g) {
-    stbtt_vertex* v = nullptr;
-    const int n = stbtt_GetGlyphShape(info_.get(), g, &v);
-    Box box;
-    stbtt_GetGlyphBox(info_.get(), g, &box.x0, &box.y0, &box.x1, &box.y1);
-    const Box header = box;
-    const auto grow = [&box](int x, int y) {
-      box = {std::min(box.x0, x), std::min(box.y0, y), std::max(box.x1, x), std::max(box.y1, y)};
-    };
-    for (int i = 0; i < n; ++i) {
-      grow(v[i].x, v[i].y);
-      if (v[i].type == STBTT_vcurve || v[i].type == STBTT_vcubic) grow(v[i].cx, v[i].cy);
+  int g = -1;  // the glyph being measured, for the message
+  try {
+    StbScope scope;
+    if (!stbtt_InitFont(info_.get(), data, facts.offset))
+      throw InputError(file, 0, field, "not a TrueType font stb_truetype can read");
+    glyphs_ = facts.glyph_count;
+    // stb sizes a glyph's bitmap by the box in its header, and its rasteriser asserts (Debian's
+    // libstb keeps assertions) when the outline leaves that box: real fonts have such glyphs (stb
+    // scales transformed components twice; DejaVu Sans Condensed, Mono Bold). Each outline, as stb
+    // builds it, is measured once here (check_truetype made the calls safe and bounded).
+    for (g = 0; g < glyphs_; ++g) {
+      stbtt_vertex* v = nullptr;
+      const int n = stbtt_GetGlyphShape(info_.get(), g, &v);
+      Box box;
+      stbtt_GetGlyphBox(info_.get(), g, &box.x0, &box.y0, &box.x1, &box.y1);
+      const Box header = box;
+      const auto grow = [&box](int x, int y) {
+        box = {std::min(box.x0, x), std::min(box.y0, y), std::max(box.x1, x), std::max(box.y1, y)};
+      };
+      for (int i = 0; i < n; ++i) {
+        grow(v[i].x, v[i].y);
+        if (v[i].type == STBTT_vcurve || v[i].type == STBTT_vcubic) grow(v[i].cx, v[i].cy);
+      }
+      stbtt_FreeShape(info_.get(), v);
+      if (box.x0 != header.x0 || box.y0 != header.y0 || box.x1 != header.x1 || box.y1 != header.y1)
+        grown_.emplace(g, box);
     }
-    stbtt_FreeShape(info_.get(), v);
-    if (box.x0 != header.x0 || box.y0 != header.y0 || box.x1 != header.x1 || box.y1 != header.y1)
-      grown_.emplace(g, box);
+    g = -1;
+    int descent = 0, line_gap = 0;
+    stbtt_GetFontVMetrics(info_.get(), &ascent_, &descent, &line_gap);
+    question_ = lookup('?');
+  } catch (const StbAssertion& e) {
+    throw InputError(file, 0, field,
+                     (g >= 0 ? "glyph " + std::to_string(g) + ": " : std::string()) + e.what());
   }
-  int descent = 0, line_gap = 0;
-  stbtt_GetFontVMetrics(info_.get(), &ascent_, &descent, &line_gap);
-  question_ = lookup('?');
+}
+
+void Font::left_blank(int glyph, int height, const char* why) const {
+  const std::lock_guard<std::mutex> lock(blank_mutex_);
+  if (!blank_.insert(glyph).second) return;
+  std::fprintf(stderr,
+               "glint: warning: %s: glyph %d cannot be drawn at %d pixels (%s): left blank\n",
+               file_.c_str(), glyph, height, why);
 }
 
 int Font::lookup(char32_t cp) const {

@@ -7,6 +7,8 @@
 #include <cstddef>
 #include <map>
 #include <memory>
+#include <mutex>
+#include <set>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -47,6 +49,8 @@ class Font {
   // The box holding a glyph's outline when that leaves the box of the glyph's header, which stb
   // sizes bitmaps by; nullptr when the header's box holds it (nearly always).
   const Box* grown_box(int glyph) const;
+  // A glyph stb_truetype failed to rasterise (stb_guard.h): warns on stderr, once per glyph.
+  void left_blank(int glyph, int height, const char* why) const;
 
  private:
   void init(const unsigned char* data, std::size_t size, const std::string& file,
@@ -55,6 +59,9 @@ class Font {
 
   std::vector<unsigned char> bytes_;  // stbtt_fontinfo points into it: never reallocated
   std::unique_ptr<stbtt_fontinfo> info_;
+  std::string file_;
+  mutable std::mutex blank_mutex_;  // heat maps are drawn on several threads
+  mutable std::set<int> blank_;
   int ascent_ = 0;
   int glyphs_ = 0;
   int question_ = 0;

@@ -13,6 +13,7 @@
 
 #include "image/font.h"
 #include "image/image.h"
+#include "image/stb_guard.h"
 
 namespace glint {
 
@@ -148,16 +149,23 @@ int draw_glyphs(Image8& image, const Font& font, int x, int y, std::vector<int> 
     const int left = x + static_cast<int>(whole) + x0, top = y + l.baseline + y0;
     if (left >= image.width || top >= image.height || left + w <= 0 || top + h <= 0) continue;
     bitmap.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0);
-    if (grown) {
-      // What stbtt_MakeGlyphBitmapSubpixel does, with the grown box's corner as the offset.
-      stbtt_vertex* vertices = nullptr;
-      const int n = stbtt_GetGlyphShape(&info, l.glyphs[i], &vertices);
-      stbtt__bitmap out{w, h, w, bitmap.data()};
-      stbtt_Rasterize(&out, 0.35f, vertices, n, l.scale, l.scale, shift, 0.0f, x0, y0, 1, nullptr);
-      stbtt_FreeShape(&info, vertices);
-    } else {
-      stbtt_MakeGlyphBitmapSubpixel(&info, bitmap.data(), w, h, w, l.scale, l.scale, shift, 0.0f,
-                                    l.glyphs[i]);
+    try {
+      const StbScope scope;
+      if (grown) {
+        // What stbtt_MakeGlyphBitmapSubpixel does, with the grown box's corner as the offset.
+        stbtt_vertex* vertices = nullptr;
+        const int n = stbtt_GetGlyphShape(&info, l.glyphs[i], &vertices);
+        stbtt__bitmap out{w, h, w, bitmap.data()};
+        stbtt_Rasterize(&out, 0.35f, vertices, n, l.scale, l.scale, shift, 0.0f, x0, y0, 1,
+                        nullptr);
+        stbtt_FreeShape(&info, vertices);
+      } else {
+        stbtt_MakeGlyphBitmapSubpixel(&info, bitmap.data(), w, h, w, l.scale, l.scale, shift, 0.0f,
+                                      l.glyphs[i]);
+      }
+    } catch (const StbAssertion& e) {
+      font.left_blank(l.glyphs[i], height, e.what());
+      continue;
     }
     for (int r = 0; r < h; ++r) {
       const int py = top + r;

@@ -6,11 +6,10 @@
 // lie between guard pages, 8 GiB of inaccessible address space on either side (stb adds 32-bit
 // offsets from the file to the font's start), with the bytes before the font in its first page
 // poisoned for ASan and the font ending on a page boundary. Any read stb makes outside the font is
-// a fault. stb's implementation is compiled into this file from Debian's header (the same source
-// as libstb), so that it is instrumented: in the fuzz build ASan and UBSan check it too.
-//
-// Debian builds libstb with assertions on, so an assertion stb makes is an abort of glint: here it
-// is a finding in every build (NDEBUG or not).
+// a fault. stb's implementation is glint's own compilation of Debian's header (image/stb_guard.h),
+// instrumented like the rest of glint_image: in the fuzz build ASan and UBSan check it too. An
+// assertion stb fails throws StbAssertion: Font refuses the font (InputError) or the glyph is left
+// blank with a warning; an StbAssertion that escapes anywhere else is a finding.
 //
 // Work per input: at most 64 pairs of glyphs and a line of text, each glyph bounded by the check
 // (truetype_check.h: extent, points, depth).
@@ -23,11 +22,6 @@
 #include <vector>
 
 #include "fuzz.h"
-
-#define STBTT_assert(x) ((x) ? (void)0 : glint::fuzz::fail("stb_truetype assertion: " #x))
-#define STB_TRUETYPE_IMPLEMENTATION
-#include <stb_truetype.h>
-
 #include "image/font.h"
 #include "io/input_error.h"
 
