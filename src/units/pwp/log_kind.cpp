@@ -101,7 +101,9 @@ void horner_stages(CostBuilder& b, const std::string& fn, const std::vector<std:
     const Seg rom =
         bank_rom(b, cj, fmt::format("stage {}: {} c_{} (ROM, every material)", s, fn, j));
     if (xw > 0) {
-      const Seg mul = b.multiplier(acc_w, xw, fmt::format("stage {}: {} acc x", s, fn), 1, true);
+      // The first product reads the register loaded with c_d: its bank's width, not the acc's.
+      const int aw = m == 1 ? pwp_log_bank(table, stride, d).width : acc_w;
+      const Seg mul = b.multiplier(aw, xw, fmt::format("stage {}: {} acc x", s, fn), 1, true);
       b.op("mul");
       p.push_back(parallel(mul, rom));
     } else {
