@@ -64,7 +64,8 @@ struct Pwp : UnitKindDefaults {
     c.log_domain = keys.read(Keys::domain) == "log";
     c.n_format = keys.read(Keys::n);
     if (c.log_domain) return build_log(keys, common, plan, c);
-    if (const std::string* v = keys.find(std::string(Keys::n.name)))
+    // At its default the key changes nothing (a spec spelling out every default builds).
+    if (const std::string* v = keys.find(std::string(Keys::n.name)); v && c.n_format != Keys::n.def)
       // refusal: pwp.n_domain
       keys.fail(std::string(Keys::n.name), *v,
                 "the n register is domain=log's (domain=t holds t^n in its tables)");
