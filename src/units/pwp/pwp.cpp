@@ -8,7 +8,8 @@
 // the group are carried down the pipeline, not the coefficients). Bank j holds c_j of every
 // segment of every group ((groups x 2^segments) x its own width: the higher coefficients are
 // smaller and narrower). The last stage rounds once, clamps, and muxes in 0 (t <= t0) and 1.0
-// (t = 1).
+// (t = 1). That is domain=t; domain=log (build_log) builds one set of lg2 and ex2 tables for
+// every group and dispatches its layout, inventory, description and Verilog to log_kind.h.
 #include "units/pwp/pwp.h"
 
 #include <fmt/format.h>
@@ -32,7 +33,7 @@ struct Pwp : UnitKindDefaults {
   static constexpr const char* kName = "pwp";
   static constexpr const char* kSummary =
       "piecewise polynomial: 2^s segments over [t0, 1], degree 1..3 by Horner, one table per "
-      "material";
+      "material (domain=log: ex2(n lg2 t), lg2 and ex2 by segments shared by every material)";
 
   // One --unit away: in the default set it would change every default report and golden.
   static constexpr bool kDefaultSet = false;
