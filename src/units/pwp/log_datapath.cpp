@@ -99,6 +99,13 @@ PwpLogTables::PwpLogTables(const PwpLogSpec& sp) : spec(sp) {
   d = sp.degree;
   stride = static_cast<std::size_t>(d) + 1;
   ebits = clog2_int(fi + 1);
+  // Before anything reads 2^fi codes (PwpUnit refuses the same input again, later).
+  if (fi > kPwpLogMaxInFrac)
+    // refusal: pwp.log_in
+    throw std::invalid_argument(fmt::format(
+        "pwp: {}: at most {} fraction bits (the build proves lg2 monotone on every mantissa "
+        "code)",
+        key_values({{"domain", "log"}, {"in", sp.in.name()}}), kPwpLogMaxInFrac));
   if (fo > kPwpLogMaxOutFrac)
     // refusal: pwp.log_out
     throw std::invalid_argument(fmt::format(

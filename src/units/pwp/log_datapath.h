@@ -59,7 +59,9 @@
 
 namespace glint {
 
-// The widest output domain=log takes (its build checks ex2 on every code of y's fraction).
+// The widest input and output domain=log takes (its build checks lg2 on every mantissa code and
+// ex2 on every code of y's fraction).
+inline constexpr int kPwpLogMaxInFrac = 20;
 inline constexpr int kPwpLogMaxOutFrac = 21;
 
 // What the shared tables are built from.
