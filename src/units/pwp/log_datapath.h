@@ -7,7 +7,7 @@
 //        sl = min(segments, F) bits of mf index a segment, the rl = F - sl bits below are the
 //        offset x. Lg_k(x), degree d by Horner's rule at fl fraction bits (acc = c_d; d - 1
 //        multiply-adds acc = round(acc x) + c_j; the last forms acc x + c_0 exactly and rounds
-//        once to fl bits); log2 t = Lg - E (a concatenation: Lg is in [0, 1]).
+//        once to fl bits); log2 t = Lg - E (Lg is in [0, 1]).
 //   y:   y = n log2 t, the n register (nf fraction bits) times log2 t, rounded to fy bits; y <= 0.
 //   ex2: y = yi + yf, yi = floor(y), yf in [0, 1) at fy bits: its top se = min(segments, fy) bits
 //        index a segment, the re = fy - se below are the offset. Ex_k(x) by Horner's rule at fe
