@@ -341,6 +341,7 @@ class Runner:
         self.json_stdout(eval_doc, "glint_eval_report",
                          ["eval", self.src("traces/phong_basic.vec"), "--chip", "ram:materials=4,slots=4", "--unit",
                           "hast:match=minimax,tables=ram", "--unit", "hast:root=0.9", "--unit", "sfu", "--unit", "pwp",
+                          "--unit", "pwp:domain=log",
                           "--unit", "horner:degree=6,guard=2", "--json"],
                          "glint eval --chip ram:materials=4,slots=4 phong_basic.vec")
         # sim: fast (JSON on stdout), clocked (--report), and a chip of fixed capacity.

@@ -264,7 +264,8 @@ TEST(ExhaustiveUnits, SkipInsideFloatTestAndImperceptible) {
   // Every unit's comparator threshold T: each real t that rounds to a code <= T is <= tau (the
   // float test skips it too), the unit's own output there is at most eps_K / c_y, and T is the
   // largest such code (either the float test's bound or the next code's output is visible).
-  for (const char* name : {"pow", "schlick", "hast", "horner", "lut", "sfu", "pwp"}) {
+  for (const char* name :
+       {"pow", "schlick", "hast", "horner", "lut", "sfu", "pwp", "pwp:domain=log"}) {
     for (double n : kShininess) {
       for (double cy : {1.0, 0.01}) {
         const MaterialParams m = material(n, cy);
@@ -286,7 +287,8 @@ TEST(ExhaustiveUnits, SkipInsideFloatTestAndImperceptible) {
 }
 
 TEST(ExhaustiveUnits, AlwaysSkipWhenLobeInvisible) {
-  for (const char* name : {"pow", "schlick", "hast", "horner", "lut", "sfu", "pwp"}) {
+  for (const char* name :
+       {"pow", "schlick", "hast", "horner", "lut", "sfu", "pwp", "pwp:domain=log"}) {
     const auto u = build(name, material(50, 5e-4));  // c_y < eps
     for (std::int64_t t = 0; t < kInputs; ++t) ASSERT_EQ(u->eval_with_skip(0, t), 0) << name;
   }

@@ -6,23 +6,13 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "units/keys.h"
 #include "units/pwp/segment_fit.h"
 
 namespace glint {
 namespace {
-
-// P(x) = c0 + c1 x + c2 x^2 + c3 x^3 (integer coefficients, one scale) non-decreasing on [0, 1]:
-// P' = c1 + 2 c2 x + 3 c3 x^2 >= 0 there. P' is at most quadratic: its minimum is at an end, or
-// at the vertex x* = -c2 / (3 c3) when c3 > 0 and x* lies inside, where P'(x*) = c1 - c2^2 / (3
-// c3).
-bool nondecreasing(const std::int64_t* c, int degree) {
-  const __int128 c1 = c[1], c2 = degree >= 2 ? c[2] : 0, c3 = degree >= 3 ? c[3] : 0;
-  if (c1 < 0 || c1 + 2 * c2 + 3 * c3 < 0) return false;
-  if (c3 > 0 && c2 < 0 && -c2 < 3 * c3) return 3 * c1 * c3 >= c2 * c2;
-  return true;
-}
 
 // Integer bits (with the sign) of a register holding magnitudes up to `bound` at `frac` bits.
 int signed_int_bits(std::int64_t bound, int frac) {
@@ -37,6 +27,17 @@ constexpr int kBlendShift = 4, kBlendSteps = 1 << kBlendShift;
 
 }  // namespace
 
+// P(x) = c0 + c1 x + c2 x^2 + c3 x^3 (integer coefficients, one scale) non-decreasing on [0, 1]:
+// P' = c1 + 2 c2 x + 3 c3 x^2 >= 0 there. P' is at most quadratic: its minimum is at an end, or
+// at the vertex x* = -c2 / (3 c3) when c3 > 0 and x* lies inside, where P'(x*) = c1 - c2^2 / (3
+// c3).
+bool pwp_nondecreasing(const std::int64_t* c, int degree) {
+  const __int128 c1 = c[1], c2 = degree >= 2 ? c[2] : 0, c3 = degree >= 3 ? c[3] : 0;
+  if (c1 < 0 || c1 + 2 * c2 + 3 * c3 < 0) return false;
+  if (c3 > 0 && c2 < 0 && -c2 < 3 * c3) return 3 * c1 * c3 >= c2 * c2;
+  return true;
+}
+
 int pwp_coef_frac(const PwpConfig& c) {
   return c.coef_frac >= 0 ? c.coef_frac : c.out.frac_bits + 2;
 }
@@ -47,7 +48,13 @@ int pwp_min_guard(const PwpConfig& c) {
   return std::max(g, pwp_coef_frac(c) - c.out.frac_bits);
 }
 
-PwpUnit::PwpUnit(const PwpConfig& cfg, const MaterialParams& m) : cfg_(cfg) {
+PwpLogSpec pwp_log_spec(const PwpConfig& c) {
+  return {c.in, c.out, c.n_format, c.segments, c.degree};
+}
+
+PwpUnit::PwpUnit(const PwpConfig& cfg, const MaterialParams& m,
+                 std::shared_ptr<const PwpLogTables> log_tables)
+    : cfg_(cfg) {
   check_format(cfg.in);
   check_format(cfg.out);
   if (cfg.in.raw_one() == 0 || cfg.out.raw_one() == 0 || cfg.in.frac_bits < 1)
@@ -59,6 +66,11 @@ PwpUnit::PwpUnit(const PwpConfig& cfg, const MaterialParams& m) : cfg_(cfg) {
         "pwp: key 'in' = '{}': at most {} fraction bits (the build proves the output monotone on "
         "every input code)",
         cfg.in.name(), kPwpMaxInFrac));
+  if (cfg.log_domain) {
+    if (log_tables == nullptr) log_tables = std::make_shared<const PwpLogTables>(pwp_log_spec(cfg));
+    log_.emplace(std::move(log_tables), m);
+    return;
+  }
   if (cfg.degree < 1 || cfg.degree > 3 || cfg.segments < 0 || cfg.segments > 10)
     // not from a spec: the key reader takes degree in 1..3 and segments in 0..10 only
     throw std::invalid_argument("pwp: degree must be in 1..3 and segments in 0..10");
@@ -145,7 +157,7 @@ PwpUnit::PwpUnit(const PwpConfig& cfg, const MaterialParams& m) : cfg_(cfg) {
       place();
       const double w = static_cast<double>(i) / kBlendSteps;
       for (std::size_t j = 0; j < stride_; ++j) f[j] = (1 - w) * fit[j] + w * chord[j];
-      if (nondecreasing(q, d)) {
+      if (pwp_nondecreasing(q, d)) {
         blended_ += i > 0;
         chords_ += i == kBlendSteps;
         break;
@@ -196,6 +208,7 @@ void PwpUnit::set_guard(int guard) {
 }
 
 bool PwpUnit::output_monotone() const {
+  if (log_) return true;  // proven for every n by the shared tables (log_datapath.h)
   std::int64_t prev = 0;
   for (std::int64_t t = t0_raw_ + 1; t <= one_in_; ++t) {
     const std::int64_t y = eval(t);
@@ -206,10 +219,12 @@ bool PwpUnit::output_monotone() const {
 }
 
 double PwpUnit::datapath_bound_ulps() const {
+  if (log_) return log_->datapath_bound_ulps();
   return 0.5 + (cfg_.degree - 1) * std::ldexp(1.0, -(cfg_.guard + 1));
 }
 
 double PwpUnit::model(std::int64_t t_raw) const {
+  if (log_) return log_->model(t_raw);
   if (t_raw <= t0_raw_) return 0.0;
   if (t_raw >= one_in_) return 1.0;
   const std::int64_t v = t_raw - t0_raw_;
@@ -223,6 +238,7 @@ double PwpUnit::model(std::int64_t t_raw) const {
 }
 
 double PwpUnit::float_model(double t) const {
+  if (log_) return log_->float_model(t);
   const double t0 = std::ldexp(static_cast<double>(t0_raw_), -cfg_.in.frac_bits);
   if (t <= t0 || t0 >= 1.0) return 0.0;
   if (t >= 1.0) return 1.0;

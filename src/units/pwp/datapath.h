@@ -45,10 +45,13 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
+#include <optional>
 #include <vector>
 
 #include "units/common.h"
 #include "units/pwp/keys.h"
+#include "units/pwp/log_datapath.h"
 #include "units/stages.h"
 
 namespace glint {
@@ -63,7 +66,12 @@ struct PwpConfig {
   bool skip = CommonKeyTable::skip.def;
   bool coef_frac_auto = false;  // resolved from auto (refusals say so)
   bool guard_auto = false;
+  bool log_domain = false;            // domain=log: units/pwp/log_datapath.h
+  QFormat n_format = PwpKeys::n.def;  // domain=log's n register
 };
+
+// domain=log's tables for this config.
+PwpLogSpec pwp_log_spec(const PwpConfig& c);
 
 // The widest input pwp takes: its build checks every code of the span for monotonicity.
 inline constexpr int kPwpMaxInFrac = 20;
@@ -78,7 +86,9 @@ int pwp_min_guard(const PwpConfig& c);
 
 class PwpUnit {
  public:
-  PwpUnit(const PwpConfig& cfg, const MaterialParams& m);
+  // domain=log: `log_tables` built for pwp_log_spec(cfg), shared by the groups (null: its own).
+  PwpUnit(const PwpConfig& cfg, const MaterialParams& m,
+          std::shared_ptr<const PwpLogTables> log_tables = nullptr);
 
   std::int64_t eval(std::int64_t t_raw) const { return run(t_raw, NoProbe{}); }
   // The datapath, stage by stage (pwp.cpp's layout): position 1 holds the index, x and acc = c_d,
@@ -86,6 +96,7 @@ class PwpUnit {
   // t = 1 leave positions 1..d alone.
   template <class Probe>
   std::int64_t run(std::int64_t t_raw, const Probe& probe) const {
+    if (log_) return log_->run(t_raw, probe);
     const int last = cfg_.degree + 1;
     if (t_raw <= t0_raw_) {
       probe(last, 0, 0);
@@ -141,6 +152,7 @@ class PwpUnit {
   int chord_segments() const { return chords_; }
   std::size_t table_bytes() const { return (c_raw_.size() + c_fit_.size()) * 8; }
   const PwpConfig& config() const { return cfg_; }
+  const PwpLogPath* log_path() const { return log_ ? &*log_ : nullptr; }
 
  private:
   PwpConfig cfg_;
@@ -153,6 +165,7 @@ class PwpUnit {
   std::vector<double> c_fit_;              // the fit's coefficients, same layout (float_model)
   int blended_ = 0, chords_ = 0;
   bool guard_given_ = false;
+  std::optional<PwpLogPath> log_;  // domain=log: the whole datapath
 };
 
 }  // namespace glint

@@ -1,6 +1,7 @@
 // pwp's keys (key_table.h): each declared once; PwpConfig takes its defaults from them.
 #pragma once
 
+#include <string_view>
 #include <vector>
 
 #include "units/key_table.h"
@@ -24,7 +25,19 @@ struct PwpKeys {
       "raised until the output is monotone)",
       true};
 
-  static std::vector<UnitKey> list() { return key_list(segments, degree, coef_frac, guard); }
+  // domain=log: units/pwp/log_datapath.h (material-independent lg2 and ex2 tables, n per slot).
+  static constexpr std::string_view kDomains[] = {"t", "log"};
+  static constexpr ChoiceKey domain{
+      "domain", "t", kDomains,
+      "t: t^n by segments of t, one table per material | log: ex2(n lg2 t), lg2 and ex2 by "
+      "segments of the mantissa and of y's fraction, tables shared by every material, n in a "
+      "register (widths from out, n and degree; coef_frac and guard are domain=t's)",
+      false};
+  static constexpr FormatKey n{"n", uq(10, 4), "shininess register format (domain=log only)"};
+
+  static std::vector<UnitKey> list() {
+    return key_list(segments, degree, coef_frac, guard, domain, n);
+  }
 };
 
 }  // namespace glint

@@ -8,14 +8,19 @@
 // the group are carried down the pipeline, not the coefficients). Bank j holds c_j of every
 // segment of every group ((groups x 2^segments) x its own width: the higher coefficients are
 // smaller and narrower). The last stage rounds once, clamps, and muxes in 0 (t <= t0) and 1.0
-// (t = 1).
+// (t = 1). That is domain=t; domain=log (build_log) builds one set of lg2 and ex2 tables for
+// every group and dispatches its layout, inventory, description and Verilog to log_kind.h.
 #include "units/pwp/pwp.h"
 
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <memory>
+#include <optional>
+#include <string>
 
 #include "units/pwp/datapath.h"
+#include "units/pwp/log_kind.h"
 #include "units/pwp/rtl.h"
 #include "units/unit_set.h"
 
@@ -28,7 +33,7 @@ struct Pwp : UnitKindDefaults {
   static constexpr const char* kName = "pwp";
   static constexpr const char* kSummary =
       "piecewise polynomial: 2^s segments over [t0, 1], degree 1..3 by Horner, one table per "
-      "material";
+      "material (domain=log: ex2(n lg2 t), lg2 and ex2 by segments shared by every material)";
 
   // One --unit away: in the default set it would change every default report and golden.
   static constexpr bool kDefaultSet = false;
@@ -39,7 +44,13 @@ struct Pwp : UnitKindDefaults {
       {"cubic", "segments=3,degree=3,out=uq1.12",
        "--vectors traces/multi_light.vec --sink-ready 0.5 --seed 5"},
       {"linear_skip_off", "segments=6,degree=1,in=uq1.12,skip=off",
-       "--vectors traces/eight_lights.vec --sink-ready 0.8"}};
+       "--vectors traces/eight_lights.vec --sink-ready 0.8"},
+      {"log", "domain=log", "--vectors traces/phong_basic.vec --sink-ready 0.6"},
+      // Several materials, each n loadable; the lg2 and ex2 ROMs shared.
+      {"log_ram", "domain=log,tables=ram,degree=3,segments=3",
+       "--vectors traces/blinn_colored.vec --sink-ready 0.6"},
+      {"log_linear_skip_off", "domain=log,degree=1,segments=6,in=uq1.12,out=uq1.10,skip=off",
+       "--vectors traces/multi_light.vec --sink-ready 0.5 --seed 5"}};
 
   static std::unique_ptr<SpecularUnit> build(const KeyReader& keys, const CommonKeys& common,
                                              const SlotPlan& plan) {
@@ -51,6 +62,14 @@ struct Pwp : UnitKindDefaults {
     c.degree = keys.read(Keys::degree);
     c.coef_frac = keys.read(Keys::coef_frac);
     c.guard = keys.read(Keys::guard);
+    c.log_domain = keys.read(Keys::domain) == "log";
+    c.n_format = keys.read(Keys::n);
+    if (c.log_domain) return build_log(keys, common, plan, c);
+    // At its default the key changes nothing (a spec spelling out every default builds).
+    if (const std::string* v = keys.find(std::string(Keys::n.name)); v && c.n_format != Keys::n.def)
+      // refusal: pwp.n_domain
+      keys.fail(std::string(Keys::n.name), *v,
+                "the n register is domain=log's (domain=t holds t^n in its tables)");
     c.coef_frac_auto = c.coef_frac < 0;
     c.guard_auto = c.guard < 0;
     c.coef_frac = pwp_coef_frac(c);
@@ -89,8 +108,44 @@ struct Pwp : UnitKindDefaults {
     return make_unit_set<Pwp>(common, std::move(config), c, std::move(units), plan, timing);
   }
 
+  // domain=log (units/pwp/log_datapath.h): one set of tables for every group, n per group.
+  static std::unique_ptr<SpecularUnit> build_log(const KeyReader& keys, const CommonKeys& common,
+                                                 const SlotPlan& plan, PwpConfig c) {
+    for (const IntKey* k : {&Keys::coef_frac, &Keys::guard}) {
+      const std::string* v = keys.find(std::string(k->name));
+      if (v != nullptr && *v != "auto")
+        // refusal: pwp.log_widths
+        keys.fail(std::string(k->name), *v,
+                  "domain=log derives its widths from out, n and degree (units/pwp/"
+                  "log_datapath.h); coef_frac and guard are domain=t's");
+    }
+    const auto tables = std::make_shared<const PwpLogTables>(pwp_log_spec(c));
+    auto units = build_per_group<PwpUnit>(c, plan.groups, tables);
+    nlohmann::json config = common_config(common);
+    put_key(config, Keys::segments, c.segments);
+    put_key(config, Keys::degree, c.degree);
+    put_key(config, Keys::domain, "log");
+    put_key(config, Keys::n, c.n_format);
+    // lg2 lookup, d multiply-adds, the n multiplier, ex2 lookup, d multiply-adds.
+    const UnitTiming timing{2 * c.degree + 3, 1, 0};
+    return make_unit_set<Pwp>(common, std::move(config), c, std::move(units), plan, timing);
+  }
+
+  static std::optional<NRegister> n_register(const Config& c, const std::vector<Datapath>& units,
+                                             bool fixed) {
+    if (!c.log_domain) return std::nullopt;
+    std::vector<std::int64_t> raw;
+    std::vector<double> target;
+    for (const PwpUnit& u : units) {
+      raw.push_back(u.log_path()->n_raw());
+      target.push_back(u.log_path()->shininess());
+    }
+    return elaborate_n_register(c.n_format, raw, target, fixed);
+  }
+
   static std::vector<Stage> stages(const Config& c, const std::vector<Datapath>& units,
                                    UnitTiming) {
+    if (c.log_domain) return pwp_log_stages(c, units);
     int rb = 0, acc_int = 1;
     for (const PwpUnit& u : units) {
       rb = std::max(rb, u.offset_bits());
@@ -111,6 +166,7 @@ struct Pwp : UnitKindDefaults {
 
   static void cost(CostBuilder& b, const LaneShape& L, const Config& c,
                    const std::vector<Datapath>& units) {
+    if (c.log_domain) return pwp_log_cost(b, L, c, units);
     const int d = c.degree, fa = L.out.frac_bits + c.guard;
     const int wi = L.in.width(), fi = L.in.frac_bits, wo = L.out.width();
     const int sbits = clog2(fi + 1);
@@ -180,6 +236,7 @@ struct Pwp : UnitKindDefaults {
   }
 
   static nlohmann::json describe_slot(const Datapath& u) {
+    if (u.log_path() != nullptr) return pwp_log_describe(u);
     return {{"t0_raw", u.t0_raw()},
             {"segments", u.segment_count()},
             {"offset_bits", u.offset_bits()},
@@ -188,6 +245,7 @@ struct Pwp : UnitKindDefaults {
   }
   static std::string rtl(const hdl::DatapathPorts& p, const Config& c,
                          const std::vector<Datapath>& units, const StageLayout& layout) {
+    if (c.log_domain) return pwp_log_rtl(p, c, units, layout);
     return pwp_rtl(p, c, units, layout);
   }
 };

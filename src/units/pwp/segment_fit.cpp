@@ -38,4 +38,29 @@ std::vector<double> fit_segment(double n, double a, double b, int degree) {
   return c;
 }
 
+std::vector<double> fit_segment_of(const std::function<double(double)>& f, double a, double b,
+                                   int degree) {
+  const double fa = f(a), fb = f(b), rise = fb - fa;
+  std::vector<double> c(static_cast<std::size_t>(degree) + 1, 0.0);
+  c[0] = fa;
+  c[1] = rise;
+  if (degree == 1) return c;
+  const double h = b - a;
+  const std::function<double(double)> normalised = [&](double x) {
+    const double t = x <= 0.5 ? a + h * x : b - h * (1.0 - x);
+    return (f(t) - fa) / rise;
+  };
+  FitOptions o;
+  o.degree = degree;
+  o.method = FitMethod::kMinimax;
+  o.constrain_zero = true;
+  o.constrain_one = true;
+  o.remez_grid = 64;
+  o.error_grid = 0;
+  const FitResult r = fit_function(o, normalised);
+  c[1] = 0.0;
+  for (std::size_t j = 0; j < c.size() && j < r.coeffs.size(); ++j) c[j] += rise * r.coeffs[j];
+  return c;
+}
+
 }  // namespace glint

@@ -2,6 +2,7 @@
 // formats as constraints (Sollya's fpminimax) can replace it here without touching the datapath.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 namespace glint {
@@ -11,5 +12,9 @@ namespace glint {
 // the normalised target (t^n - a^n) / (b^n - a^n), which both ends pin to 0 and 1. Monomial
 // coefficients in x, c[0] = a^n.
 std::vector<double> fit_segment(double n, double a, double b, int degree);
+
+// The same for any increasing f (domain=log: log2(1 + u) and 2^u), c[0] = f(a).
+std::vector<double> fit_segment_of(const std::function<double(double)>& f, double a, double b,
+                                   int degree);
 
 }  // namespace glint
