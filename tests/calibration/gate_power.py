@@ -23,13 +23,14 @@ and reads, from its `power` debug trace, each pin's energy per transition (the f
 multiplies the activity by); the sum over pins of energy x simulated transitions is what
 report_power computes for those activities. The script checks the reading: the pins' energies at
 the global activity must add up to report_power's own internal and switching totals (within 1 %).
-That version also ignores the duty (its internal power averages the `when` states), so none is
-passed.
+That version also has no use for a duty (its internal power sums the state-dependent `when`
+groups whatever the state, and leakage is the cells' own), so none is passed.
 
     # one lane, its figures printed (and the work folder kept with --work)
     python3 tests/calibration/gate_power.py build/glint --lane hast traces/multi_light.vec
-    # the stored reference (tests/calibration/power_set.txt), about 40 minutes of one core
-    python3 tests/calibration/gate_power.py build/glint \\
+    # the stored reference (tests/calibration/power_set.txt, 28 lanes): 44 minutes on a shared
+    # 2-core host, most of it Yosys's abc
+    python3 tests/calibration/gate_power.py build/glint --timeout 900 \\
         -o tests/calibration/power_osu018.json
     # the short check of the normal suite: one small lane, 200 requests, skip on and off
     python3 tests/calibration/gate_power.py build/glint --smoke
@@ -551,7 +552,8 @@ def main():
                "yosys": run(["yosys", "-V"]).strip(),
                "iverilog": run(["iverilog", "-V"]).splitlines()[0],
                "clock_period_ns": PERIOD_NS,
-               "command": f"python3 tests/calibration/gate_power.py build/glint --set {rel} -o {out}",
+               "command": f"python3 tests/calibration/gate_power.py build/glint --set {rel}"
+                          f" --timeout {args.timeout:g} -o {out}",
                "cycles": "the testbench's edges from the first out of reset to the last "
                          "result's retire: the stream plus the pipeline's drain",
                "simulation": "zero-delay (Icarus, the library's cell models): no glitches",
