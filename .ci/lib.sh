@@ -11,12 +11,14 @@ GLINT_PACKAGES=(g++ cmake ninja-build ccache pkg-config libsystemc-dev libfmt-de
   fonts-dejavu-core libfast-float-dev gtkwave yosys qflow-tech-osu018 opensta libsollya-dev)
 # What the test suite and the benchmarks need on top: GoogleTest, Google Benchmark, RapidCheck,
 # MPFR (the 200-bit oracle), libspng (png_speed's comparison of encoders), GNU parallel (the
-# sharded-sweep test), Verilator, Python 3 (the documentation checks), Valgrind (the instruction
-# counts of tests/bench/instructions.py); clang, its sanitizer and libFuzzer runtimes and
+# sharded-sweep test), Verilator, Icarus Verilog (the gate-level energy reference,
+# tests/calibration/gate_power.py: it reads the library's cell models, whose UDPs Verilator
+# cannot), Python 3 (the documentation checks), Valgrind (the instruction counts of
+# tests/bench/instructions.py); clang, its sanitizer and libFuzzer runtimes and
 # llvm-symbolizer for the sanitizer and fuzz build; Chromium, headless, for the HTML pages' test in
 # a browser (html.browser).
 GLINT_TEST_PACKAGES=(libgtest-dev libgmock-dev libbenchmark-dev librapidcheck-dev libmpfr-dev
-  libspng-dev parallel verilator python3 valgrind clang libclang-rt-dev llvm chromium)
+  libspng-dev parallel verilator iverilog python3 valgrind clang libclang-rt-dev llvm chromium)
 
 # ccache keys on paths relative to the checkout (BASEDIR) and leaves the build folder out of the
 # key of objects with debug information (NOHASHDIR), so a clone elsewhere on the machine still hits.
