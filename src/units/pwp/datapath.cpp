@@ -17,7 +17,7 @@ namespace {
 // P' = c1 + 2 c2 x + 3 c3 x^2 >= 0 there. P' is at most quadratic: its minimum is at an end, or
 // at the vertex x* = -c2 / (3 c3) when c3 > 0 and x* lies inside, where P'(x*) = c1 - c2^2 / (3
 // c3).
-bool nondecreasing(const std::int64_t* c, int degree) {
+bool nondecreasing_impl(const std::int64_t* c, int degree) {
   const __int128 c1 = c[1], c2 = degree >= 2 ? c[2] : 0, c3 = degree >= 3 ? c[3] : 0;
   if (c1 < 0 || c1 + 2 * c2 + 3 * c3 < 0) return false;
   if (c3 > 0 && c2 < 0 && -c2 < 3 * c3) return 3 * c1 * c3 >= c2 * c2;
@@ -36,6 +36,10 @@ int signed_int_bits(std::int64_t bound, int frac) {
 constexpr int kBlendShift = 4, kBlendSteps = 1 << kBlendShift;
 
 }  // namespace
+
+bool pwp_nondecreasing(const std::int64_t* c, int degree) {
+  return nondecreasing_impl(c, degree);
+}
 
 int pwp_coef_frac(const PwpConfig& c) {
   return c.coef_frac >= 0 ? c.coef_frac : c.out.frac_bits + 2;
@@ -110,6 +114,7 @@ PwpUnit::PwpUnit(const PwpConfig& cfg, const MaterialParams& m) : cfg_(cfg) {
   stride_ = static_cast<std::size_t>(d) + 1;
   c_raw_.assign(count * stride_, 0);
   c_fit_.assign(count * stride_, 0.0);
+  repair_.assign(count, 0);
   for (std::size_t k = 0; k < count; ++k) {
     std::int64_t* q = &c_raw_[k * stride_];
     double* f = &c_fit_[k * stride_];
@@ -145,14 +150,39 @@ PwpUnit::PwpUnit(const PwpConfig& cfg, const MaterialParams& m) : cfg_(cfg) {
       place();
       const double w = static_cast<double>(i) / kBlendSteps;
       for (std::size_t j = 0; j < stride_; ++j) f[j] = (1 - w) * fit[j] + w * chord[j];
-      if (nondecreasing(q, d)) {
+      if (nondecreasing_impl(q, d)) {
         blended_ += i > 0;
         chords_ += i == kBlendSteps;
+        repair_[k] = i == kBlendSteps ? 2 : (i > 0 ? 1 : 0);
         break;
       }
     }
   }
   set_guard(guard);
+}
+
+double PwpUnit::segment_start(std::size_t k) const {
+  const double t0 = std::ldexp(static_cast<double>(t0_raw_), -cfg_.in.frac_bits);
+  return t0 + std::ldexp(1.0 - t0, -sb_) * static_cast<double>(k);
+}
+
+double PwpUnit::segment_end(std::size_t k) const {
+  return k + 1 >= segment_count() ? 1.0 : segment_start(k + 1);
+}
+
+std::vector<double> PwpUnit::segment_fit(std::size_t k) const {
+  const auto* f = &c_fit_[k * stride_];
+  return {f, f + stride_};
+}
+
+void PwpUnit::replace_segment(std::size_t k, const std::vector<std::int64_t>& raw) {
+  blended_ -= repair_[k] > 0;
+  chords_ -= repair_[k] == 2;
+  repair_[k] = 0;
+  for (std::size_t j = 0; j < stride_; ++j) {
+    c_raw_[k * stride_ + j] = raw[j];
+    c_fit_[k * stride_ + j] = static_cast<double>(static_cast<long double>(raw[j]) * c_scale_);
+  }
 }
 
 void PwpUnit::set_guard(int guard) {

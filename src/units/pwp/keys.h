@@ -1,6 +1,7 @@
 // pwp's keys (key_table.h): each declared once; PwpConfig takes its defaults from them.
 #pragma once
 
+#include <string_view>
 #include <vector>
 
 #include "units/key_table.h"
@@ -24,7 +25,15 @@ struct PwpKeys {
       "raised until the output is monotone)",
       true};
 
-  static std::vector<UnitKey> list() { return key_list(segments, degree, coef_frac, guard); }
+  static constexpr std::string_view kFits[] = {"best", "glint", "sollya"};
+  static constexpr ChoiceKey fit{
+      "fit", "best", kFits,
+      "segment coefficients (degree >= 2): best (per segment, Sollya's where its certified error "
+      "is lower) | glint (Remez, rounded to nearest) | sollya (fpminimax on the coefficients' "
+      "grid wherever it is valid)",
+      false};
+
+  static std::vector<UnitKey> list() { return key_list(segments, degree, coef_frac, guard, fit); }
 };
 
 }  // namespace glint
