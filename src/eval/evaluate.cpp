@@ -524,7 +524,8 @@ std::string format_fit_engines(const nlohmann::json& description) {
   if (fitted == 0) return {};
   if (per_segment) {
     std::string out = fmt::format(
-        "    fits: Sollya's fpminimax on {} of {} fitted segments ({} slots), glint's on the rest",
+        "    fits: Sollya's fpminimax on {} of {} fitted segments ({} slot(s)), glint's on the "
+        "rest",
         sollya_segments, segments, fitted);
     if (certified > 0)
       out +=
