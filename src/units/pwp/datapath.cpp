@@ -17,7 +17,7 @@ namespace {
 // P' = c1 + 2 c2 x + 3 c3 x^2 >= 0 there. P' is at most quadratic: its minimum is at an end, or
 // at the vertex x* = -c2 / (3 c3) when c3 > 0 and x* lies inside, where P'(x*) = c1 - c2^2 / (3
 // c3).
-bool nondecreasing_impl(const std::int64_t* c, int degree) {
+bool nondecreasing(const std::int64_t* c, int degree) {
   const __int128 c1 = c[1], c2 = degree >= 2 ? c[2] : 0, c3 = degree >= 3 ? c[3] : 0;
   if (c1 < 0 || c1 + 2 * c2 + 3 * c3 < 0) return false;
   if (c3 > 0 && c2 < 0 && -c2 < 3 * c3) return 3 * c1 * c3 >= c2 * c2;
@@ -38,7 +38,7 @@ constexpr int kBlendShift = 4, kBlendSteps = 1 << kBlendShift;
 }  // namespace
 
 bool pwp_nondecreasing(const std::int64_t* c, int degree) {
-  return nondecreasing_impl(c, degree);
+  return nondecreasing(c, degree);
 }
 
 int pwp_coef_frac(const PwpConfig& c) {
@@ -150,7 +150,7 @@ PwpUnit::PwpUnit(const PwpConfig& cfg, const MaterialParams& m) : cfg_(cfg) {
       place();
       const double w = static_cast<double>(i) / kBlendSteps;
       for (std::size_t j = 0; j < stride_; ++j) f[j] = (1 - w) * fit[j] + w * chord[j];
-      if (nondecreasing_impl(q, d)) {
+      if (nondecreasing(q, d)) {
         blended_ += i > 0;
         chords_ += i == kBlendSteps;
         repair_[k] = i == kBlendSteps ? 2 : (i > 0 ? 1 : 0);
