@@ -498,16 +498,23 @@ std::string format_eval_table(const std::vector<UnitStats>& stats) {
 namespace {
 
 // Which engine fitted the slots' coefficients and Sollya's certified sup norm of their error, for
-// units whose slots say (horner: fit_engine, sup_norm); nothing for the others.
+// units whose slots say (horner: fit_engine, sup_norm; pwp per segment: sollya_segments,
+// fitted_segments); nothing for the others.
 std::string format_fit_engines(const nlohmann::json& description) {
   const auto slots = description.find("slots");
   if (slots == description.end()) return {};
-  std::size_t fitted = 0, sollya = 0, certified = 0;
+  std::size_t fitted = 0, sollya = 0, certified = 0, segments = 0, sollya_segments = 0;
+  bool per_segment = false;
   double sup = 0;
   for (const nlohmann::json& slot : *slots) {
     if (const auto e = slot.find("fit_engine"); e != slot.end()) {
       ++fitted;
       if (*e == "sollya") ++sollya;
+    }
+    if (const auto s = slot.find("sollya_segments"); s != slot.end()) {
+      per_segment = true;
+      sollya_segments += s->get<std::size_t>();
+      segments += slot.value("fitted_segments", std::size_t{0});
     }
     if (const auto n = slot.find("sup_norm"); n != slot.end()) {
       ++certified;
@@ -515,6 +522,16 @@ std::string format_fit_engines(const nlohmann::json& description) {
     }
   }
   if (fitted == 0) return {};
+  if (per_segment) {
+    std::string out = fmt::format(
+        "    fits: Sollya's fpminimax on {} of {} fitted segments ({} slot(s)), glint's on the "
+        "rest",
+        sollya_segments, segments, fitted);
+    if (certified > 0)
+      out +=
+          fmt::format("; |P_k - t^n| <= {:.4g} on those segments, certified (Sollya supnorm)", sup);
+    return out + "\n";
+  }
   std::string out = fmt::format(
       "    fits: Sollya's fpminimax on {} of {} slots, glint's on the rest", sollya, fitted);
   if (certified > 0)

@@ -77,6 +77,15 @@ sollya_obj_t target(FitVariable variable, double shininess, double tau) {
   return sollya_lib_build_function_pow(t, sollya_lib_constant_from_double(shininess));
 }
 
+// (a + (b - a) v)^n, a, b and n doubles taken exactly (b - a is exact: a segment's ends are
+// dyadic).
+sollya_obj_t segment_target(double shininess, double a, double b) {
+  sollya_obj_t t = sollya_lib_build_function_add(
+      sollya_lib_constant_from_double(a),
+      sollya_lib_build_function_mul(sollya_lib_constant_from_double(b - a), x()));
+  return sollya_lib_build_function_pow(t, sollya_lib_constant_from_double(shininess));
+}
+
 // sum raw_k 2^-frac_bits v^k in Horner form.
 sollya_obj_t polynomial(const std::vector<std::int64_t>& raw, int frac_bits) {
   sollya_obj_t p = dyadic(raw.back(), frac_bits);
@@ -206,15 +215,14 @@ FixedPointFit fit_power_fixed_point(const FitOptions& o, int frac_bits,
   return r;
 }
 
-CertifiedSupNorm certified_sup_norm(const std::vector<std::int64_t>& raw, int frac_bits,
-                                    FitVariable variable, double shininess, double tau) {
+namespace {
+
+// Under sollya_lock(): Sollya's supnorm of p - f on [0, 1], both taken (cleared here).
+CertifiedSupNorm sup_norm_of(sollya_obj_t polynomial_obj, sollya_obj_t target_obj,
+                             std::chrono::steady_clock::time_point clock) {
   CertifiedSupNorm r;
-  if (raw.empty()) return r;
-  const auto clock = std::chrono::steady_clock::now();
-  const std::lock_guard<std::mutex> lock(sollya_lock());
-  ensure_sollya();
-  Obj p(polynomial(raw, frac_bits));
-  Obj f(target(variable, shininess, tau));
+  Obj p(polynomial_obj);
+  Obj f(target_obj);
   Obj range(sollya_lib_parse_string("[0;1]"));
   Obj absolute(sollya_lib_absolute());
   // Enclosure within 2^-12 of its own width: three digits of the bound.
@@ -232,6 +240,104 @@ CertifiedSupNorm certified_sup_norm(const std::vector<std::int64_t>& raw, int fr
   }
   mpfr_clear(lo);
   mpfr_clear(hi);
+  return r;
+}
+
+}  // namespace
+
+CertifiedSupNorm certified_sup_norm(const std::vector<std::int64_t>& raw, int frac_bits,
+                                    FitVariable variable, double shininess, double tau) {
+  if (raw.empty()) return {};
+  const auto clock = std::chrono::steady_clock::now();
+  const std::lock_guard<std::mutex> lock(sollya_lock());
+  ensure_sollya();
+  return sup_norm_of(polynomial(raw, frac_bits), target(variable, shininess, tau), clock);
+}
+
+CertifiedSupNorm certified_segment_sup_norm(const std::vector<std::int64_t>& raw, int frac_bits,
+                                            double shininess, double a, double b) {
+  if (raw.empty() || !(b > a)) return {};
+  const auto clock = std::chrono::steady_clock::now();
+  const std::lock_guard<std::mutex> lock(sollya_lock());
+  ensure_sollya();
+  return sup_norm_of(polynomial(raw, frac_bits), segment_target(shininess, a, b), clock);
+}
+
+FixedPointFit fit_segment_fixed_point(double shininess, double a, double b, int degree,
+                                      int frac_bits, std::int64_t end0_raw, std::int64_t end1_raw,
+                                      const std::vector<double>& start,
+                                      const std::vector<double>& points) {
+  FixedPointFit r;
+  if (degree < 2) {
+    r.failure = "no free coefficient (degree 1 with both ends fixed is the chord)";
+    return r;
+  }
+  if (static_cast<int>(start.size()) != degree + 1) {
+    r.failure = "the start polynomial's degree differs";
+    return r;
+  }
+  if (frac_bits < 0 || frac_bits > 60 || !(b > a)) {
+    r.failure = "fraction bits outside 0..60 or an empty segment";
+    return r;
+  }
+  if (!points.empty() && static_cast<int>(points.size()) < degree - 1) {
+    r.failure = "fewer interpolation points than free coefficients";
+    return r;
+  }
+  const auto clock = std::chrono::steady_clock::now();
+  const std::lock_guard<std::mutex> lock(sollya_lock());
+  ensure_sollya();
+  std::vector<sollya_obj_t> basis, formats, start_coeffs;
+  for (int k = 2; k <= degree; ++k) {
+    basis.push_back(sollya_lib_build_function_sub(
+        sollya_lib_build_function_pow(x(), sollya_lib_constant_from_int(k)), x()));
+    formats.push_back(sollya_lib_constant_from_int(frac_bits));
+    start_coeffs.push_back(sollya_lib_constant_from_double(start[static_cast<std::size_t>(k)]));
+  }
+  const auto list = [](std::vector<sollya_obj_t>& v) {
+    Obj l(sollya_lib_list(v.data(), static_cast<int>(v.size())));
+    for (sollya_obj_t e : v) sollya_lib_clear_obj(e);
+    v.clear();
+    return l.release();
+  };
+  Obj f(segment_target(shininess, a, b));
+  Obj g(list(basis)), fmt(list(formats)), lc(list(start_coeffs));
+  std::vector<sollya_obj_t> where;
+  for (double v : points) where.push_back(sollya_lib_constant_from_double(v));
+  Obj range(points.empty() ? sollya_lib_parse_string("[0;1]") : list(where));
+  Obj absolute(sollya_lib_absolute()), fixed(sollya_lib_fixed());
+  // The fixed part: the line through both ends, exactly on the grid.
+  Obj q(sollya_lib_build_function_add(
+      dyadic(end0_raw, frac_bits),
+      sollya_lib_build_function_mul(dyadic(end1_raw - end0_raw, frac_bits), x())));
+  Obj fit(sollya_lib_fpminimax(f.get(), g.get(), fmt.get(), range.get(), absolute.get(),
+                               fixed.get(), q.get(), lc.get(), nullptr));
+  r.milliseconds = elapsed_ms(clock);
+  if (fit.error()) {
+    r.failure = "fpminimax failed";
+    return r;
+  }
+  r.raw.assign(static_cast<std::size_t>(degree) + 1, 0);
+  for (int k = 0; k <= degree; ++k) {
+    if (!coefficient_raw(fit.get(), k, frac_bits, &r.raw[static_cast<std::size_t>(k)])) {
+      r.failure = "a coefficient off the fixed-point grid";
+      return r;
+    }
+  }
+  std::int64_t sum = 0;
+  for (std::int64_t c : r.raw) sum += c;
+  if (r.raw[0] != end0_raw || sum != end1_raw) {
+    r.failure = "the segment's ends moved";
+    return r;
+  }
+  for (std::int64_t c : r.raw) {
+    if (c >= (std::int64_t{1} << 53) || c <= -(std::int64_t{1} << 53)) {
+      r.failure = "a coefficient wider than a double's mantissa";
+      return r;
+    }
+    r.coeffs.push_back(std::ldexp(static_cast<double>(c), -frac_bits));
+  }
+  r.ok = true;
   return r;
 }
 

@@ -55,4 +55,23 @@ struct CertifiedSupNorm {
 CertifiedSupNorm certified_sup_norm(const std::vector<std::int64_t>& raw, int frac_bits,
                                     FitVariable variable, double shininess, double tau);
 
+// One segment of a piecewise polynomial (units/pwp): t^n on [a, b] as P(x), t = a + (b - a) x, x
+// in [0, 1], whose ends are given on the grid: P(0) = end0_raw 2^-frac_bits and P(1) = end1_raw
+// 2^-frac_bits exactly, so that neighbouring segments meet. fpminimax searches the free
+// coefficients c_j (j = 2..degree, every one a multiple of 2^-frac_bits) of P = P(0) + (P(1) -
+// P(0)) x + sum c_j (x^j - x); c_1 = end1 - end0 - sum c_j is then on the grid too. start: a real
+// fit with the same ends, monomial in x (degree + 1 values), from whose error extrema fpminimax
+// takes its interpolation points; points (at least degree - 1 of them, in x), when given, are
+// those points (fpminimax then skips its own search for them: 0.1 ms a segment instead of 10). raw:
+// c_0 .. c_degree.
+FixedPointFit fit_segment_fixed_point(double shininess, double a, double b, int degree,
+                                      int frac_bits, std::int64_t end0_raw, std::int64_t end1_raw,
+                                      const std::vector<double>& start,
+                                      const std::vector<double>& points = {});
+
+// A certified enclosure of max |P(x) - (a + (b - a) x)^n| over x in [0, 1] (as
+// certified_sup_norm, on a segment).
+CertifiedSupNorm certified_segment_sup_norm(const std::vector<std::int64_t>& raw, int frac_bits,
+                                            double shininess, double a, double b);
+
 }  // namespace glint

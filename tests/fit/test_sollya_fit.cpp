@@ -98,6 +98,40 @@ TEST(SollyaFit, NoWorseThanRoundedRemezAndCertified) {
   EXPECT_GE(better, 1);
 }
 
+// A piecewise polynomial's segment (units/pwp): both ends stay exactly where they are given, the
+// result is on the grid, and its certified sup norm holds the error sampled on the segment.
+TEST(SollyaFit, SegmentKeepsItsEndsAndIsCertified) {
+  const double n = 50, a = 0.9375, b = 0.96875;
+  const int frac = 12;
+  const std::int64_t end0 = std::llround(std::ldexp(std::pow(a, n), frac));
+  const std::int64_t end1 = std::llround(std::ldexp(std::pow(b, n), frac));
+  // A start with the right ends and a curvature near t^n's: the chord bent by a parabola.
+  const double rise = std::pow(b, n) - std::pow(a, n);
+  const std::vector<double> start{std::pow(a, n), 0.6 * rise, 0.3 * rise, 0.1 * rise};
+  for (const std::vector<double>& points : {std::vector<double>{}, {0.25, 0.75}}) {
+    const FixedPointFit s = fit_segment_fixed_point(n, a, b, 3, frac, end0, end1, start, points);
+    ASSERT_TRUE(s.ok) << s.failure;
+    ASSERT_EQ(s.raw.size(), 4U);
+    EXPECT_EQ(s.raw[0], end0);
+    EXPECT_EQ(s.raw[0] + s.raw[1] + s.raw[2] + s.raw[3], end1);
+    const CertifiedSupNorm c = certified_segment_sup_norm(s.raw, frac, n, a, b);
+    ASSERT_TRUE(c.ok);
+    double sampled = 0;
+    for (int i = 0; i <= 1024; ++i) {
+      const double x = i / 1024.0;
+      long double p = 0;
+      for (std::size_t j = 4; j-- > 0;)
+        p = p * x + std::ldexp(static_cast<long double>(s.raw[j]), -frac);
+      sampled = std::max(sampled, static_cast<double>(std::fabs(p - std::pow(a + (b - a) * x, n))));
+    }
+    EXPECT_GE(c.hi, sampled);
+    EXPECT_LE(c.lo, sampled * (1 + 1e-3));
+  }
+  // Degree 1 has nothing to fit; too few points for the free coefficients are refused.
+  EXPECT_FALSE(fit_segment_fixed_point(n, a, b, 1, frac, end0, end1, {start[0], rise}).ok);
+  EXPECT_FALSE(fit_segment_fixed_point(n, a, b, 3, frac, end0, end1, start, {0.5}).ok);
+}
+
 TEST(SollyaFit, RefusesWhatItDoesNotFit) {
   FitOptions o = tau_minimax(20, 1);
   const FitResult r = fit_power(o);

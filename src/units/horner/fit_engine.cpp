@@ -12,8 +12,8 @@
 #include <utility>
 
 #include "fit/sollya_fit.h"
-#include "units/horner/memo.h"
 #include "units/keys.h"
+#include "units/memo.h"
 #include "units/unit_set.h"
 
 namespace glint {

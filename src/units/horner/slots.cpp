@@ -11,8 +11,8 @@
 #include <utility>
 
 #include "units/horner/fit_engine.h"
-#include "units/horner/memo.h"
 #include "units/keys.h"
+#include "units/memo.h"
 #include "units/unit_set.h"
 #include "units/warning.h"
 

@@ -122,6 +122,7 @@ PwpUnit::PwpUnit(const PwpConfig& cfg, const MaterialParams& m,
   stride_ = static_cast<std::size_t>(d) + 1;
   c_raw_.assign(count * stride_, 0);
   c_fit_.assign(count * stride_, 0.0);
+  repair_.assign(count, 0);
   for (std::size_t k = 0; k < count; ++k) {
     std::int64_t* q = &c_raw_[k * stride_];
     double* f = &c_fit_[k * stride_];
@@ -160,11 +161,36 @@ PwpUnit::PwpUnit(const PwpConfig& cfg, const MaterialParams& m,
       if (pwp_nondecreasing(q, d)) {
         blended_ += i > 0;
         chords_ += i == kBlendSteps;
+        repair_[k] = i == kBlendSteps ? 2 : (i > 0 ? 1 : 0);
         break;
       }
     }
   }
   set_guard(guard);
+}
+
+double PwpUnit::segment_start(std::size_t k) const {
+  const double t0 = std::ldexp(static_cast<double>(t0_raw_), -cfg_.in.frac_bits);
+  return t0 + std::ldexp(1.0 - t0, -sb_) * static_cast<double>(k);
+}
+
+double PwpUnit::segment_end(std::size_t k) const {
+  return k + 1 >= segment_count() ? 1.0 : segment_start(k + 1);
+}
+
+std::vector<double> PwpUnit::segment_fit(std::size_t k) const {
+  const auto* f = &c_fit_[k * stride_];
+  return {f, f + stride_};
+}
+
+void PwpUnit::replace_segment(std::size_t k, const std::vector<std::int64_t>& raw) {
+  blended_ -= repair_[k] > 0;
+  chords_ -= repair_[k] == 2;
+  repair_[k] = 0;
+  for (std::size_t j = 0; j < stride_; ++j) {
+    c_raw_[k * stride_ + j] = raw[j];
+    c_fit_[k * stride_ + j] = static_cast<double>(static_cast<long double>(raw[j]) * c_scale_);
+  }
 }
 
 void PwpUnit::set_guard(int guard) {

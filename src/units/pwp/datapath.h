@@ -84,6 +84,17 @@ inline constexpr int kPwpMaxCoefFrac = 48;
 int pwp_coef_frac(const PwpConfig& c);
 int pwp_min_guard(const PwpConfig& c);
 
+// P(x) = c_0 + ... + c_d x^d (integer coefficients, one scale) non-decreasing on [0, 1], exactly.
+bool pwp_nondecreasing(const std::int64_t* c, int degree);
+
+// Which engine fitted a group's segments (fit_engine.h): how many hold Sollya's fit, and the
+// largest certified sup norm of |P_k,q - t^n| over those (none: 0).
+struct PwpFitRecord {
+  int fitted = 0;  // segments with a free coefficient (degree >= 2, more than one code)
+  int sollya = 0;
+  double sup_lo = 0.0, sup_hi = 0.0;
+};
+
 class PwpUnit {
  public:
   // domain=log: `log_tables` built for pwp_log_spec(cfg), shared by the groups (null: its own).
@@ -150,6 +161,17 @@ class PwpUnit {
   int acc_int_bits() const { return acc_int_; }  // signed accumulator: integer bits with the sign
   int blended_segments() const { return blended_; }  // repaired towards the chord (header)
   int chord_segments() const { return chords_; }
+  double shininess() const { return n_; }
+  // Segment k's ends in t, and its fit (c_0 first) before quantization.
+  double segment_start(std::size_t k) const;
+  double segment_end(std::size_t k) const;
+  std::vector<double> segment_fit(std::size_t k) const;
+  // Segment k takes raw (c_0 .. c_d at coef_frac bits, the same ends, non-decreasing: the caller's
+  // proofs, fit_engine.h); its fit is then raw itself. set_guard() afterwards resizes the
+  // accumulator.
+  void replace_segment(std::size_t k, const std::vector<std::int64_t>& raw);
+  const PwpFitRecord& fit_record() const { return fit_record_; }
+  void set_fit_record(const PwpFitRecord& r) { fit_record_ = r; }
   std::size_t table_bytes() const { return (c_raw_.size() + c_fit_.size()) * 8; }
   const PwpConfig& config() const { return cfg_; }
   const PwpLogPath* log_path() const { return log_ ? &*log_ : nullptr; }
@@ -164,6 +186,8 @@ class PwpUnit {
   std::vector<std::int64_t> c_raw_;        // per segment: c_0 .. c_d at coef_frac fraction bits
   std::vector<double> c_fit_;              // the fit's coefficients, same layout (float_model)
   int blended_ = 0, chords_ = 0;
+  std::vector<int> repair_;  // per segment: 0 the fit, 1 blended, 2 the chord
+  PwpFitRecord fit_record_;
   bool guard_given_ = false;
   std::optional<PwpLogPath> log_;  // domain=log: the whole datapath
 };

@@ -31,12 +31,19 @@ struct PwpKeys {
       "domain", "t", kDomains,
       "t: t^n by segments of t, one table per material | log: ex2(n lg2 t), lg2 and ex2 by "
       "segments of the mantissa and of y's fraction, tables shared by every material, n in a "
-      "register (widths from out, n and degree; coef_frac and guard are domain=t's)",
+      "register (widths from out, n and degree; coef_frac, guard and fit are domain=t's)",
       false};
   static constexpr FormatKey n{"n", uq(10, 4), "shininess register format (domain=log only)"};
+  static constexpr std::string_view kFits[] = {"best", "glint", "sollya"};
+  static constexpr ChoiceKey fit{
+      "fit", "best", kFits,
+      "segment coefficients (degree >= 2): best (per segment, Sollya's where its certified error "
+      "is lower) | glint (Remez, rounded to nearest) | sollya (fpminimax on the coefficients' "
+      "grid wherever it is valid)",
+      false};
 
   static std::vector<UnitKey> list() {
-    return key_list(segments, degree, coef_frac, guard, domain, n);
+    return key_list(segments, degree, coef_frac, guard, fit, domain, n);
   }
 };
 

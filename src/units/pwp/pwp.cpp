@@ -20,6 +20,7 @@
 #include <string>
 
 #include "units/pwp/datapath.h"
+#include "units/pwp/fit_engine.h"
 #include "units/pwp/log_kind.h"
 #include "units/pwp/rtl.h"
 #include "units/unit_set.h"
@@ -62,14 +63,27 @@ struct Pwp : UnitKindDefaults {
     c.degree = keys.read(Keys::degree);
     c.coef_frac = keys.read(Keys::coef_frac);
     c.guard = keys.read(Keys::guard);
+    const std::string fit = keys.read(Keys::fit);
     c.log_domain = keys.read(Keys::domain) == "log";
     c.n_format = keys.read(Keys::n);
-    if (c.log_domain) return build_log(keys, common, plan, c);
+    if (c.log_domain) {
+      if (const std::string* v = keys.find(std::string(Keys::fit.name)); v && fit != Keys::fit.def)
+        // refusal: pwp.log_fit
+        keys.fail(std::string(Keys::fit.name), *v,
+                  "domain=log fits its lg2 and ex2 segments with glint's Remez (fit is "
+                  "domain=t's)");
+      return build_log(keys, common, plan, c);
+    }
     // At its default the key changes nothing (a spec spelling out every default builds).
     if (const std::string* v = keys.find(std::string(Keys::n.name)); v && c.n_format != Keys::n.def)
       // refusal: pwp.n_domain
       keys.fail(std::string(Keys::n.name), *v,
                 "the n register is domain=log's (domain=t holds t^n in its tables)");
+    if (fit == "sollya" && c.degree < 2)
+      // refusal: pwp.fit_sollya_degree
+      keys.fail(std::string(Keys::fit.name), fit,
+                "Sollya fits a segment's free coefficients c_2 .. c_d, and degree 1 has none (each "
+                "segment is the chord between its ends); use fit=best or fit=glint");
     c.coef_frac_auto = c.coef_frac < 0;
     c.guard_auto = c.guard < 0;
     c.coef_frac = pwp_coef_frac(c);
@@ -98,11 +112,14 @@ struct Pwp : UnitKindDefaults {
       ++c.guard;
       for (PwpUnit& u : units) u.set_guard(c.guard);
     }
+    // Sollya's segments where the key says, within the registers and guard just chosen.
+    choose_pwp_fit_engines(parse_pwp_fit_engine(fit), units);
     nlohmann::json config = common_config(common);
     put_key(config, Keys::segments, c.segments);
     put_key(config, Keys::degree, c.degree);
     put_key(config, Keys::coef_frac, c.coef_frac);
     put_key(config, Keys::guard, c.guard);
+    put_key(config, Keys::fit, fit);
     // lookup (index, offset, c_d), d multiply-adds, the last one rounding.
     const UnitTiming timing{c.degree + 1, 1, 0};
     return make_unit_set<Pwp>(common, std::move(config), c, std::move(units), plan, timing);
@@ -237,11 +254,17 @@ struct Pwp : UnitKindDefaults {
 
   static nlohmann::json describe_slot(const Datapath& u) {
     if (u.log_path() != nullptr) return pwp_log_describe(u);
-    return {{"t0_raw", u.t0_raw()},
-            {"segments", u.segment_count()},
-            {"offset_bits", u.offset_bits()},
-            {"blended_segments", u.blended_segments()},
-            {"chord_segments", u.chord_segments()}};
+    const PwpFitRecord& f = u.fit_record();
+    nlohmann::json slot{{"t0_raw", u.t0_raw()},
+                        {"segments", u.segment_count()},
+                        {"offset_bits", u.offset_bits()},
+                        {"blended_segments", u.blended_segments()},
+                        {"chord_segments", u.chord_segments()},
+                        {"fit_engine", f.sollya == 0 ? "glint" : "sollya"},
+                        {"sollya_segments", f.sollya},
+                        {"fitted_segments", f.fitted}};
+    if (f.sollya > 0) slot["sup_norm"] = {{"lo", f.sup_lo}, {"hi", f.sup_hi}};
+    return slot;
   }
   static std::string rtl(const hdl::DatapathPorts& p, const Config& c,
                          const std::vector<Datapath>& units, const StageLayout& layout) {

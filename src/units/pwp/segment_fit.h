@@ -1,5 +1,6 @@
-// The one place pwp fits its segments: today src/fit's Remez exchange; a fit with the coefficient
-// formats as constraints (Sollya's fpminimax) can replace it here without touching the datapath.
+// glint's fit of pwp's segments: src/fit's Remez exchange, which the datapath then rounds to its
+// grid. Sollya's fpminimax, which searches the grid itself, replaces it per segment where the key
+// fit says (fit_engine.h).
 #pragma once
 
 #include <functional>

@@ -1,5 +1,5 @@
-// A bounded, thread-safe memo per process for horner's fits (slots.cpp) and Sollya trials
-// (fit_engine.cpp): both are pure functions of their keys that cost milliseconds to tens of
+// A bounded, thread-safe memo per process for the units' fits (horner: slots.cpp, fit_engine.cpp;
+// pwp: fit_engine.cpp): each a pure function of its key that costs milliseconds to tens of
 // milliseconds, which a sweep asks for again and again. A full memo starts afresh, so memory stays
 // bounded (~1 MB for the fits) however long a sweep or fuzz run goes.
 #pragma once
