@@ -10,7 +10,7 @@ plot for the nine exponents on the loadable chip.
 
 Usage (from the repository's top folder, with a Release build in build/):
     python3 src/cli/guide/cheapest.py build/glint
-It rewrites src/cli/guide/cheapest.md and src/cli/guide/cheapest/*.svg; about 2 minutes of CPU.
+It rewrites src/cli/guide/cheapest.md and src/cli/guide/cheapest/*.svg; about 6 minutes of CPU.
 """
 import argparse
 import json
@@ -43,7 +43,10 @@ GRIDS = [
 # Grids of units that may not be in every build's catalogue yet: used when `glint units` lists
 # them.
 OPTIONAL_GRIDS = {
-    "pwp": "pwp:in=uq1.10|uq1.12|uq1.14|uq1.16,out=uq1.8|uq1.10|uq1.12,segments=2..5,degree=1..3",
+    "pwp": ["pwp:in=uq1.10|uq1.12|uq1.14|uq1.16,out=uq1.8|uq1.10|uq1.12,segments=2..5,degree=1..3",
+            # The log domain: tables shared by every material, n per slot (the SFU's design).
+            "pwp:domain=log,in=uq1.10|uq1.12|uq1.14|uq1.16,out=uq1.8|uq1.9|uq1.10,segments=3..6,"
+            "degree=1..2"],
 }
 PAPERS = {"schlick": "Schlick 1994", "hast": "Hast et al. 2003", "horner": "Öztürk et al. 2006",
           "sfu": "Tesla-class GPU SFU"}
@@ -72,7 +75,10 @@ def write_trace(path, exponents):
 
 
 def size(glint, grids, chip, inputs, budget, cwd):
-    cmd = [glint, "size", "--chip", chip, "--budget", budget, "--json"]
+    # Widening shares one cap over every grid: room for each family's rounds (size's default,
+    # 1000, was spent before the last grids widened once pwp had two).
+    cmd = [glint, "size", "--chip", chip, "--budget", budget, "--json",
+           "--widen-configurations", "4000"]
     for g in grids:
         cmd += ["--grid", g]
     return json.loads(run(cmd + inputs, cwd))
@@ -110,8 +116,8 @@ def main():
     glint = os.path.abspath(args.glint)
     catalogue = json.loads(run([glint, "units", "--json"]))
     names = [u["name"] for u in catalogue["units"]]
-    grids = GRIDS + [g for u, g in OPTIONAL_GRIDS.items() if u in names]
-    units = [g.split(":")[0] for g in grids]
+    grids = GRIDS + [g for u, gs in OPTIONAL_GRIDS.items() if u in names for g in gs]
+    units = list(dict.fromkeys(g.split(":")[0] for g in grids))  # a family per unit
     commit = subprocess.run(["git", "-C", TOP, "rev-parse", "--short", "HEAD"],
                             stdout=subprocess.PIPE, text=True).stdout.strip()
 
@@ -169,7 +175,8 @@ def main():
         "its grids are listed in the script). The papers' units: "
         + ", ".join(f"`{u}` ({p})" for u, p in PAPERS.items() if u in units)
         + "; `pow` and `lut` are the textbook baselines"
-        + (", `pwp` the piecewise polynomial." if "pwp" in units else ".")
+        + (", `pwp` the piecewise polynomial (in t with a table per material, or `domain=log` with "
+           "tables shared by every material)." if "pwp" in units else ".")
         + " Energy is not in the table: glint has no energy model at the node yet (issue 26)."
         + " `sfu` and `pwp` have no lanes in the cost calibration set yet, so their areas are the "
         "proxy's uncalibrated estimate; `glint synth SPEC --vectors FILE` gives Yosys's figure "
