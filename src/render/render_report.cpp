@@ -259,6 +259,7 @@ nlohmann::json RenderResult::to_json() const {
                           {"errors", u.stats.errors_json()},
                           {"description", u.stats.description}});
     if (node) units_json.back()["node"] = u.cost.node_json();
+    if (!u.energy.is_null()) units_json.back()["energy"] = u.energy;
   }
   return {{"glint_render_report", kRenderReportVersion},
           {"scene", scene_name},
