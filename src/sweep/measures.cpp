@@ -160,6 +160,7 @@ const std::vector<MeasureAlias>& measure_aliases() {
       {"cp", "critical_path", "glint sim's table before"},
       {"area", "area_ge", "glint size --objective area"},
       {"area*latency", "area_latency", "glint size --objective area*latency"},
+      {"energy", "energy_pj_per_request", "glint size --objective energy"},
       {"area*lat", "area_latency", "glint sweep's table before"},
       {"lat", "latency", "glint sweep's table before"},
   };
