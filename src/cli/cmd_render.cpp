@@ -186,6 +186,18 @@ int run_render(const RenderCommandOptions& o) {
     if (!u.energy.is_null())
       out << fmt::format("{:<{}} {:.1f} nJ per frame; {}\n", u.label, label_width,
                          u.energy.at("total_pj").get<double>() / 1000, format_energy(u.energy));
+  // What the skip buys: the same lane with skip=off on the same requests.
+  for (const UnitRender& u : r.units)
+    if (!u.energy_without_skip.is_null()) {
+      const double with = u.energy.at("total_pj").get<double>();
+      const double without = u.energy_without_skip.at("total_pj").get<double>();
+      out << fmt::format(
+          "{:<{}} without the skip (skip=off): {:.1f} nJ per frame, {:.2f} pJ per shaded pixel; "
+          "the skip saves {:.1f} nJ ({:.1f} %)\n",
+          u.label, label_width, without / 1000,
+          u.energy_without_skip.at("pj_per_shaded_pixel").get<double>(), (without - with) / 1000,
+          without > 0 ? 100 * (without - with) / without : 0.0);
+    }
   out << fmt::format("images and report.json{} in {}\n", o.html ? " (and report.html)" : "",
                      o.out_dir);
   return kExitOk;

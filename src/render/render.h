@@ -129,6 +129,9 @@ struct UnitRender {
   std::uint64_t skipped = 0;   // requests the unit's own comparator skipped
   std::uint64_t computed = 0;  // requests it computed
   nlohmann::json energy;       // energy_json on the frame (RenderOptions::gating), else null
+  // The same lane without its skip (spec with skip=off) on the same requests, with "spec"; null
+  // without energy or for a lane without the skip.
+  nlohmann::json energy_without_skip;
 };
 
 struct RenderResult {

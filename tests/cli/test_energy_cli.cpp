@@ -75,7 +75,8 @@ TEST(SimEnergy, NeedsTheNode) {
   EXPECT_FALSE(lane.contains("energy"));
 }
 
-// render --node on a scene and sim on the vector file of its requests count the same energy.
+// render --node on a scene and sim on the vector file of its requests count the same energy, with
+// the skip and without it (the lane's spec with skip=off).
 TEST(RenderEnergy, EqualsSimOnTheSameRequests) {
   test::TempDir tmp;
   const std::string vec = (std::filesystem::path(tmp.path()) / "small.vec").string();
@@ -100,6 +101,16 @@ TEST(RenderEnergy, EqualsSimOnTheSameRequests) {
       ASSERT_GT(pixels, 0u);
       EXPECT_DOUBLE_EQ(e.at("pj_per_shaded_pixel").get<double>(),
                        e.at("total_pj").get<double>() / static_cast<double>(pixels));
+      // What the skip buys: the lane without it, as sim counts that spec on the same requests.
+      const nlohmann::json& off = u.at("energy_without_skip");
+      const std::string off_spec = off.at("spec").get<std::string>();
+      EXPECT_NE(off_spec.find("skip=off"), std::string::npos) << off_spec;
+      const auto sim_off =
+          sim_energy(tmp.path(), vec, "--unit " + test::shell_quote(off_spec), "none");
+      EXPECT_DOUBLE_EQ(off.at("total_pj").get<double>(),
+                       sim_off.at(off_spec).at("total_pj").get<double>());
+      EXPECT_EQ(off.at("requests"), e.at("requests"));
+      EXPECT_GT(off.at("computed").get<std::size_t>(), e.at("computed").get<std::size_t>());
     }
   }
 }
