@@ -19,6 +19,7 @@
 #include "cli/cli.h"
 #include "eval/activity.h"
 #include "eval/chip_report.h"
+#include "eval/energy.h"
 #include "eval/parallel.h"
 #include "eval/sim_report.h"
 #include "io/input_source.h"
@@ -26,6 +27,7 @@
 #include "io/vectors.h"
 #include "rtl_model/clocked_sim.h"
 #include "rtl_model/fast_sim.h"
+#include "units/lane_cost.h"
 
 namespace glint::cli {
 namespace {
@@ -268,8 +270,12 @@ nlohmann::json build_report(const SimOptions& o, bool clocked, const SimLanes& l
   for (std::size_t i = 0; i < lanes.units.size(); ++i) {
     list.push_back(unit_sim_report(*lanes.units[i], run.timing[i], lanes.acc[i].stats(),
                                    lanes.acc[i].digest(), !o.node.empty()));
-    if (!lanes.activity.empty())
-      list.back()["activity"] = activity_json(lanes.activity[i].activity());
+    if (lanes.activity.empty()) continue;
+    const LaneActivity& a = lanes.activity[i].activity();
+    list.back()["activity"] = activity_json(a);
+    // With a node as well: the stream's energy (the same count as glint render's).
+    if (const EnergyWeights* w = o.node.empty() ? nullptr : find_energy(o.node))
+      list.back()["energy"] = energy_json(lane_energy(unit_cost(*lanes.units[i]), a, *w));
   }
   report["units"] = list;
   return report;
@@ -299,6 +305,7 @@ void write_outputs(const SimOptions& o, SimPlan& plan, std::uint64_t rows,
       out << fmt::format("    {}\n", (*share)["statement"].get<std::string>());
     if (const auto a = u.find("activity"); a != u.end())
       out << "    " << format_activity(*a) << "\n";
+    if (const auto e = u.find("energy"); e != u.end()) out << "    " << format_energy(*e) << "\n";
     if (u.contains("node")) out << "    " << node_line(u.at("node")) << "\n";
   }
 }
@@ -375,11 +382,12 @@ void add_sim_command(CLI::App& app, int& status) {
   add_display_bits_option(sub, o->display_bits);
   add_chip_option(sub, o->chip);
   add_eps_measure_option(sub, o->eps_measure);
-  sub->add_option("--activity", o->activity,
-                  "GATING: also count each lane's register bit toggles and clocked bits per stage "
-                  "on the stream (a result at a time: slower); what a skipped request does: none "
-                  "(fed to the datapath), operand (held out of it, as glint rtl's lane), clock "
-                  "(held out and clock-gated)");
+  sub->add_option(
+      "--activity", o->activity,
+      "GATING: also count each lane's register bit toggles and clocked bits per stage "
+      "on the stream (a result at a time: slower); what a skipped request does: none "
+      "(fed to the datapath), operand (held out of it, as glint rtl's lane), clock "
+      "(held out and clock-gated); with --node, also the energy per request at the node");
   add_node_option(sub, o->node);
   sub->add_flag("--json", o->json, "Print the report as one JSON document on stdout");
   sub->callback([sub, o, &status] {

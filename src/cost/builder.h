@@ -157,7 +157,7 @@ class CostBuilder {
     } else if (e > 2) {
       ge = tables * static_cast<double>(e) * w * k_.rom_bit_ge;
     }
-    add({"table", entries, w, banks, ge, where}, ram ? n_.ram : n_.rom);
+    add({"table", entries, w, banks, ge, where}, ram ? n_.ram : n_.rom, ram ? e * w * tables : 0);
     // Loaded through a write port from the lane's inputs: the entry's decode, then its enable to
     // the w flip-flops of every table written with it.
     if (ram)
@@ -180,12 +180,12 @@ class CostBuilder {
   // Per-request registers are the lane's: they hold under backpressure (flip-flops with enable).
   void reg(int w, const std::string& where, bool per_request = false, int count = 1) {
     add({"register", w, 0, count, count * w * (per_request ? k_.dffe_ge : k_.dff_ge), where},
-        per_request ? n_.dffe : n_.dff);
+        per_request ? n_.dffe : n_.dff, count * w);
     (per_request ? request_ : computed_)["reg_bits"] += w;
   }
   // State registers written `writes` times per computed request (iterative divider).
   void state_reg(int w, const std::string& where, double writes) {
-    add({"register", w, 0, 1, w * k_.dffe_ge, where}, n_.dffe);
+    add({"register", w, 0, 1, w * k_.dffe_ge, where}, n_.dffe, w);
     computed_["reg_bits"] += w * writes;
   }
 
@@ -244,9 +244,11 @@ class CostBuilder {
   }
 
  private:
-  void add(Primitive p, const NodePart& node) {
+  void add(Primitive p, const NodePart& node, int held_bits = 0) {
     if (p.ge <= 0) return;  // zero-width parts (e.g. no interpolation bits) are not built
     p.um2 = p.ge * node.um2_per_ge;
+    p.stage = static_cast<int>(stages_.size());  // the stage being described
+    p.held_bits = held_bits;
     inv_.push_back(std::move(p));
   }
   // An adder next to a multiplier on a path counts half its node delay: the flow's carry chains

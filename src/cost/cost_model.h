@@ -98,6 +98,11 @@ struct Primitive {
   double ge = 0;      // gate equivalents of all `count` of them
   std::string where;  // e.g. "u scaler", "stage 3", "log2 table"
   double um2 = 0;     // at the node (cost/node.h); in node_json, not in to_json
+  // For the energy (cost/energy.h), neither in to_json: the stage it was placed in (0 the
+  // comparator stage, 1.. the unit's, UnitCost::stages.size() the merge buffer and lane control
+  // placed after the last), and the flip-flops it holds (registers; a RAM table's storage).
+  int stage = 0;
+  int held_bits = 0;
 
   nlohmann::json to_json() const;
   static Primitive from_json(const nlohmann::json& j);

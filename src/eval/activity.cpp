@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <bitset>
 #include <stdexcept>
 
@@ -70,6 +71,9 @@ ActivityCounter::ActivityCounter(const SpecularUnit& unit, Gating gating)
   }
   values_.resize(layout.size());
   held_.assign(layout.size(), 0);
+  activity_.in_bits = unit.in_format().width();
+  activity_.out_bits = unit.out_format().width();
+  entries_.assign(static_cast<std::size_t>(std::max(unit.timing().buffer_depth, 1)), 0);
 }
 
 void ActivityCounter::add(std::size_t slot, std::int64_t t_raw) {
@@ -79,8 +83,17 @@ void ActivityCounter::add(std::size_t slot, std::int64_t t_raw) {
   const bool skipped = unit_.skip(slot, t_raw);
   if (!skipped) ++a.computed;
   const bool enters = !skipped || a.gating == Gating::kNone;
+  const auto toggles = [](std::int64_t x, std::int64_t y, int width) {
+    return std::bitset<64>(register_bits(x, width) ^ register_bits(y, width)).count();
+  };
+  a.port_toggles += toggles(t_raw, port_t_, a.in_bits);
+  port_t_ = t_raw;
+  std::int64_t result = 0;
   if (enters) {
+    a.entry_toggles += toggles(t_raw, entry_t_, a.in_bits);
+    entry_t_ = t_raw;
     unit_.eval_staged(slot, t_raw, values_.data());
+    if (!skipped) result = values_[unit_.stages().result_index()];
     for (std::size_t i = 0; i < values_.size(); ++i) {
       const std::uint64_t changed =
           register_bits(values_[i], width_of_[i]) ^ register_bits(held_[i], width_of_[i]);
@@ -88,7 +101,12 @@ void ActivityCounter::add(std::size_t slot, std::int64_t t_raw) {
       held_[i] = values_[i];
     }
   }
+  std::int64_t& entry = entries_[next_entry_];
+  a.output_toggles += toggles(result, entry, a.out_bits);
+  entry = result;
+  next_entry_ = (next_entry_ + 1) % entries_.size();
   if (enters || a.gating != Gating::kClock) {
+    a.clocked_cycles += ii_;
     for (StageActivity& s : a.stages) s.clocked_bits += static_cast<std::uint64_t>(s.bits) * ii_;
   }
 }

@@ -46,6 +46,15 @@ struct LaneActivity {
   std::size_t computed = 0;  // those the comparator kept
   std::uint64_t cycles = 0;  // requests x II
   std::vector<StageActivity> stages;
+  // Beside the unit's stages, for the energy (eval/energy.h; not in activity_json): the lane's
+  // input t (in_bits wide) toggles at the port on every request (the tau comparator's operand),
+  // and in the datapath's input register on the requests that enter it (the comparator register:
+  // every request with gating none, computed ones otherwise); the merge buffer's entries
+  // (buffer_depth words of out_bits, written in turn) toggle with each request's lane result (0
+  // when skipped); the stage registers are clocked on clocked_cycles.
+  int in_bits = 0, out_bits = 0;
+  std::uint64_t port_toggles = 0, entry_toggles = 0, output_toggles = 0;
+  std::uint64_t clocked_cycles = 0;
 
   std::uint64_t toggles() const;
   std::uint64_t clocked_bits() const;
@@ -65,6 +74,7 @@ class ActivityCounter {
   ActivityCounter(const SpecularUnit& unit, Gating gating);
   void add(std::size_t slot, std::int64_t t_raw);
   const LaneActivity& activity() const { return activity_; }
+  const SpecularUnit& unit() const { return unit_; }
 
  private:
   const SpecularUnit& unit_;
@@ -73,6 +83,9 @@ class ActivityCounter {
   std::vector<std::size_t> stage_of_;  // per flat register index of the staged values
   std::vector<int> width_of_;
   std::vector<std::int64_t> values_, held_;
+  std::int64_t port_t_ = 0, entry_t_ = 0;
+  std::vector<std::int64_t> entries_;  // the merge buffer's words
+  std::size_t next_entry_ = 0;
 };
 
 // The report's "activity" entry (src/eval/sim_report.md) and its line in the text report.

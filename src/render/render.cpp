@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <set>
 #include <stdexcept>
 
 #include "eval/chip_report.h"
+#include "eval/energy.h"
 #include "eval/parallel.h"
 #include "io/input_error.h"
 #include "render/image_error.h"
@@ -16,6 +18,8 @@
 #include "scene/mesh_summary.h"
 #include "scene/tracer.h"
 #include "units/catalogue.h"
+#include "units/chip.h"
+#include "units/common.h"
 #include "units/lane_cost.h"
 
 namespace glint {
@@ -114,6 +118,11 @@ class SceneRenderer {
     }
     acc_.resize(units_);
     for (std::size_t u = 0; u < units_; ++u) ulp_.push_back(ev_.units()[u]->out_format().ulp());
+    if (options.node && options.gating)
+      for (const auto& unit : ev_.units()) {
+        activity_.emplace_back(*unit, *options.gating);
+        no_skip_activity_.push_back(no_skip_counter(*unit));
+      }
     out_.skips.assign(lights_, std::vector<SkipCounts>(scene.materials.size()));
   }
 
@@ -132,6 +141,7 @@ class SceneRenderer {
       ev_.add_batch(requests_.data(), requests_.size(), results_, options_.threads);
       out_.requests += requests_.size();
       index_lit_pixels();
+      out_.shaded_pixels += lit_.size();
       accumulate_specular();
       compose_reference_pixels();
       for (Image8& strip : strip_)
@@ -295,7 +305,36 @@ class SceneRenderer {
       const std::int64_t* raw = results_.raw.data() + u * requests_.size();
       for (std::size_t k = 0; k < requests_.size(); ++k)
         add_scaled(spec[request_lit_[k]], request_colour(k), static_cast<double>(raw[k]) * ulp_[u]);
+      if (!activity_.empty()) count_activity(u);
     });
+  }
+
+  // The unit's switching activity on the tile's requests, in raster order (as glint sim counts a
+  // vector file's: the same requests give the same energy).
+  void count_activity(std::size_t u) {
+    const SpecularUnit& unit = *ev_.units()[u];
+    const SlotMap& slots = ev_.slots();
+    for (const VectorRow& row : requests_)
+      activity_[u].add(slots.slot(row), quantize_input(row.t, unit.in_format()));
+    if (ActivityCounter* off = no_skip_activity_[u].get())
+      for (const VectorRow& row : requests_)
+        off->add(slots.slot(row), quantize_input(row.t, off->unit().in_format()));
+  }
+
+  // What the skip buys (issue 26, item 5): the same lane without its comparator (its spec with
+  // skip=off, every request computed) counts the same requests. Null for a lane without the skip.
+  std::unique_ptr<ActivityCounter> no_skip_counter(const SpecularUnit& unit) {
+    if (!unit.comparator_enabled()) return nullptr;
+    UnitSpec spec = parse_unit_spec(unit.canonical_spec());
+    const auto key = std::find_if(spec.keys.begin(), spec.keys.end(),
+                                  [](const auto& k) { return k.first == "skip"; });
+    if (key != spec.keys.end()) {
+      key->second = "off";
+    } else {
+      spec.keys.emplace_back("skip", "off");
+    }
+    no_skip_units_.push_back(make_unit(specs_on_chip({spec}, options_.chip).front(), ev_.slots()));
+    return std::make_unique<ActivityCounter>(*no_skip_units_.back(), Gating::kNone);
   }
 
   void accumulate_reference() {
@@ -534,6 +573,16 @@ class SceneRenderer {
       r.cost = unit_cost(*ev_.units()[u]);
       r.skipped = stats[u].skipped;
       r.computed = stats[u].vectors - stats[u].skipped;
+      if (!activity_.empty())
+        if (const EnergyWeights* w = find_energy(r.cost.node)) {
+          r.energy =
+              energy_json(lane_energy(r.cost, activity_[u].activity(), *w), out_.shaded_pixels);
+          if (const ActivityCounter* off = no_skip_activity_[u].get()) {
+            r.energy_without_skip = energy_json(
+                lane_energy(unit_cost(off->unit()), off->activity(), *w), out_.shaded_pixels);
+            r.energy_without_skip["spec"] = off->unit().canonical_spec();
+          }
+        }
       r.heatmap_scale =
           options_.heat_scale == HeatScale::kShared ? shared_scale : std::max(1.0, r.error.max_lsb);
       out_.units.push_back(std::move(r));
@@ -599,6 +648,10 @@ class SceneRenderer {
   std::vector<Image8> thumb_;                     // per slot, reduced so far (kStream)
   std::vector<Image8> heat_thumb_;                // per unit (kStream)
   std::vector<ImageErrorAccumulator> acc_;
+  std::vector<ActivityCounter> activity_;  // per unit, with node and gating
+  // Per unit with node: the lane without the skip and its activity (null: no skip to leave out).
+  std::vector<std::unique_ptr<SpecularUnit>> no_skip_units_;
+  std::vector<std::unique_ptr<ActivityCounter>> no_skip_activity_;
   ImageErrorAccumulator skip_acc_;
   // The current tile.
   int y0_ = 0, rows_in_tile_ = 0;

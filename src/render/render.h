@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "cost/cost_model.h"
+#include "eval/activity.h"
 #include "eval/evaluate.h"
 #include "image/float_image.h"
 #include "image/image.h"
@@ -61,7 +62,10 @@ struct RenderOptions {
   std::vector<UnitSpec> units;  // empty: every unit at its defaults
   int threads = 1;
   bool node = false;  // --node: each lane's area and critical path at the node in the report
-  Chip chip;          // --chip (units/chip.h)
+  // With node: each lane's energy on the frame's requests (eval/energy.h), a skipped request
+  // gated so (--activity GATING; glint render's default: operand, as glint rtl's lane).
+  std::optional<Gating> gating;
+  Chip chip;                                        // --chip (units/chip.h)
   EpsMeasure eps_measure = EpsMeasure::kLuminance;  // --eps-measure (reference/pixel_error.h)
   HeatScale heat_scale = HeatScale::kShared;        // --heat-scale
   int tile_rows = 16;     // rows ray-cast and evaluated together (memory: one tile's requests)
@@ -124,12 +128,17 @@ struct UnitRender {
   UnitCost cost;
   std::uint64_t skipped = 0;   // requests the unit's own comparator skipped
   std::uint64_t computed = 0;  // requests it computed
+  nlohmann::json energy;       // energy_json on the frame (RenderOptions::gating), else null
+  // The same lane without its skip (spec with skip=off) on the same requests, with "spec"; null
+  // without energy or for a lane without the skip.
+  nlohmann::json energy_without_skip;
 };
 
 struct RenderResult {
   std::string scene_name;
   int width = 0, height = 0;
   std::uint64_t requests = 0;
+  std::uint64_t shaded_pixels = 0;  // pixels with at least one shading request
   double eps = 1e-3;
   std::optional<SceneReproduces> reproduces;
   HeatScale heat_scale = HeatScale::kShared;

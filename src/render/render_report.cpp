@@ -259,6 +259,9 @@ nlohmann::json RenderResult::to_json() const {
                           {"errors", u.stats.errors_json()},
                           {"description", u.stats.description}});
     if (node) units_json.back()["node"] = u.cost.node_json();
+    if (!u.energy.is_null()) units_json.back()["energy"] = u.energy;
+    if (!u.energy_without_skip.is_null())
+      units_json.back()["energy_without_skip"] = u.energy_without_skip;
   }
   return {{"glint_render_report", kRenderReportVersion},
           {"scene", scene_name},

@@ -6,10 +6,12 @@
 #include <chrono>
 #include <stdexcept>
 
+#include "eval/energy.h"
 #include "eval/parallel.h"
 #include "sweep/measures.h"
 #include "sweep/memory.h"
 #include "units/catalogue.h"
+#include "units/common.h"
 #include "units/lane_cost.h"
 
 namespace glint {
@@ -18,9 +20,10 @@ using Clock = std::chrono::steady_clock;
 }  // namespace
 
 struct SweepEngine::Block {
-  std::vector<std::size_t> members;  // the configurations it evaluates (engine order)
-  std::unique_ptr<Evaluator> ev;     // their units, in that order
-  std::vector<TimingEngine> timing;  // one per unit of ev
+  std::vector<std::size_t> members;       // the configurations it evaluates (engine order)
+  std::unique_ptr<Evaluator> ev;          // their units, in that order
+  std::vector<TimingEngine> timing;       // one per unit of ev
+  std::vector<ActivityCounter> activity;  // one per unit of ev, with node
 };
 
 SweepEngine::SweepEngine(const VectorHeader& header, std::vector<SweepConfig> configs,
@@ -67,8 +70,10 @@ SweepEngine::SweepEngine(const VectorHeader& header, std::vector<SweepConfig> co
       block->ev =
           std::make_unique<Evaluator>(header, specs, settings_.display_bits, settings_.chip);
     }
-    for (const auto& unit : block->ev->units())
+    for (const auto& unit : block->ev->units()) {
       block->timing.emplace_back(unit->timing(), settings_.sink);
+      if (settings_.node) block->activity.emplace_back(*unit, settings_.gating);
+    }
     blocks[b] = std::move(block);
   });
   std::vector<LaneAccumulator*> lanes;
@@ -78,6 +83,7 @@ SweepEngine::SweepEngine(const VectorHeader& header, std::vector<SweepConfig> co
     for (std::size_t u = 0; u < b->members.size(); ++u) {
       lanes.push_back(&b->ev->lane(u));
       timing.push_back(&b->timing[u]);
+      if (settings_.node) activity_.push_back(&b->activity[u]);
     }
     blocks_.push_back(std::move(b));
   }
@@ -92,6 +98,15 @@ SweepEngine::~SweepEngine() = default;
 void SweepEngine::add(const VectorRow* rows, std::size_t count) {
   const auto t0 = Clock::now();
   engine_->add(rows, count);
+  // Each configuration's switching activity, a configuration a task, its rows in stream order.
+  if (!activity_.empty()) {
+    parallel_for(activity_.size(), settings_.jobs, [&](std::size_t k) {
+      ActivityCounter& a = *activity_[k];
+      const SpecularUnit& unit = a.unit();
+      for (std::size_t i = 0; i < count; ++i)
+        a.add(slots_.slot(rows[i]), quantize_input(rows[i].t, unit.in_format()));
+    });
+  }
   profile_.evaluate_s += std::chrono::duration<double>(Clock::now() - t0).count();
   rows_ += count;
 }
@@ -157,11 +172,17 @@ std::vector<nlohmann::json> SweepEngine::results() const {
       };
       if (settings_.node) {
         const nlohmann::json n = cost.node_json();
-        out[block.members[u]]["node"] = {{"node", n.at("node")},
-                                         {"area_um2", n.at("area_um2")},
-                                         {"critical_path_ns", n.at("critical_path_ns")},
-                                         {"critical_path", n.at("critical_path")},
-                                         {"max_clock_mhz", n.at("max_clock_mhz")}};
+        nlohmann::json& row = out[block.members[u]];
+        row["node"] = {{"node", n.at("node")},
+                       {"area_um2", n.at("area_um2")},
+                       {"critical_path_ns", n.at("critical_path_ns")},
+                       {"critical_path", n.at("critical_path")},
+                       {"max_clock_mhz", n.at("max_clock_mhz")}};
+        if (const EnergyWeights* w = find_energy(cost.node)) {
+          const LaneEnergy e = lane_energy(cost, block.activity[u].activity(), *w);
+          row["node"]["energy"] = energy_json(e);
+          row["energy_pj_per_request"] = e.per_request();
+        }
       }
     }
   }

@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "eval/activity.h"
 #include "eval/engine.h"
 #include "eval/evaluate.h"
 #include "io/vectors.h"
@@ -30,6 +31,9 @@ struct SweepSettings {
   int jobs = 1;                                     // threads (results do not depend on it)
   SinkReady sink;     // sink backpressure of the timing model (default: always ready)
   bool node = false;  // --node: each row's area and critical path at the node ("node")
+  // With node: each row's energy on the stream with this gating (eval/energy.h; the rows'
+  // "energy_pj_per_request", sweep's energy front and size's --objective energy).
+  Gating gating = Gating::kOperand;
   // Configurations per Evaluator (built on the threads by block), and rows per window of the
   // engine (each thread keeps ~16 bytes per row of it).
   std::size_t block = 64;
@@ -77,7 +81,8 @@ class SweepEngine {
   SweepSettings settings_;
   SlotMap slots_;
   std::vector<std::unique_ptr<Block>> blocks_;
-  std::vector<std::string> refused_;  // per configuration: why it was refused, or empty
+  std::vector<std::string> refused_;        // per configuration: why it was refused, or empty
+  std::vector<ActivityCounter*> activity_;  // with node: every block's, in the engine's order
   std::unique_ptr<EvalEngine> engine_;
   std::uint64_t rows_ = 0;
   Profile profile_;

@@ -35,6 +35,7 @@ std::vector<SweepColumn> build_columns() {
       {"latency_mean", "/latency_cycles/mean", K::kNumber},
       {"latency_max", "/latency_cycles/max", K::kInteger},
       {"stall_cycles", "/stall_cycles", K::kInteger},
+      {"energy_pj_per_request", "/energy_pj_per_request", K::kNumber, false, true},
   };
   for (const std::string& k : operation_kinds()) {
     c.push_back({"ops_" + k, "/operations/total/" + k, K::kNumber});
@@ -74,6 +75,7 @@ std::vector<SweepColumn> build_columns() {
   c.push_back({"pareto_area", "/pareto/area", K::kFlag});
   c.push_back({"pareto_throughput", "/pareto/throughput", K::kFlag});
   c.push_back({"pareto_area_latency", "/pareto/area_latency", K::kFlag});
+  c.push_back({"pareto_energy", "/pareto/energy", K::kFlag, false, true});
   return c;
 }
 
@@ -158,6 +160,7 @@ const std::vector<MeasureAlias>& measure_aliases() {
       {"cp", "critical_path", "glint sim's table before"},
       {"area", "area_ge", "glint size --objective area"},
       {"area*latency", "area_latency", "glint size --objective area*latency"},
+      {"energy", "energy_pj_per_request", "glint size --objective energy"},
       {"area*lat", "area_latency", "glint sweep's table before"},
       {"lat", "latency", "glint sweep's table before"},
   };

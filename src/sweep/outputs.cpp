@@ -130,12 +130,15 @@ std::string format_sweep_summary(const nlohmann::json& report) {
       find_measure(report.at("error_measure").get<std::string>(), input.at("kind") == "scene");
   const bool bound = measure && is_bound_measure(*measure);
   bool estimates = false;
-  for (const Objective& o : kObjectives) {
+  for (const Objective& o : report_objectives(report)) {
+    // The energy's front states the energy beside the other measures.
+    const bool energy = std::string(o.key) == kEnergyObjective.key;
     out += fmt::format("Pareto front, error vs {} ({}):\n", o.name,
                        o.minimise ? "both minimised" : "error minimised, throughput maximised");
     // Headed by the measures' names (measures.h).
-    out += fmt::format("  {:>5} {:>11} {:>10} {:>10} {:>12} {:>7}  {}\n", "index", "error",
-                       "area_ge", "throughput", "area_latency", "latency", "spec");
+    out += fmt::format("  {:>5} {:>11} {:>10} {:>10} {:>12} {:>7}{}  {}\n", "index", "error",
+                       "area_ge", "throughput", "area_latency", "latency",
+                       energy ? fmt::format(" {:>21}", kEnergyObjective.key) : "", "spec");
     // The front from the cheapest (or fastest) configuration to the most accurate.
     std::vector<const nlohmann::json*> front;
     for (const nlohmann::json& r : rows)
@@ -152,11 +155,13 @@ std::string format_sweep_summary(const nlohmann::json& report) {
       const nlohmann::json& r = *front[i];
       const bool estimate = bound && !r.at("error").is_null() && !row_bounds_exact(r);
       estimates = estimates || estimate;
-      out += fmt::format(
-          "  {:>5} {:>11} {:>10} {:>10} {:>12} {:>7}  {}\n", r.at("index").get<std::size_t>(),
-          (estimate ? "~" : "") + cell(r.at("error"), "{:.4g}"), cell(r.at("area_ge"), "{:.0f}"),
-          cell(r.at("throughput"), "{:.4f}"), cell(r.at("area_latency"), "{:.0f}"),
-          r.at("latency").get<int>(), r.at("spec").get<std::string>());
+      out += fmt::format("  {:>5} {:>11} {:>10} {:>10} {:>12} {:>7}{}  {}\n",
+                         r.at("index").get<std::size_t>(),
+                         (estimate ? "~" : "") + cell(r.at("error"), "{:.4g}"),
+                         cell(r.at("area_ge"), "{:.0f}"), cell(r.at("throughput"), "{:.4f}"),
+                         cell(r.at("area_latency"), "{:.0f}"), r.at("latency").get<int>(),
+                         energy ? fmt::format(" {:>21}", cell(r.at(o.key), "{:.2f}")) : "",
+                         r.at("spec").get<std::string>());
       std::size_t j = i + 1;
       while (j < front.size() && front[j]->at("error") == r.at("error") &&
              front[j]->at(o.key) == r.at(o.key))

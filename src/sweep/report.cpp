@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <stdexcept>
 
@@ -43,6 +44,15 @@ std::string csv_cell(const nlohmann::json& row, const SweepColumn& c) {
 
 }  // namespace
 
+std::vector<Objective> report_objectives(const nlohmann::json& report) {
+  std::vector<Objective> out(std::begin(kObjectives), std::end(kObjectives));
+  const nlohmann::json& rows = report.at("results");
+  if (std::any_of(rows.begin(), rows.end(),
+                  [](const nlohmann::json& r) { return r.contains(kEnergyObjective.key); }))
+    out.push_back(kEnergyObjective);
+  return out;
+}
+
 void mark_pareto(nlohmann::json& report) {
   nlohmann::json& rows = report.at("results");
   const MeasureRef m = measure_or_throw(report.at("error_measure").get<std::string>(),
@@ -54,7 +64,7 @@ void mark_pareto(nlohmann::json& report) {
     rows[i]["error"] = v ? nlohmann::json(*v) : nlohmann::json(nullptr);
     if (v) error[i] = *v;
   }
-  for (const Objective& o : kObjectives) {
+  for (const Objective& o : report_objectives(report)) {
     std::vector<double> cost(n, NAN);
     for (std::size_t i = 0; i < n; ++i) {
       const auto v = rows[i].find(o.key);  // a refused configuration has none
@@ -72,9 +82,10 @@ std::string report_json_text(const nlohmann::json& report) {
 
 std::string report_csv_text(const nlohmann::json& report) {
   const bool scene = is_scene(report);
+  const bool energy = report_objectives(report).size() > std::size(kObjectives);
   std::vector<const SweepColumn*> cols;
   for (const SweepColumn& c : sweep_columns())
-    if (scene || !c.scene_only) cols.push_back(&c);
+    if ((scene || !c.scene_only) && (energy || !c.node_only)) cols.push_back(&c);
   std::string out;
   for (std::size_t k = 0; k < cols.size(); ++k) out += (k ? "," : "") + csv_text(cols[k]->name);
   out += "\n";
@@ -161,7 +172,8 @@ nlohmann::json parse_sweep_report(const std::string& text, const std::string& pa
     if (!row.contains("refused") || !(row["refused"].is_null() || row["refused"].is_string()))
       throw InputError(path, 0, where + "/refused", "not null or the reason");
     // A refused configuration has no measures. Any other row has every column glint writes but
-    // the image-level ones (absent with --no-image) and those merge recomputes (error, pareto),
+    // the image-level ones (absent with --no-image), the energy's (only with --node) and those
+    // merge recomputes (error, pareto),
     // each of its column's type or null (a measure with no value), and an integer latency (the
     // summary prints it).
     const bool refused = row["refused"].is_string();
@@ -170,7 +182,7 @@ nlohmann::json parse_sweep_report(const std::string& text, const std::string& pa
       const nlohmann::json::json_pointer pointer(c.pointer);
       const bool recomputed = c.name == "error" || c.name.rfind("pareto_", 0) == 0;
       if (!row.contains(pointer)) {
-        if (refused || c.scene_only || recomputed) continue;
+        if (refused || c.scene_only || c.node_only || recomputed) continue;
         throw InputError(path, 0, where + c.pointer, "missing");
       }
       const nlohmann::json& v = row.at(pointer);

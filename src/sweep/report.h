@@ -24,6 +24,10 @@ struct Objective {
 inline constexpr Objective kObjectives[] = {{"area", "area_ge", true},
                                             {"throughput", "throughput", false},
                                             {"area_latency", "area_latency", true}};
+// With --node, the rows' energy per request at the node (eval/energy.h) is an objective too.
+inline constexpr Objective kEnergyObjective = {"energy", "energy_pj_per_request", true};
+// The objectives of a report: kObjectives, and the energy when its rows state it.
+std::vector<Objective> report_objectives(const nlohmann::json& report);
 
 // Sets each row's "error" (the report's error_measure; null when the row has none) and its
 // "pareto" flags, over all of the report's rows.

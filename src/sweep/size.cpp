@@ -19,9 +19,10 @@ SizeObjective parse_size_objective(const std::string& text) {
   if (text == "area" || text == "area_ge") return SizeObjective::kArea;
   if (text == "throughput") return SizeObjective::kThroughput;
   if (text == "area*latency" || text == "area_latency") return SizeObjective::kAreaLatency;
+  if (text == "energy" || text == "energy_pj_per_request") return SizeObjective::kEnergy;
   throw std::invalid_argument(fmt::format(
-      "--objective '{}': expected area, throughput or area*latency (or the measure: area_ge, "
-      "throughput, area_latency)",
+      "--objective '{}': expected area, throughput, area*latency or energy (or the measure: "
+      "area_ge, throughput, area_latency, energy_pj_per_request)",
       text));
 }
 
@@ -33,6 +34,8 @@ const char* objective_measure(SizeObjective o) {
       return "throughput";
     case SizeObjective::kAreaLatency:
       return "area_latency";
+    case SizeObjective::kEnergy:
+      return "energy_pj_per_request";
   }
   return "?";
 }
@@ -45,6 +48,8 @@ const char* to_string(SizeObjective o) {
       return "throughput";
     case SizeObjective::kAreaLatency:
       return "area*latency";
+    case SizeObjective::kEnergy:
+      return "energy";
   }
   return "?";
 }

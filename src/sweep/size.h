@@ -18,7 +18,7 @@ namespace glint {
 // What "cheapest" means. A configuration's value over several inputs is its worst: the largest
 // area (a chip that serves every input holds every input's slots), the least throughput, the
 // largest area x latency.
-enum class SizeObjective { kArea, kThroughput, kAreaLatency };
+enum class SizeObjective { kArea, kThroughput, kAreaLatency, kEnergy };
 // "area", "throughput" or "area*latency" (or the measure's name, objective_measure); throws
 // std::invalid_argument naming --objective.
 SizeObjective parse_size_objective(const std::string& text);

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <iterator>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -139,7 +140,9 @@ nlohmann::json run_sweep(const SweepJob& job) {
   nlohmann::json grids = nlohmann::json::array();
   for (const Grid& g : job.grids) grids.push_back(g.text);
   nlohmann::json objectives = nlohmann::json::array();
-  for (const Objective& o : kObjectives)
+  std::vector<Objective> all_objectives(std::begin(kObjectives), std::end(kObjectives));
+  if (job.settings.node) all_objectives.push_back(kEnergyObjective);
+  for (const Objective& o : all_objectives)
     objectives.push_back({{"name", o.name}, {"key", o.key}, {"minimise", o.minimise}});
   nlohmann::json report = {
       {"glint_sweep_report", kSweepReportVersion},

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <iterator>
 
 #include "sweep/measures.h"
 #include "sweep/plot.h"
@@ -31,9 +32,10 @@ HtmlTable configurations(const std::string& id, const nlohmann::json& report, Ke
   HtmlTable t;
   t.id = id;
   const bool scene = report.at("input").at("kind") == "scene";
+  const bool energy = report_objectives(report).size() > std::size(kObjectives);
   std::vector<const SweepColumn*> cols;
   for (const SweepColumn& c : sweep_columns())
-    if (scene || !c.scene_only) cols.push_back(&c);
+    if ((scene || !c.scene_only) && (energy || !c.node_only)) cols.push_back(&c);
   t.headings.push_back("error");
   for (const SweepColumn* c : cols) t.headings.push_back(c->name);
   for (const nlohmann::json& row : report.at("results")) {
@@ -71,7 +73,7 @@ std::vector<std::pair<std::string, std::string>> sweep_figures(const nlohmann::j
 // The plots and the fronts of one sweep report; the tables' ids start with `id_prefix`.
 void fronts(HtmlPage& page, const nlohmann::json& report, const std::string& id_prefix) {
   for (const SweepPlot& plot : sweep_plots(report, false)) page.raw_svg(plot.svg, plot.name);
-  for (const Objective& o : kObjectives) {
+  for (const Objective& o : report_objectives(report)) {
     HtmlTable t = configurations(
         id_prefix + "front_" + o.name, report,
         [&](const nlohmann::json& r) { return r.at("pareto").value(o.name, false); });

@@ -41,6 +41,9 @@ DOC_FILES = [
 SYNTH_DOC = "src/cli/synth_report.md"
 OSU018 = "/usr/share/qflow/tech/osu018/osu018_stdcells.lib"
 
+# The sweep CSV's columns written only with --node.
+NODE_COLUMNS = {"energy_pj_per_request", "pareto_energy"}
+
 BASE_TYPES = {"string", "integer", "number", "boolean", "null", "object", "array"}
 
 # A schema section starts at a heading whose whole text is one backticked name: "## `errors`".
@@ -325,9 +328,9 @@ class Runner:
         with open(path, encoding="utf-8") as f:
             self.outputs.append((doc, section, json.load(f), origin))
 
-    def csv_header(self, path, origin, scene):
+    def csv_header(self, path, origin, scene, node=False):
         with open(path, newline="", encoding="utf-8") as f:
-            self.csvs.append((origin, next(csv.reader(f)), scene))
+            self.csvs.append((origin, next(csv.reader(f)), scene, node))
 
     def all(self, synth):
         eval_doc, sim_doc = "src/eval/eval_report.md", "src/eval/sim_report.md"
@@ -357,8 +360,9 @@ class Runner:
                           "--activity", "clock", "--json"],
                          "glint sim --chip ram:materials=16,slots=16 --activity clock multi_light.vec")
         self.json_stdout(sim_doc, "glint_sim_report",
-                         ["sim", self.src("traces/multi_light.vec"), "--node", "osu018", "--json"],
-                         "glint sim --node osu018 multi_light.vec")
+                         ["sim", self.src("traces/multi_light.vec"), "--node", "osu018",
+                          "--activity", "operand", "--json"],
+                         "glint sim --node osu018 --activity operand multi_light.vec")
         # sweep: a vector file with a refused configuration (schlick match=width cannot hold the
         # Gaussian lobe's n'), a scene (image errors), and one shard of a fixed-capacity sweep.
         sweep_doc = "src/sweep/sweep_report.md"
@@ -377,7 +381,8 @@ class Runner:
             origin = f"glint sweep ({name})"
             self.json_file(sweep_doc, "glint_sweep_report", os.path.join(self.work, out_json),
                            origin)
-            self.csv_header(os.path.join(self.work, out_csv), origin, name == "scene")
+            self.csv_header(os.path.join(self.work, out_csv), origin, name == "scene",
+                            "--node" in args)
         # size: one family meets the budget, one does not (spec null); exit 1 would be none.
         self.json_stdout(sweep_doc, "glint_size_report",
                          ["size", "--budget", "lsb8<=1", "--grid", "lut:bits=6..7", "--grid",
@@ -482,14 +487,16 @@ def check_versions(docs, checker, outputs):
 
 
 def check_csv(docs, checker, csvs):
-    """The sweep CSV's header is the documented column list (image.* only for a scene)."""
+    """The sweep CSV's header is the documented column list (image.* only for a scene, the
+    energy's columns only with --node)."""
     doc = "src/sweep/sweep_report.md"
     columns = docs.csv.get(doc)
     if columns is None:
         checker.fail(f"{doc}: no ```csv block listing the CSV columns")
         return
-    for origin, header, scene in csvs:
-        want = [c for c in columns if scene or not c.startswith("image.")]
+    for origin, header, scene, node in csvs:
+        want = [c for c in columns if (scene or not c.startswith("image."))
+                and (node or c not in NODE_COLUMNS)]
         for c in header:
             if c not in want:
                 checker.fail(f"{doc}: CSV column '{c}': glint writes it, but it is not documented",

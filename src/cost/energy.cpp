@@ -1,0 +1,48 @@
+#include "cost/energy.h"
+
+#include "cost/energy_osu018.h"
+
+namespace glint {
+
+const EnergyScale& energy_scale() {
+  static const EnergyScale s;
+  return s;
+}
+
+namespace {
+
+EnergyWeights scaled(EnergyWeights w, const EnergyScale& s) {
+  w.register_bit *= s.register_bit;
+  w.clock_bit *= s.clock_bit;
+  w.adder_bit *= s.adder_bit;
+  w.multiplier_bit *= s.multiplier_bit;
+  w.comparator_bit *= s.comparator_bit;
+  w.mux_bit *= s.mux_bit;
+  w.table_bit *= s.table_bit;
+  w.gate *= s.gate;
+  w.leakage_nw_per_um2 *= s.leakage;
+  return w;
+}
+
+}  // namespace
+
+const EnergyWeights* find_energy(const std::string& node) {
+  static const EnergyWeights osu018 = scaled(make_energy_osu018(), energy_scale());
+  return node == osu018.node ? &osu018 : nullptr;
+}
+
+PartSwitching part_switching(const Primitive& p, const EnergyWeights& w) {
+  const double a = p.width_a, b = p.width_b, n = p.count;
+  const std::string& k = p.kind;
+  if (k == "adder") return {n * a, w.adder_bit};
+  if (k == "comparator") return {n * a, w.comparator_bit};
+  if (k == "multiplier") return {n * a * b, w.multiplier_bit};
+  if (k == "divider") return {n * a * (b + 1), w.adder_bit + w.mux_bit};
+  if (k == "mux") return {n * a * (b - 1), w.mux_bit};
+  if (k == "shifter") return {n * a * b, w.mux_bit};
+  if (k == "lzd" || k == "gates") return {n * a, w.gate};
+  if (k == "table") return {n * b * clog2(p.width_a), w.table_bit};
+  return {};  // registers: counted toggles
+}
+
+}  // namespace glint

@@ -1,0 +1,66 @@
+// Energy at a real node (issue 26, item 3): one energy per toggle per part kind, derived from the
+// library's internal_power tables and pin capacitances (src/cost/energy_weights.py writes
+// energy_osu018.h), and how many bits of each part of a lane's inventory switch.
+//
+// The model, per part of the inventory (cost/builder.h places them, each in its stage):
+//   register bit   register_bit per data toggle (the staged values': eval/activity.h), and
+//                  clock_bit per bit per cycle it is clocked (every cycle, but for the cycles clock
+//                  gating stops);
+//   datapath part  its switching bits (part_switching) x the toggle fraction of the registers
+//                  feeding its stage x the kind's weight: each net of the part is assumed to toggle
+//                  as often as its inputs do (no glitches, no carry ripple beyond one bit: what
+//                  the scale factors below absorb once fitted);
+//   leakage        the lane's area at the node x leakage_nw_per_um2 x cycles x the clock period.
+// Not yet calibrated against a gate-level reference (src/cost/README.md, "Energy").
+#pragma once
+
+#include <string>
+
+#include "cost/cost_model.h"
+
+namespace glint {
+
+// pJ per toggle (per cycle for clock_bit); written by energy_weights.py, then scaled.
+struct EnergyWeights {
+  std::string node;
+  double voltage = 0, load_pf = 0, slew_ns = 0;  // the operating point the tables were read at
+  double register_bit = 0;                       // a flip-flop's data toggle
+  double clock_bit = 0;                          // a flip-flop clocked for one cycle
+  double adder_bit = 0;       // one bit of an adder (or a divider row's subtractor)
+  double multiplier_bit = 0;  // one partial-product bit of a multiplier
+  double comparator_bit = 0;  // one bit of a comparator
+  double mux_bit = 0;         // one 2:1 mux bit (muxes, shifter levels, a divider's restore)
+  double table_bit = 0;       // one decision node of a table read's path
+  double gate = 0;            // one glue gate (merge-buffer selects, leading-one chains)
+  double leakage_nw_per_um2 = 0;
+};
+
+// The one place a fit against the gate-level reference (tests/calibration/power_osu018.json,
+// OpenSTA's report_power on the mapped lanes) will set: a factor per part kind on the library's
+// first-principles weights. 1 until that fit exists.
+struct EnergyScale {
+  double register_bit = 1, clock_bit = 1, adder_bit = 1, multiplier_bit = 1, comparator_bit = 1,
+         mux_bit = 1, table_bit = 1, gate = 1, leakage = 1;
+};
+const EnergyScale& energy_scale();
+
+// The scaled weights of the node of that name, or nullptr (a node without energy weights).
+const EnergyWeights* find_energy(const std::string& node);
+
+// A datapath part's switching: `bits` of weight `pj_per_bit` switch when its inputs toggle once
+// each (0 bits for registers: their toggles are counted, not estimated). Per kind:
+//   adder, comparator   width_a bits;       multiplier   width_a x width_b partial products;
+//   divider             rows x (divisor + 1) subtractor bits and as many restore mux bits;
+//   mux                 width x (inputs - 1) 2:1 mux bits (the whole tree sees its inputs);
+//   shifter             width x levels mux bits;  lzd, gates   width_a gates;
+//   table               word bits x log2(entries) decision nodes, per bank: the read's path
+//                       (a RAM's storage is clocked register bits: Primitive::held_bits).
+// All times `count`.
+struct PartSwitching {
+  double bits = 0;
+  double pj_per_bit = 0;
+  double pj() const { return bits * pj_per_bit; }
+};
+PartSwitching part_switching(const Primitive& p, const EnergyWeights& w);
+
+}  // namespace glint
