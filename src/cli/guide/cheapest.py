@@ -177,7 +177,8 @@ def main():
         + "; `pow` and `lut` are the textbook baselines"
         + (", `pwp` the piecewise polynomial (in t with a table per material, or `domain=log` with "
            "tables shared by every material)." if "pwp" in units else ".")
-        + " Energy is not in the table: glint has no energy model at the node yet (issue 26)."
+        + " Energy is not in the table yet: glint's energy at the node (`--node osu018`, `glint "
+        "size --objective energy`) is not yet fitted to its gate-level reference (issue 26)."
         + " `sfu` and `pwp` have no lanes in the cost calibration set yet, so their areas are the "
         "proxy's uncalibrated estimate; `glint synth SPEC --vectors FILE` gives Yosys's figure "
         "for any cell's spec.",
