@@ -1,11 +1,12 @@
 #include "cost/energy.h"
 
+#include "cost/energy_fit_osu018.h"
 #include "cost/energy_osu018.h"
 
 namespace glint {
 
 const EnergyScale& energy_scale() {
-  static const EnergyScale s;
+  static const EnergyScale s = make_energy_scale_osu018();
   return s;
 }
 

@@ -11,7 +11,7 @@
 //                  as often as its inputs do (no glitches, no carry ripple beyond one bit: what
 //                  the scale factors below absorb once fitted);
 //   leakage        the lane's area at the node x leakage_nw_per_um2 x cycles x the clock period.
-// Not yet calibrated against a gate-level reference (src/cost/README.md, "Energy").
+// The scale factors are fitted to a gate-level reference (EnergyScale, below).
 #pragma once
 
 #include <string>
@@ -35,9 +35,10 @@ struct EnergyWeights {
   double leakage_nw_per_um2 = 0;
 };
 
-// The one place a fit against the gate-level reference (tests/calibration/power_osu018.json,
-// OpenSTA's report_power on the mapped lanes) will set: a factor per part kind on the library's
-// first-principles weights. 1 until that fit exists.
+// A factor per part kind on the library's first-principles weights, fitted against the gate-level
+// reference (tests/calibration/power_osu018.json, OpenSTA's report_power on the mapped lanes) by
+// tests/calibration/energy_fit.py, which writes them to cost/energy_fit_osu018.h with their
+// residuals. The defaults, 1, are the library's weights unfitted.
 struct EnergyScale {
   double register_bit = 1, clock_bit = 1, adder_bit = 1, multiplier_bit = 1, comparator_bit = 1,
          mux_bit = 1, table_bit = 1, gate = 1, leakage = 1;

@@ -101,9 +101,20 @@ nlohmann::json energy_json(const LaneEnergy& e, std::optional<std::uint64_t> sha
     j["stage"] = s.stage;
     stages.push_back(std::move(j));
   }
+  const EnergyScale& f = energy_scale();
   nlohmann::json j = {{"node", e.node},
                       {"gating", to_string(e.gating)},
-                      {"calibrated", false},
+                      {"calibrated", true},
+                      {"scale",
+                       {{"register_bit", f.register_bit},
+                        {"clock_bit", f.clock_bit},
+                        {"adder_bit", f.adder_bit},
+                        {"multiplier_bit", f.multiplier_bit},
+                        {"comparator_bit", f.comparator_bit},
+                        {"mux_bit", f.mux_bit},
+                        {"table_bit", f.table_bit},
+                        {"gate", f.gate},
+                        {"leakage", f.leakage}}},
                       {"clock_ns", e.clock_ns},
                       {"requests", e.requests},
                       {"computed", e.computed},
@@ -131,8 +142,8 @@ std::string format_energy(const nlohmann::json& e) {
   if (const auto px = e.find("pj_per_shaded_pixel"); px != e.end())
     line += fmt::format(", {:.2f} per shaded pixel", px->get<double>());
   line += fmt::format(
-      " (register {:.2f}, clock {:.2f}, datapath {:.2f}, leakage {:.3f} a request; not "
-      "calibrated)",
+      " (register {:.2f}, clock {:.2f}, datapath {:.2f}, leakage {:.3f} a request; fitted "
+      "to gate level)",
       p.at("register").get<double>(), p.at("clock").get<double>(), p.at("datapath").get<double>(),
       p.at("leakage").get<double>());
   return line;

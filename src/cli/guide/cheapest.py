@@ -178,7 +178,8 @@ def main():
         + (", `pwp` the piecewise polynomial (in t with a table per material, or `domain=log` with "
            "tables shared by every material)." if "pwp" in units else ".")
         + " Energy is not in the table yet: glint's energy at the node (`--node osu018`, `glint "
-        "size --objective energy`) is not yet fitted to its gate-level reference (issue 26)."
+        "size --objective energy`) is fitted to its gate-level reference only within -26 % to "
+        "+48 % (src/cost/README.md, \"Energy\")."
         + " `sfu` and `pwp` have no lanes in the cost calibration set yet, so their areas are the "
         "proxy's uncalibrated estimate; `glint synth SPEC --vectors FILE` gives Yosys's figure "
         "for any cell's spec.",
