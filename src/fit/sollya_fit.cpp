@@ -112,6 +112,19 @@ bool coefficient_raw(sollya_obj_t p, int k, int frac_bits, std::int64_t* out) {
   return ok;
 }
 
+// The fit's raw coefficients as doubles (exact: each within a double's mantissa), or why not.
+FixedPointFit with_coefficients(FixedPointFit r, int frac_bits) {
+  for (std::int64_t c : r.raw) {
+    if (c >= (std::int64_t{1} << 53) || c <= -(std::int64_t{1} << 53)) {
+      r.failure = "a coefficient wider than a double's mantissa";
+      return r;
+    }
+    r.coeffs.push_back(std::ldexp(static_cast<double>(c), -frac_bits));
+  }
+  r.ok = true;
+  return r;
+}
+
 double elapsed_ms(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
       .count();
@@ -204,15 +217,7 @@ FixedPointFit fit_power_fixed_point(const FitOptions& o, int frac_bits,
       return r;
     }
   }
-  for (std::int64_t c : r.raw) {
-    if (c >= (std::int64_t{1} << 53) || c <= -(std::int64_t{1} << 53)) {
-      r.failure = "a coefficient wider than a double's mantissa";
-      return r;
-    }
-    r.coeffs.push_back(std::ldexp(static_cast<double>(c), -frac_bits));
-  }
-  r.ok = true;
-  return r;
+  return with_coefficients(std::move(r), frac_bits);
 }
 
 namespace {
@@ -330,15 +335,7 @@ FixedPointFit fit_segment_fixed_point(double shininess, double a, double b, int 
     r.failure = "the segment's ends moved";
     return r;
   }
-  for (std::int64_t c : r.raw) {
-    if (c >= (std::int64_t{1} << 53) || c <= -(std::int64_t{1} << 53)) {
-      r.failure = "a coefficient wider than a double's mantissa";
-      return r;
-    }
-    r.coeffs.push_back(std::ldexp(static_cast<double>(c), -frac_bits));
-  }
-  r.ok = true;
-  return r;
+  return with_coefficients(std::move(r), frac_bits);
 }
 
 }  // namespace glint
