@@ -112,6 +112,31 @@ bool coefficient_raw(sollya_obj_t p, int k, int frac_bits, std::int64_t* out) {
   return ok;
 }
 
+// A Sollya list of `v`'s objects, which it takes (v is left empty).
+sollya_obj_t take_list(std::vector<sollya_obj_t>& v) {
+  Obj l(sollya_lib_list(v.data(), static_cast<int>(v.size())));
+  for (sollya_obj_t e : v) sollya_lib_clear_obj(e);
+  v.clear();
+  return l.release();
+}
+
+// fpminimax's polynomial of `degree` as raw coefficients in r.raw; false, with r.failure, if it
+// failed or a coefficient is off the grid.
+bool read_raw(const Obj& fit, int degree, int frac_bits, FixedPointFit& r) {
+  if (fit.error()) {
+    r.failure = "fpminimax failed";
+    return false;
+  }
+  r.raw.assign(static_cast<std::size_t>(degree) + 1, 0);
+  for (int k = 0; k <= degree; ++k) {
+    if (!coefficient_raw(fit.get(), k, frac_bits, &r.raw[static_cast<std::size_t>(k)])) {
+      r.failure = "a coefficient off the fixed-point grid";
+      return false;
+    }
+  }
+  return true;
+}
+
 // The fit's raw coefficients as doubles (exact: each within a double's mantissa), or why not.
 FixedPointFit with_coefficients(FixedPointFit r, int frac_bits) {
   for (std::int64_t c : r.raw) {
@@ -161,6 +186,10 @@ FixedPointFit fit_power_fixed_point(const FitOptions& o, int frac_bits,
     r.failure = "fraction bits outside 0..60";
     return r;
   }
+  if (points != nullptr && points->size() < static_cast<std::size_t>(p + 1 - first)) {
+    r.failure = "fewer interpolation points than free coefficients";
+    return r;
+  }
   const auto clock = std::chrono::steady_clock::now();
   const std::lock_guard<std::mutex> lock(sollya_lock());
   ensure_sollya();
@@ -173,42 +202,19 @@ FixedPointFit fit_power_fixed_point(const FitOptions& o, int frac_bits,
     formats.push_back(sollya_lib_constant_from_int(frac_bits));
     start_coeffs.push_back(sollya_lib_constant_from_double(start[static_cast<std::size_t>(k)]));
   }
-  const auto list = [](std::vector<sollya_obj_t>& v) {
-    Obj l(sollya_lib_list(v.data(), static_cast<int>(v.size())));
-    for (sollya_obj_t e : v) sollya_lib_clear_obj(e);
-    v.clear();
-    return l.release();
-  };
   Obj f(target(FitVariable::kU, o.shininess, o.tau));
-  Obj g(list(basis)), fmt(list(formats)), lc(list(start_coeffs));
+  Obj g(take_list(basis)), fmt(take_list(formats)), lc(take_list(start_coeffs));
   std::vector<sollya_obj_t> where;
   if (points != nullptr) {
-    if (points->size() < static_cast<std::size_t>(p + 1 - first)) {
-      r.failure = "fewer interpolation points than free coefficients";
-      for (sollya_obj_t e : basis) sollya_lib_clear_obj(e);
-      for (sollya_obj_t e : formats) sollya_lib_clear_obj(e);
-      for (sollya_obj_t e : start_coeffs) sollya_lib_clear_obj(e);
-      return r;
-    }
     for (double v : *points) where.push_back(sollya_lib_constant_from_double(v));
   }
-  Obj range(points != nullptr ? list(where) : sollya_lib_parse_string("[0;1]"));
+  Obj range(points != nullptr ? take_list(where) : sollya_lib_parse_string("[0;1]"));
   Obj absolute(sollya_lib_absolute()), fixed(sollya_lib_fixed());
   Obj q(constrained ? x() : sollya_lib_constant_from_int(0));
   Obj fit(sollya_lib_fpminimax(f.get(), g.get(), fmt.get(), range.get(), absolute.get(),
                                fixed.get(), q.get(), lc.get(), nullptr));
   r.milliseconds = elapsed_ms(clock);
-  if (fit.error()) {
-    r.failure = "fpminimax failed";
-    return r;
-  }
-  r.raw.assign(static_cast<std::size_t>(p) + 1, 0);
-  for (int k = 0; k <= p; ++k) {
-    if (!coefficient_raw(fit.get(), k, frac_bits, &r.raw[static_cast<std::size_t>(k)])) {
-      r.failure = "a coefficient off the fixed-point grid";
-      return r;
-    }
-  }
+  if (!read_raw(fit, p, frac_bits, r)) return r;
   if (constrained) {
     std::int64_t sum = 0;
     for (std::int64_t c : r.raw) sum += c;
@@ -299,17 +305,11 @@ FixedPointFit fit_segment_fixed_point(double shininess, double a, double b, int 
     formats.push_back(sollya_lib_constant_from_int(frac_bits));
     start_coeffs.push_back(sollya_lib_constant_from_double(start[static_cast<std::size_t>(k)]));
   }
-  const auto list = [](std::vector<sollya_obj_t>& v) {
-    Obj l(sollya_lib_list(v.data(), static_cast<int>(v.size())));
-    for (sollya_obj_t e : v) sollya_lib_clear_obj(e);
-    v.clear();
-    return l.release();
-  };
   Obj f(segment_target(shininess, a, b));
-  Obj g(list(basis)), fmt(list(formats)), lc(list(start_coeffs));
+  Obj g(take_list(basis)), fmt(take_list(formats)), lc(take_list(start_coeffs));
   std::vector<sollya_obj_t> where;
   for (double v : points) where.push_back(sollya_lib_constant_from_double(v));
-  Obj range(points.empty() ? sollya_lib_parse_string("[0;1]") : list(where));
+  Obj range(points.empty() ? sollya_lib_parse_string("[0;1]") : take_list(where));
   Obj absolute(sollya_lib_absolute()), fixed(sollya_lib_fixed());
   // The fixed part: the line through both ends, exactly on the grid.
   Obj q(sollya_lib_build_function_add(
@@ -318,17 +318,7 @@ FixedPointFit fit_segment_fixed_point(double shininess, double a, double b, int 
   Obj fit(sollya_lib_fpminimax(f.get(), g.get(), fmt.get(), range.get(), absolute.get(),
                                fixed.get(), q.get(), lc.get(), nullptr));
   r.milliseconds = elapsed_ms(clock);
-  if (fit.error()) {
-    r.failure = "fpminimax failed";
-    return r;
-  }
-  r.raw.assign(static_cast<std::size_t>(degree) + 1, 0);
-  for (int k = 0; k <= degree; ++k) {
-    if (!coefficient_raw(fit.get(), k, frac_bits, &r.raw[static_cast<std::size_t>(k)])) {
-      r.failure = "a coefficient off the fixed-point grid";
-      return r;
-    }
-  }
+  if (!read_raw(fit, degree, frac_bits, r)) return r;
   std::int64_t sum = 0;
   for (std::int64_t c : r.raw) sum += c;
   if (r.raw[0] != end0_raw || sum != end1_raw) {
