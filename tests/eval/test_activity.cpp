@@ -13,26 +13,13 @@
 #include "eval/evaluate.h"
 #include "io/vectors.h"
 #include "test_support.h"
+#include "trace_unit.h"
 #include "units/catalogue.h"
 #include "units/stages.h"
 #include "vector_rows.h"
 
 namespace glint {
 namespace {
-
-struct Built {
-  VectorHeader header;
-  SlotMap slots;
-  std::unique_ptr<SpecularUnit> unit;
-};
-
-Built build(const std::string& spec) {
-  Built b;
-  test::read_rows(std::string(GLINT_SOURCE_DIR) + "/traces/phong_basic.vec", b.header);
-  b.slots = make_slots(b.header);
-  b.unit = make_unit(parse_unit_spec(spec), b.slots);
-  return b;
-}
 
 // The toggles between two staged evaluations, register by register at its width: what the
 // pipeline's registers change when request b follows request a.
@@ -61,7 +48,7 @@ class Activity : public ::testing::TestWithParam<std::string> {};
 // Alternating two computed requests toggles, each time, exactly the bits their registers differ
 // in; repeating one request toggles nothing after the first.
 TEST_P(Activity, CountsTheBitsThatDifferBetweenConsecutiveRequests) {
-  const Built b = build(GetParam());
+  const test::TraceUnit b = test::trace_unit(GetParam());
   const SpecularUnit& u = *b.unit;
   const std::int64_t one = u.in_format().raw_one();
   const std::int64_t a = one, c = one - one / 16;  // both far above the threshold
@@ -98,7 +85,7 @@ TEST_P(Activity, CountsTheBitsThatDifferBetweenConsecutiveRequests) {
 // A skipped request: fed to the datapath with gating none (it toggles as a computed one would),
 // held out of it with operand and clock gating (no toggle), and unclocked with clock gating.
 TEST_P(Activity, GatingDecidesWhatASkippedRequestCosts) {
-  const Built b = build(GetParam());
+  const test::TraceUnit b = test::trace_unit(GetParam());
   const SpecularUnit& u = *b.unit;
   ASSERT_TRUE(u.comparator_enabled());
   const std::int64_t one = u.in_format().raw_one();

@@ -13,6 +13,7 @@
 #include "eval/energy.h"
 #include "eval/evaluate.h"
 #include "test_support.h"
+#include "trace_unit.h"
 #include "units/catalogue.h"
 #include "units/lane_cost.h"
 #include "units/stages.h"
@@ -20,20 +21,6 @@
 
 namespace glint {
 namespace {
-
-struct Built {
-  VectorHeader header;
-  SlotMap slots;
-  std::unique_ptr<SpecularUnit> unit;
-};
-
-Built build(const std::string& spec) {
-  Built b;
-  test::read_rows(std::string(GLINT_SOURCE_DIR) + "/traces/phong_basic.vec", b.header);
-  b.slots = make_slots(b.header);
-  b.unit = make_unit(parse_unit_spec(spec), b.slots);
-  return b;
-}
 
 const EnergyWeights& osu018() {
   const EnergyWeights* w = find_energy("osu018");
@@ -63,12 +50,12 @@ class Energy : public ::testing::TestWithParam<std::string> {};
 // The cost's stages follow the unit's layout one for one (lane_energy places each part in the
 // layout's stage of the same index).
 TEST_P(Energy, CostStagesFollowTheLayout) {
-  const Built b = build(GetParam());
+  const test::TraceUnit b = test::trace_unit(GetParam());
   EXPECT_EQ(unit_cost(*b.unit).stages.size(), b.unit->stages().stages().size());
 }
 
 TEST_P(Energy, IsTheSumOfItsParts) {
-  const Built b = build(GetParam());
+  const test::TraceUnit b = test::trace_unit(GetParam());
   const LaneEnergy e = energy_of(*b.unit, mixed_stream(*b.unit, 300), Gating::kOperand);
   EnergyParts sum;
   for (const StageEnergy& s : e.stages) {
@@ -95,7 +82,7 @@ TEST_P(Energy, IsTheSumOfItsParts) {
 // Operand isolation saves the skipped requests' datapath and register toggles: less than none
 // on a stream with skipped requests, the same on one without.
 TEST_P(Energy, OperandGatingSavesOnlyWhatIsSkipped) {
-  const Built b = build(GetParam());
+  const test::TraceUnit b = test::trace_unit(GetParam());
   const SpecularUnit& u = *b.unit;
   const std::vector<ActivityRequest> mixed = mixed_stream(u, 300);
   const LaneEnergy none = energy_of(u, mixed, Gating::kNone);
@@ -114,7 +101,7 @@ TEST_P(Energy, OperandGatingSavesOnlyWhatIsSkipped) {
 // Clock gating stops the stage registers' clock on the skipped requests' cycles: it saves clock
 // energy and nothing else.
 TEST_P(Energy, ClockGatingSavesClockEnergyOnly) {
-  const Built b = build(GetParam());
+  const test::TraceUnit b = test::trace_unit(GetParam());
   const std::vector<ActivityRequest> mixed = mixed_stream(*b.unit, 300);
   const LaneEnergy operand = energy_of(*b.unit, mixed, Gating::kOperand);
   const LaneEnergy clock = energy_of(*b.unit, mixed, Gating::kClock);
@@ -127,7 +114,7 @@ TEST_P(Energy, ClockGatingSavesClockEnergyOnly) {
 // The same requests twice over: per request, the clock and leakage energy are the same and the
 // toggles' energy is within a few per cent (only the reset state's first toggles differ).
 TEST_P(Energy, PerRequestEnergyDoesNotDependOnTheStreamLength) {
-  const Built b = build(GetParam());
+  const test::TraceUnit b = test::trace_unit(GetParam());
   std::vector<ActivityRequest> once = mixed_stream(*b.unit, 400);
   std::vector<ActivityRequest> twice = once;
   twice.insert(twice.end(), once.begin(), once.end());
