@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "code_sweep.h"
 #include "reference/reference.h"
 #include "units/catalogue.h"
 #include "units/lane_cost.h"
@@ -31,35 +32,11 @@ std::unique_ptr<SpecularUnit> build(const std::string& spec, const std::vector<d
   return make_unit(parse_unit_spec(spec), slots);
 }
 
-struct Sweep {
-  double max_ulps = 0;    // |eval - model| in output ulps, where computed
-  double max_vs_pow = 0;  // |eval - t_q^n| where computed
-  std::int64_t first_nonmonotone = -1;
-  std::int64_t at_one = -1;
-  std::int64_t nonzero_skipped = 0;
-};
+using Sweep = test::CodeSweep;
 
-// Every code of the input format, 0 .. 1.0 (the raws above clamp as 1.0 does).
+// Every code of the input format, 0 .. 1.0.
 Sweep sweep(const SpecularUnit& u, std::size_t slot, double n) {
-  Sweep s;
-  const QFormat in = u.in_format(), out = u.out_format();
-  std::int64_t prev = -1;
-  for (std::int64_t t = 0; t <= in.raw_one(); ++t) {
-    const std::int64_t r = u.eval_with_skip(slot, t);
-    if (r < prev && s.first_nonmonotone < 0) s.first_nonmonotone = t;
-    prev = r;
-    const double v = std::ldexp(static_cast<double>(r), -out.frac_bits);
-    if (u.skip(slot, t)) {
-      s.nonzero_skipped += r != 0;
-      continue;
-    }
-    s.max_ulps = std::max(s.max_ulps, std::fabs(v - u.model(slot, t)) / out.ulp());
-    s.max_vs_pow =
-        std::max(s.max_vs_pow,
-                 std::fabs(v - std::pow(std::ldexp(static_cast<double>(t), -in.frac_bits), n)));
-  }
-  s.at_one = u.eval_with_skip(slot, in.raw_one());
-  return s;
+  return test::sweep_codes(u, slot, n, u.in_format().raw_one());
 }
 
 const double kShininess[] = {1, 2, 5, 20, 50, 128, 512};
@@ -97,10 +74,11 @@ TEST(PwpLog, DefaultWithinOneDisplayLsbUpTo512) {
   // 16 quadratic segments for lg2 and for ex2: under 1 LSB of an 8-bit display against t^n for
   // n up to 512, and more segments do better where the approximation dominates (large n).
   for (double n : kShininess) {
-    const double def = sweep(*build("pwp:domain=log,in=uq1.16", {n}), 0, n).max_vs_pow;
+    const double def = sweep(*build("pwp:domain=log,in=uq1.16", {n}), 0, n).max_abs_vs_pow;
     EXPECT_LT(def, 1.0 / 255) << n;
     if (n < 50) continue;
-    const double more = sweep(*build("pwp:domain=log,in=uq1.16,segments=6", {n}), 0, n).max_vs_pow;
+    const double more =
+        sweep(*build("pwp:domain=log,in=uq1.16,segments=6", {n}), 0, n).max_abs_vs_pow;
     EXPECT_LT(more, def) << n;
   }
 }
