@@ -27,12 +27,14 @@ ratio to the reference within 1 +- GUARD; prints PASS: or FAIL: and exits 1 on a
 Pure Python (no numpy): three unknowns.
 """
 import argparse
-import itertools
 import json
 import os
 import re
 import subprocess
 import sys
+
+# node_fit.py (beside this script) fits the node proxy the same way: its non-negative least squares.
+from node_fit import nnls
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 STORED = os.path.join(ROOT, "tests", "calibration", "power_osu018.json")
@@ -59,41 +61,6 @@ def glint_energy(glint, lane):
                           "--node", "osu018", "--activity", "operand", "--json"],
                          check=True, capture_output=True, text=True).stdout
     return json.loads(out)["units"][0]["energy"]
-
-
-def solve(a, b):
-    """Least squares by the normal equations (Gaussian elimination): n <= 3, well scaled."""
-    n = len(a[0])
-    m = [[sum(r[i] * r[j] for r in a) for j in range(n)] + [sum(r[i] * y for r, y in zip(a, b))]
-         for i in range(n)]
-    for c in range(n):
-        p = max(range(c, n), key=lambda r: abs(m[r][c]))
-        m[c], m[p] = m[p], m[c]
-        if abs(m[c][c]) < 1e-300:
-            return None
-        for r in range(n):
-            if r != c:
-                f = m[r][c] / m[c][c]
-                m[r] = [x - f * y for x, y in zip(m[r], m[c])]
-    return [m[i][n] / m[i][i] for i in range(n)]
-
-
-def nnls(a, b):
-    """Non-negative least squares over every subset of free unknowns (3 unknowns: 7 subsets)."""
-    n = len(a[0])
-    best, best_err = [0.0] * n, sum(y * y for y in b)
-    for k in range(1, n + 1):
-        for free in itertools.combinations(range(n), k):
-            x = solve([[r[i] for i in free] for r in a], b)
-            if x is None or min(x) < 0:
-                continue
-            full = [0.0] * n
-            for i, v in zip(free, x):
-                full[i] = v
-            err = sum((sum(r[i] * full[i] for i in range(n)) - y) ** 2 for r, y in zip(a, b))
-            if err < best_err:
-                best, best_err = full, err
-    return best
 
 
 def off_cycles(row):
