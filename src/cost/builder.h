@@ -163,9 +163,10 @@ class CostBuilder {
     if (ram)
       lane_path(where + ": write port", {{"decode", 0, clog2(e) * n_.gates.delay.at(1, 1, 0)},
                                          {"enable", 0, select_ns(n_.mux, 2, w * tables)}});
-    // A RAM's read is a mux of its entries whose select drives every mux of its array
-    // unbuffered. A table addressed by the group or slot id alone shares that register with the
-    // stage's other such tables: close() prices the select's load of all of them.
+    // A RAM's read is a mux of its entries whose select drives every mux of its array through
+    // the buffer tree the flow builds (log2 of its loads deep). A table addressed by the group or
+    // slot id alone shares that register with the stage's other such tables: stage() prices the
+    // select's load of all of them.
     const double loads = static_cast<double>(e) * w / read_banks;
     if (ram && shared_port && banks == 1) {
       id_loads_ += loads;
@@ -173,8 +174,8 @@ class CostBuilder {
     }
     return {fmt::format("{} {}x{}", ram ? "ram" : "rom", e, w), ram ? mux_delay(e) : table_delay(e),
             !ram               ? n_.rom.delay.at(w, e, 0)
-            : computed_address ? n_.ram_computed.delay.at(clog2(e), e, loads)
-                               : n_.ram.delay.at(clog2(e), e, loads)};
+            : computed_address ? n_.ram_computed.delay.at(clog2(e), loads, loads)
+                               : n_.ram.delay.at(clog2(e), loads, loads)};
   }
   // A pipeline register written by every computed request (or every request).
   // Per-request registers are the lane's: they hold under backpressure (flip-flops with enable).
@@ -200,7 +201,8 @@ class CostBuilder {
     // The id register loaded by every id-addressed table of the stage, not only the one on the
     // path: the load term of all of them in place of the largest's.
     if (id_loads_ > id_loads_max_)
-      s.ns += n_.ram.delay.at(0, 1, id_loads_) - n_.ram.delay.at(0, 1, id_loads_max_);
+      s.ns += n_.ram.delay.at(0, id_loads_, id_loads_) -
+              n_.ram.delay.at(0, id_loads_max_, id_loads_max_);
     id_loads_ = id_loads_max_ = 0;
     stages_.push_back(std::move(s));
   }
@@ -210,10 +212,11 @@ class CostBuilder {
   void lane_path(const std::string& name, const std::vector<Seg>& path) {
     lane_paths_.push_back(close(name, path));
   }
-  // A mux of `inputs` words of `w` bits whose select comes from one register: the flow does not
-  // buffer it, so its delay grows with the muxes it drives (cost/node.h).
+  // A mux of `inputs` words of `w` bits whose select comes from one register: the flow buffers
+  // the select, so its delay grows with the log of the muxes it drives (cost/node.h).
   double select_ns(const NodePart& p, int inputs, int w) const {
-    return p.delay.at(clog2(inputs), inputs, static_cast<double>(inputs) * w);
+    const double loads = static_cast<double>(inputs) * w;
+    return p.delay.at(clog2(inputs), loads, loads);
   }
 
   UnitCost finish() {

@@ -165,17 +165,17 @@ def delay_terms(kind, r):
             return a + ones, min(a, ones), 0
         return a + b, min(a, b), 0
     if kind in ("mux", "ram", "ram_computed"):
-        return clog2(b if kind == "mux" else a), 1, a * b
+        # The select's loads as y: abc buffers the net (a tree, log2 of its loads deep).
+        return clog2(b if kind == "mux" else a), a * b, a * b
     if kind == "rom":
         return b, a, 0
     return a, a, 0
 
 
 TERMS = ("c0", "x", "log2", "load", "load2")
-RAM_LINEAR_LOADS = 600
 # Which of c0, per_x, per_log2, per_load each kind's delay uses (the shapes of the data).
 DELAY_SHAPE = {"adder": "c0 x", "comparator": "c0 log2", "multiplier": "c0 x log2",
-               "divider": "c0 x", "mux": "c0 x load", "ram": "c0 x load load2", "ram_computed": "c0 x load",
+               "divider": "c0 x", "mux": "c0 x log2", "ram": "c0 x log2", "ram_computed": "c0 x log2",
                "rom": "c0 log2",
                "shifter": "c0 x", "lzd": "c0 x"}
 
@@ -193,14 +193,6 @@ def fit_primitives(path, out):
     for kind, sources in AREA_KINDS.items():
         sel = [r for r in rows if any(r["kind"] == s or f"{r['kind']}/{r['variant']}" == s
                                       for s in sources)]
-        dsel = sel
-        if kind == "ram_computed":
-            # Beyond ~600 loads a register's unbuffered select slows with their square (65 x 16:
-            # 52 ns, 257 x 16: 788 ns; the merge buffer's head in schlick's lanes of 19-26
-            # entries: 13-26 ns), but the lanes' t^n banks, read by an address computed from t,
-            # stay on the linear trend of the small RAMs up to ~1800 loads (lut:tables=ram:
-            # 23-45 ns): their delay is fitted on the small RAMs only.
-            dsel = [r for r in sel if r["a"] * r["b"] <= RAM_LINEAR_LOADS]
         ratio = sum(r["um2"] for r in sel) / sum(r["ge"] for r in sel)
         res = [r["um2"] / (r["ge"] * ratio) - 1 for r in sel]
         c = {"um2": ratio, "area_res": (min(res), max(res), len(sel)), "delay": [0.0] * len(TERMS)}
@@ -208,11 +200,11 @@ def fit_primitives(path, out):
         if shape:
             cols = [t for t in TERMS if t in shape.split()]
             feats = []
-            for r in dsel:
+            for r in sel:
                 x, y, loads = delay_terms(kind, r)
                 f = {"c0": 1.0, "x": x, "log2": log2(y), "load": loads, "load2": loads * loads}
                 feats.append([f[t] for t in cols])
-            logic = [r["ns"] - reg_ns for r in dsel]
+            logic = [r["ns"] - reg_ns for r in sel]
             # Relative errors on the whole path (register overhead included), as a lane's stage.
             coef = solve([[v / (y + reg_ns) for v in f] for f, y in zip(feats, logic)],
                          [y / (y + reg_ns) for y in logic])
