@@ -26,10 +26,21 @@ struct NodeDelay {
   double at(double x, double y, double loads) const;
 };
 
-// One kind of part: library um2 per proxy GE, and its delay.
+// One kind of part: library um2 per proxy GE, and its delay. lane_area: what a lane's part of
+// this kind keeps of that area (abc shares logic across the parts of a lane, which primitives
+// mapped alone cannot show; fitted on the calibration lanes: node_fit.py --lanes).
 struct NodePart {
   double um2_per_ge = 0;
   NodeDelay delay;
+  double lane_area = 1;
+};
+
+// What a part counts of its own delay where arithmetic parts follow one another on a path
+// (CostBuilder::close): an adder right before a multiplier, and an adder, comparator or select
+// after a multiplier (or after such a part). Fitted on the calibration lanes, not the primitives:
+// the overlap exists only between parts.
+struct NodeOverlap {
+  double adder_before_multiplier = 1, adder_after = 1, comparator_after = 1, mux_after = 1;
 };
 
 struct NodeConstants {
@@ -41,7 +52,11 @@ struct NodeConstants {
   // an address computed in the stage (lut's t^n banks).
   NodePart adder, comparator, multiplier, divider, mux, shifter, lzd, gates, rom, ram, ram_computed,
       dff, dffe;
+  NodeOverlap overlap;
 };
+
+// The name of one of k's parts ("adder", "rom", "dffe", ...), by its address.
+std::string node_part_name(const NodeConstants& k, const NodePart& p);
 
 // The built-in node (the only one with constants).
 const NodeConstants& node_osu018();
