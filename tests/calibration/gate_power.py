@@ -28,7 +28,7 @@ groups whatever the state, and leakage is the cells' own), so none is passed.
 
     # one lane, its figures printed (and the work folder kept with --work)
     python3 tests/calibration/gate_power.py build/glint --lane hast traces/multi_light.vec
-    # the stored reference (tests/calibration/power_set.txt, 28 lanes): 44 minutes on a shared
+    # the stored reference (tests/calibration/power_set.txt, 28 lanes): 10 to 45 minutes on a shared
     # 2-core host, most of it Yosys's abc
     python3 tests/calibration/gate_power.py build/glint --timeout 900 \\
         -o tests/calibration/power_osu018.json
