@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <map>
@@ -81,9 +82,15 @@ void run_yosys(const std::string& script, const std::string& log, const std::str
 // The generic flow: Yosys' own `synth` (coarse and fine optimisation, techmap to its internal gate
 // library, ABC on those gates), flattened so that depth is measured across the lane. With a
 // liberty file: flip-flops mapped by dfflibmap and logic by ABC onto its cells.
+// With a liberty file, abc maps for the clock period as its delay target and, given the
+// library's buffer (`constr`: a file naming it, the abc.constr below), buffers and sizes the
+// gates: without it abc leaves a register driving a hundred loads unbuffered, a path no real
+// flow keeps (schlick's merge-buffer read timed 13 ns unbuffered, 4.4 ns buffered). The
+// calibration scripts map the same way (tests/calibration/node_flow.py, map_commands).
 std::string yosys_script(const std::string& top, const std::vector<std::string>& sources,
                          const std::string& liberty, const std::string& stat,
-                         const std::string& netlist, const std::string& sta_netlist) {
+                         const std::string& netlist, const std::string& sta_netlist,
+                         long delay_target_ps, const std::string& constr) {
   std::string s;
   // The library's cells as blackboxes: the netlist then knows their ports' directions.
   if (!liberty.empty()) s += "read_liberty -lib " + liberty + "\n";
@@ -91,7 +98,8 @@ std::string yosys_script(const std::string& top, const std::vector<std::string>&
   s += "synth -flatten -top " + top + "\n";
   if (!liberty.empty()) {
     s += "dfflibmap -liberty " + liberty + "\n";
-    s += "abc -liberty " + liberty + "\n";
+    s += fmt::format("abc -D {}{} -liberty {}\n", delay_target_ps,
+                     constr.empty() ? "" : " -constr " + constr, liberty);
   }
   s += "opt_clean -purge\n";
   s += "tee -q -o " + stat + " stat " +
@@ -315,7 +323,17 @@ int run_synth(const SynthOptions& o) {
     if (::getcwd(cwd, sizeof cwd) != nullptr) liberty = std::string(cwd) + "/" + liberty;
   }
   const std::string sta_netlist = liberty.empty() ? "" : work.file("netlist.v");
-  write_text(script, yosys_script(top, {lane, datapath}, liberty, stat, netlist, sta_netlist));
+  const std::string library_text = liberty.empty() ? "" : read_text(liberty);
+  const std::string buffer = liberty_buffer(library_text);
+  const long delay_target_ps = std::lround(o.clock_period_ns * 1000);
+  std::string constr;
+  if (!buffer.empty()) {
+    // The buffer drives the lane's inputs; its outputs carry no load, as in the lane's SDC.
+    constr = work.file("abc.constr");
+    write_text(constr, "set_driving_cell " + buffer + "\nset_load 0\n");
+  }
+  write_text(script, yosys_script(top, {lane, datapath}, liberty, stat, netlist, sta_netlist,
+                                  delay_target_ps, constr));
   if (progress)
     std::fprintf(stderr, "synth: yosys on %s (%s)...\n", d.unit->canonical_spec().c_str(),
                  liberty.empty() ? "generic gates" : liberty.c_str());
@@ -375,7 +393,8 @@ int run_synth(const SynthOptions& o) {
     if (!std::regex_search(stat_text, match, area)) incomplete(stat, "no chip area");
     const double um2 = std::stod(match[1]);
     j["area_um2"] = um2;
-    const std::string library_text = read_text(liberty);
+    j["delay_target_ps"] = delay_target_ps;
+    j["buffer_cell"] = buffer.empty() ? nlohmann::json() : nlohmann::json(buffer);
     const Nand2 nand2 = liberty_nand2(library_text);
     if (!nand2.cell.empty()) {
       j["nand2_cell"] = nand2.cell;
@@ -478,7 +497,8 @@ void add_synth_command(CLI::App& app, int& status) {
       ->required();
   add_rtl_input_options(sub, o->input);
   sub->add_option("--liberty", o->liberty,
-                  "Map onto this cell library (dfflibmap, abc -liberty; `osu018`: OSU's 0.18 um "
+                  "Map onto this cell library (dfflibmap, abc -liberty for the clock period, "
+                  "buffered and sized by the library's smallest buffer; `osu018`: OSU's 0.18 um "
                   "cells, installed by .ci/bootstrap) and report its area in um2 and NAND2 "
                   "equivalents, and OpenSTA's critical path under the lane's SDC");
   add_clock_period_option(sub, o->clock_period_ns);

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cost/cost_model.h"
@@ -22,18 +23,44 @@
 namespace glint {
 
 // One element on a stage's path: its delay in gate levels and at the node (cost/node.h), and
-// whether it is an adder or a multiplier (a carry chain: see CostBuilder::close).
+// which kind of part it is (arithmetic parts in a row overlap at the node: CostBuilder::close).
+// A composite (series, parallel) keeps the primitives of its slowest branch in path order.
 struct Seg {
-  enum class Part { kOther, kAdder, kMultiplier };
+  enum class Part { kOther, kAdder, kMultiplier, kComparator, kMux };
+  Seg() = default;
+  Seg(std::string l, double d, double n = 0, Part p = Part::kOther, std::vector<Seg> c = {})
+      : label(std::move(l)), delay(d), ns(n), part(p), chain(std::move(c)) {}
   std::string label;
   double delay = 0;
   double ns = 0;
   Part part = Part::kOther;
+  std::vector<Seg> chain;  // a composite's primitives along its slowest branch; empty: itself
 };
+
+inline const char* kind_name(Seg::Part p) {
+  switch (p) {
+    case Seg::Part::kAdder:
+      return "adder";
+    case Seg::Part::kMultiplier:
+      return "multiplier";
+    case Seg::Part::kComparator:
+      return "comparator";
+    case Seg::Part::kMux:
+      return "mux";
+    default:
+      return "other";
+  }
+}
+
+// The primitives a segment stands for, in path order.
+inline std::vector<Seg> atoms(const Seg& s) {
+  return s.chain.empty() ? std::vector<Seg>{s} : s.chain;
+}
 
 // Two things side by side: the stage waits for the slower.
 inline Seg parallel(const Seg& a, const Seg& b) {
-  return {"(" + a.label + " || " + b.label + ")", std::max(a.delay, b.delay), std::max(a.ns, b.ns)};
+  return {"(" + a.label + " || " + b.label + ")", std::max(a.delay, b.delay), std::max(a.ns, b.ns),
+          Seg::Part::kOther, atoms(a.ns >= b.ns ? a : b)};
 }
 
 // Things one after the other, as one segment.
@@ -43,6 +70,7 @@ inline Seg series(const std::vector<Seg>& segs) {
     out.label += (out.label.empty() ? "" : " + ") + g.label;
     out.delay += g.delay;
     out.ns += g.ns;
+    for (Seg& a : atoms(g)) out.chain.push_back(std::move(a));
   }
   return out;
 }
@@ -105,11 +133,13 @@ class CostBuilder {
   }
   Seg comparator(int w, const std::string& where) {
     add({"comparator", w, 0, 1, w * k_.cmp_bit_ge, where}, n_.comparator);
-    return {fmt::format("cmp {}", w), comparator_delay(w), n_.comparator.delay.at(w, w, 0)};
+    return {fmt::format("cmp {}", w), comparator_delay(w), n_.comparator.delay.at(w, w, 0),
+            Seg::Part::kComparator};
   }
   Seg mux(int w, int inputs, const std::string& where) {
     add({"mux", w, inputs, 1, w * (inputs - 1) * k_.mux2_ge, where}, n_.mux);
-    return {fmt::format("mux{} {}", inputs, w), mux_delay(inputs), select_ns(n_.mux, inputs, w)};
+    return {fmt::format("mux{} {}", inputs, w), mux_delay(inputs), select_ns(n_.mux, inputs, w),
+            Seg::Part::kMux};
   }
   Seg shifter(int w, int levels, const std::string& where) {
     add({"shifter", w, levels, 1, w * levels * k_.shift_bit_ge, where}, n_.shifter);
@@ -163,9 +193,10 @@ class CostBuilder {
     if (ram)
       lane_path(where + ": write port", {{"decode", 0, clog2(e) * n_.gates.delay.at(1, 1, 0)},
                                          {"enable", 0, select_ns(n_.mux, 2, w * tables)}});
-    // A RAM's read is a mux of its entries whose select drives every mux of its array
-    // unbuffered. A table addressed by the group or slot id alone shares that register with the
-    // stage's other such tables: close() prices the select's load of all of them.
+    // A RAM's read is a mux of its entries whose select drives every mux of its array through
+    // the buffer tree the flow builds (log2 of its loads deep). A table addressed by the group or
+    // slot id alone shares that register with the stage's other such tables: stage() prices the
+    // select's load of all of them.
     const double loads = static_cast<double>(e) * w / read_banks;
     if (ram && shared_port && banks == 1) {
       id_loads_ += loads;
@@ -173,8 +204,8 @@ class CostBuilder {
     }
     return {fmt::format("{} {}x{}", ram ? "ram" : "rom", e, w), ram ? mux_delay(e) : table_delay(e),
             !ram               ? n_.rom.delay.at(w, e, 0)
-            : computed_address ? n_.ram_computed.delay.at(clog2(e), e, loads)
-                               : n_.ram.delay.at(clog2(e), e, loads)};
+            : computed_address ? n_.ram_computed.delay.at(clog2(e), loads, loads)
+                               : n_.ram.delay.at(clog2(e), loads, loads)};
   }
   // A pipeline register written by every computed request (or every request).
   // Per-request registers are the lane's: they hold under backpressure (flip-flops with enable).
@@ -200,7 +231,8 @@ class CostBuilder {
     // The id register loaded by every id-addressed table of the stage, not only the one on the
     // path: the load term of all of them in place of the largest's.
     if (id_loads_ > id_loads_max_)
-      s.ns += n_.ram.delay.at(0, 1, id_loads_) - n_.ram.delay.at(0, 1, id_loads_max_);
+      s.ns += n_.ram.delay.at(0, id_loads_, id_loads_) -
+              n_.ram.delay.at(0, id_loads_max_, id_loads_max_);
     id_loads_ = id_loads_max_ = 0;
     stages_.push_back(std::move(s));
   }
@@ -210,10 +242,11 @@ class CostBuilder {
   void lane_path(const std::string& name, const std::vector<Seg>& path) {
     lane_paths_.push_back(close(name, path));
   }
-  // A mux of `inputs` words of `w` bits whose select comes from one register: the flow does not
-  // buffer it, so its delay grows with the muxes it drives (cost/node.h).
+  // A mux of `inputs` words of `w` bits whose select comes from one register: the flow buffers
+  // the select, so its delay grows with the log of the muxes it drives (cost/node.h).
   double select_ns(const NodePart& p, int inputs, int w) const {
-    return p.delay.at(clog2(inputs), inputs, static_cast<double>(inputs) * w);
+    const double loads = static_cast<double>(inputs) * w;
+    return p.delay.at(clog2(inputs), loads, loads);
   }
 
   UnitCost finish() {
@@ -246,29 +279,47 @@ class CostBuilder {
  private:
   void add(Primitive p, const NodePart& node, int held_bits = 0) {
     if (p.ge <= 0) return;  // zero-width parts (e.g. no interpolation bits) are not built
-    p.um2 = p.ge * node.um2_per_ge;
+    p.um2_unfitted = p.ge * node.um2_per_ge;
+    p.um2 = p.um2_unfitted * node.lane_area;
+    p.node_part = node_part_name(n_, node);
     p.stage = static_cast<int>(stages_.size());  // the stage being described
     p.held_bits = held_bits;
     inv_.push_back(std::move(p));
   }
-  // An adder next to a multiplier on a path counts half its node delay: the flow's carry chains
-  // are ripple-like, and an adder's low bits feed the multiplier's first rows (or take its
-  // product's low bits) while its carries still run, as the gate-level model assumes for horner's
-  // + c_k (its residuals: node_fit.py).
+  // At the node, arithmetic parts in a row overlap: the flow's carry chains are ripple-like, and
+  // an adder's low bits feed a multiplier's first rows while its carries still run; a product's
+  // low bits reach the adder, comparator or select after it long before its top bits, and abc,
+  // mapping for delay, merges their chains. So a part right before a multiplier, or after one
+  // (or after such a part), counts a fraction of its own delay (NodeConstants::overlap, fitted on
+  // the calibration lanes: node_fit.py --lanes). Gate levels keep the generic model's sum.
   StageDelay close(const std::string& name, const std::vector<Seg>& path) const {
-    StageDelay s{name, k_.reg_delay, "", n_.reg_ns};
-    for (std::size_t i = 0; i < path.size(); ++i) {
-      const Seg& g = path[i];
-      const auto multiplier_at = [&](std::size_t j) {
-        return j < path.size() && path[j].part == Seg::Part::kMultiplier;
-      };
-      const bool overlaps =
-          g.part == Seg::Part::kAdder && (multiplier_at(i + 1) || (i > 0 && multiplier_at(i - 1)));
+    StageDelay s{name, k_.reg_delay, "", n_.reg_ns, {}};
+    std::vector<Seg> chain;
+    for (const Seg& g : path) {
       s.delay += g.delay;
-      s.ns += overlaps ? g.ns / 2 : g.ns;
       s.path += g.label + " + ";
+      for (Seg& a : atoms(g)) chain.push_back(std::move(a));
     }
     s.path += "reg";
+    bool after_multiplier = false;
+    for (std::size_t i = 0; i < chain.size(); ++i) {
+      const Seg& a = chain[i];
+      const bool before_multiplier =
+          i + 1 < chain.size() && chain[i + 1].part == Seg::Part::kMultiplier;
+      const NodeOverlap& o = n_.overlap;
+      double f = 1;
+      if (a.part == Seg::Part::kAdder && before_multiplier)
+        f = o.adder_before_multiplier;
+      else if (after_multiplier && a.part == Seg::Part::kAdder)
+        f = o.adder_after;
+      else if (after_multiplier && a.part == Seg::Part::kComparator)
+        f = o.comparator_after;
+      else if (after_multiplier && a.part == Seg::Part::kMux)
+        f = o.mux_after;
+      s.ns += f * a.ns;
+      s.parts.push_back({a.label, kind_name(a.part), a.ns, f * a.ns});
+      after_multiplier = a.part == Seg::Part::kMultiplier || (after_multiplier && f < 1);
+    }
     return s;
   }
 

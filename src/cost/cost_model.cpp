@@ -126,13 +126,25 @@ nlohmann::json UnitCost::to_json() const {
 nlohmann::json UnitCost::node_json() const {
   nlohmann::json paths = nlohmann::json::array();
   for (const auto* list : {&stages, &lane_paths})
-    for (const StageDelay& s : *list)
-      paths.push_back({{"path", s.stage}, {"ns", s.ns}, {"parts", s.path}});
+    for (const StageDelay& s : *list) {
+      nlohmann::json chain = nlohmann::json::array();
+      for (const StageDelay::Part& p : s.parts)
+        chain.push_back(
+            {{"part", p.label}, {"kind", p.kind}, {"ns", p.ns}, {"counted_ns", p.counted_ns}});
+      paths.push_back({{"path", s.stage}, {"ns", s.ns}, {"parts", s.path}, {"chain", chain}});
+    }
   nlohmann::json area = nlohmann::json::object();
-  for (const Primitive& p : inventory) area[p.kind] = area.value(p.kind, 0.0) + p.um2;
+  nlohmann::json unfitted = nlohmann::json::object(), factors = nlohmann::json::object();
+  for (const Primitive& p : inventory) {
+    area[p.kind] = area.value(p.kind, 0.0) + p.um2;
+    unfitted[p.node_part] = unfitted.value(p.node_part, 0.0) + p.um2_unfitted;
+    if (p.um2_unfitted > 0) factors[p.node_part] = p.um2 / p.um2_unfitted;
+  }
   return {{"node", node},
           {"area_um2", area_um2},
           {"area_um2_by_kind", std::move(area)},
+          {"area_um2_unfitted_by_part", std::move(unfitted)},
+          {"lane_area_factors", std::move(factors)},
           {"critical_path_ns", critical_path_ns},
           {"max_clock_mhz", critical_path_ns > 0 ? 1000.0 / critical_path_ns : 0.0},
           {"critical_path", critical_path_node},
@@ -146,8 +158,11 @@ UnitCost UnitCost::from_json(const nlohmann::json& j) {
   c.critical_path = j.at("critical_path").get<double>();
   c.critical_stage = j.at("critical_stage").get<std::string>();
   for (const auto& s : j.at("stages"))
-    c.stages.push_back({s.at("stage").get<std::string>(), s.at("delay").get<double>(),
-                        s.at("path").get<std::string>()});
+    c.stages.push_back({s.at("stage").get<std::string>(),
+                        s.at("delay").get<double>(),
+                        s.at("path").get<std::string>(),
+                        0,
+                        {}});
   c.ops_per_computed = j.at("ops_per_computed").get<std::map<std::string, double>>();
   c.ops_per_request = j.at("ops_per_request").get<std::map<std::string, double>>();
   return c;

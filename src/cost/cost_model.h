@@ -98,6 +98,10 @@ struct Primitive {
   double ge = 0;      // gate equivalents of all `count` of them
   std::string where;  // e.g. "u scaler", "stage 3", "log2 table"
   double um2 = 0;     // at the node (cost/node.h); in node_json, not in to_json
+  // At the node, neither in to_json: the NodeConstants part it is priced as ("adder", "rom",
+  // "dffe", ...) and its um2 before that part's lane_area factor.
+  std::string node_part{};
+  double um2_unfitted = 0;
   // For the energy (cost/energy.h), neither in to_json: the stage it was placed in (0 the
   // comparator stage, 1.. the unit's, UnitCost::stages.size() the merge buffer and lane control
   // placed after the last), and the flip-flops it holds (registers; a RAM table's storage).
@@ -114,6 +118,14 @@ struct StageDelay {
   double delay = 0;   // gates of logic depth (glint synth's measure)
   std::string path;   // e.g. "table 2 + mul 18x16 + add 33 + reg"
   double ns = 0;      // at the node (cost/node.h), register overhead included
+  // At the node: each primitive along the path, its own delay and what it counts in `ns` (less
+  // where it overlaps its neighbours: CostBuilder::close).
+  struct Part {
+    std::string label;
+    std::string kind;  // "adder", "multiplier", "comparator", "mux" or "other"
+    double ns = 0, counted_ns = 0;
+  };
+  std::vector<Part> parts;
 };
 
 struct UnitCost {

@@ -131,6 +131,30 @@ bool is_nand2(const std::string& f) {
          core.find_first_of("&* ") != std::string::npos;
 }
 
+// A cell's `area`, or 0 when it has none or not a positive number.
+double cell_area(std::string_view body) {
+  const std::string area = attribute(body, "area");
+  char* end = nullptr;
+  const double a = std::strtod(area.c_str(), &end);
+  return area.empty() || *end != '\0' || !(a > 0) ? 0 : a;
+}
+
+// The names of the cell's pins whose direction is input.
+std::vector<std::string> input_pins(std::string_view body) {
+  std::vector<std::string> out;
+  constexpr std::string_view kPin = "pin";
+  for (std::size_t at = body.find(kPin); at != std::string_view::npos;
+       at = body.find(kPin, at + 1)) {
+    if (at > 0 && is_word(body[at - 1])) continue;
+    const std::size_t after = at + kPin.size();
+    if (after < body.size() && is_word(body[after])) continue;
+    const auto [name, end] = group_name(body, after);
+    if (!name.empty() && attribute(body.substr(end), "direction") == "input")
+      out.emplace_back(name);
+  }
+  return out;
+}
+
 }  // namespace
 
 std::set<std::string> liberty_registers(std::string_view text) {
@@ -144,11 +168,27 @@ Nand2 liberty_nand2(std::string_view text) {
   Nand2 best;
   for (const auto& [name, body] : cells_of(text)) {
     if (holds_register_group(body) || !is_nand2(attribute(body, "function"))) continue;
-    const std::string area = attribute(body, "area");
-    char* end = nullptr;
-    const double a = std::strtod(area.c_str(), &end);
-    if (area.empty() || *end != '\0' || !(a > 0)) continue;
-    if (best.cell.empty() || a < best.area) best = {std::string(name), a};
+    const double a = cell_area(body);
+    if (a > 0 && (best.cell.empty() || a < best.area)) best = {std::string(name), a};
+  }
+  return best;
+}
+
+std::string liberty_buffer(std::string_view text) {
+  std::string best;
+  double best_area = 0;
+  for (const auto& [name, body] : cells_of(text)) {
+    if (holds_register_group(body)) continue;
+    const std::vector<std::string> ins = input_pins(body);
+    std::string f;
+    for (char c : attribute(body, "function"))
+      if (!is_space(c) && c != '(' && c != ')') f += c;
+    const double a = cell_area(body);
+    // abc buffers by the cell's delay tables: an area-only library (tests/rtl/tiny.lib) has none.
+    const bool timed = body.find("cell_rise") != std::string_view::npos ||
+                       body.find("intrinsic_rise") != std::string_view::npos;
+    if (ins.size() != 1 || f != ins.front() || !(a > 0) || !timed) continue;
+    if (best.empty() || a < best_area) best = std::string(name), best_area = a;
   }
   return best;
 }

@@ -1,6 +1,6 @@
 // What `glint synth --liberty FILE` needs from a Liberty cell library: the names of its
 // sequential cells, so that the flip-flops of a mapped netlist are counted by cell name, and its
-// smallest 2-input NAND, the unit of NAND2 equivalents.
+// smallest 2-input NAND, the unit of NAND2 equivalents, and its smallest buffer.
 #pragma once
 
 #include <set>
@@ -22,5 +22,10 @@ struct Nand2 {
   double area = 0;
 };
 Nand2 liberty_nand2(std::string_view text);
+
+// The library's smallest buffer: a combinational cell with one input pin whose output's function
+// is that pin, with delay tables (cell_rise or intrinsic_rise). abc buffers high fan-out nets with
+// it (cmd_synth.cpp); "" when the library has none.
+std::string liberty_buffer(std::string_view text);
 
 }  // namespace glint

@@ -4,10 +4,11 @@
 // src/cost/README.md, "At a real node"). GE and gate levels stay the proxy's generic measure; these
 // are the same parts priced at the node.
 //
-// Why per part and not one ns per level: the flow (abc -liberty, no buffering) maps an adder to a
-// carry chain whose delay grows with its width while a comparator's stays almost flat, and a
-// register that selects among many words (a RAM read, the merge buffer's head) drives every mux
-// of its array unbuffered: its delay grows with the number of loads, not with logic depth.
+// Why per part and not one ns per level: the flow (abc -liberty for the clock period, buffered
+// and sized) maps an adder to a carry chain whose delay grows with its width while a
+// comparator's stays almost flat, and a register that selects among many words (a RAM read, the
+// merge buffer's head) drives every mux of its array through a buffer tree: its delay grows with
+// the log of the number of loads.
 #pragma once
 
 #include <string>
@@ -16,18 +17,30 @@
 namespace glint {
 
 // Delay of one part on a path: c0 + per_x x + per_log2 log2(y) + per_load loads + per_load2
-// loads^2, where x, y and the loads are the part's own measures (cost/builder.h, per kind). The
-// square: an unbuffered net's slew grows with its load and slows the gates it drives in turn (a
-// RAM read of 65 x 16 bits: 52 ns, of 257 x 16: 788 ns on OSU 0.18 um).
+// loads^2, where x, y and the loads are the part's own measures (cost/builder.h, per kind; a
+// select's loads are its y: the buffer tree). The load terms are for a flow that leaves such nets
+// unbuffered (there a RAM read of 65 x 16 bits took 52 ns, of 257 x 16 788 ns on OSU 0.18 um);
+// the built-in node's fit gives them 0.
 struct NodeDelay {
   double c0 = 0, per_x = 0, per_log2 = 0, per_load = 0, per_load2 = 0;
   double at(double x, double y, double loads) const;
 };
 
-// One kind of part: library um2 per proxy GE, and its delay.
+// One kind of part: library um2 per proxy GE, and its delay. lane_area: what a lane's part of
+// this kind keeps of that area (abc shares logic across the parts of a lane, which primitives
+// mapped alone cannot show; fitted on the calibration lanes: node_fit.py --lanes).
 struct NodePart {
   double um2_per_ge = 0;
   NodeDelay delay;
+  double lane_area = 1;
+};
+
+// What a part counts of its own delay where arithmetic parts follow one another on a path
+// (CostBuilder::close): an adder right before a multiplier, and an adder, comparator or select
+// after a multiplier (or after such a part). Fitted on the calibration lanes, not the primitives:
+// the overlap exists only between parts.
+struct NodeOverlap {
+  double adder_before_multiplier = 1, adder_after = 1, comparator_after = 1, mux_after = 1;
 };
 
 struct NodeConstants {
@@ -39,7 +52,11 @@ struct NodeConstants {
   // an address computed in the stage (lut's t^n banks).
   NodePart adder, comparator, multiplier, divider, mux, shifter, lzd, gates, rom, ram, ram_computed,
       dff, dffe;
+  NodeOverlap overlap;
 };
+
+// The name of one of k's parts ("adder", "rom", "dffe", ...), by its address.
+std::string node_part_name(const NodeConstants& k, const NodePart& p);
 
 // The built-in node (the only one with constants).
 const NodeConstants& node_osu018();

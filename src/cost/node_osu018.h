@@ -8,6 +8,7 @@
 #pragma once
 
 #include "cost/node.h"
+#include "cost/node_lanes_osu018.h"
 
 namespace glint {
 
@@ -17,31 +18,32 @@ inline NodeConstants make_osu018() {
   k.library = "OSU 0.18 um standard cells (qflow-tech-osu018), abc -liberty, OpenSTA";
   k.reg_ns = 0.3207;  // clock-to-Q + setup, register to register
   // adder: area -3%..+16% over 7 primitives; delay -3%..+5%
-  k.adder = {14.5403, {0.06452, 0.126437, 0.00000, 0.0000000, 0}};
+  k.adder = {14.5403, {0.06714, 0.125816, 0.00000, 0.0000000, 0}};
   // comparator: area -17%..+8% over 7 primitives; delay -3%..+8%
-  k.comparator = {11.3733, {-0.09698, 0.000000, 0.20466, 0.0000000, 0}};
-  // multiplier: area -11%..+2% over 16 primitives; delay -11%..+11%
-  k.multiplier = {16.7022, {0.97706, 0.093688, 0.24571, 0.0000000, 0}};
+  k.comparator = {11.3733, {-0.09850, 0.000000, 0.20525, 0.0000000, 0}};
+  // multiplier: area -12%..+2% over 16 primitives; delay -8%..+12%
+  k.multiplier = {17.2962, {1.06280, 0.082151, 0.28204, 0.0000000, 0}};
   // divider: area -2%..+2% over 4 primitives; delay -1%..+1%
-  k.divider = {15.9915, {0.31103, 0.164685, 0.00000, 0.0000000, 0}};
-  // mux: area -16%..+66% over 15 primitives; delay -40%..+28%
-  k.mux = {12.6281, {0.44930, 0.083291, 0.00000, 0.0030363, 0}};
-  // shifter: area -13%..+8% over 4 primitives; delay -7%..+6%
-  k.shifter = {16.4271, {0.14894, 0.052295, 0.00000, 0.0000000, 0}};
+  k.divider = {16.2884, {0.54209, 0.111838, 0.00000, 0.0000000, 0}};
+  // mux: area -15%..+70% over 15 primitives; delay -11%..+7%
+  k.mux = {13.5189, {-0.01469, 0.169144, 0.07140, 0.0000000, 0}};
+  // shifter: area -13%..+8% over 4 primitives; delay -8%..+7%
+  k.shifter = {17.5847, {0.78628, 0.008526, 0.00000, 0.0000000, 0}};
   // lzd: area -4%..+7% over 2 primitives; delay -0%..+0%
   k.lzd = {10.0471, {-0.02600, 0.039275, 0.00000, 0.0000000, 0}};
-  // rom: area -25%..+4% over 8 primitives; delay -72%..+59%
-  k.rom = {10.6950, {-0.04798, 0.000000, 0.15607, 0.0000000, 0}};
-  // ram: area -2%..+15% over 15 primitives; delay -35%..+18%
-  k.ram = {19.5051, {1.04650, -0.157975, 0.00000, 0.0045536, 4.115e-05}};
-  // ram_computed: area -2%..+15% over 15 primitives; delay -37%..+43%
-  k.ram_computed = {19.5051, {0.85177, -0.338773, 0.00000, 0.0195959, 0}};
+  // rom: area -28%..+3% over 8 primitives; delay -29%..+53%
+  k.rom = {11.8271, {0.02249, 0.000000, 0.13705, 0.0000000, 0}};
+  // ram: area -2%..+13% over 15 primitives; delay -6%..+6%
+  k.ram = {20.6856, {0.38925, 0.033973, 0.07231, 0.0000000, 0}};
+  // ram_computed: area -2%..+13% over 15 primitives; delay -6%..+6%
+  k.ram_computed = {20.6856, {0.38925, 0.033973, 0.07231, 0.0000000, 0}};
   // dff: area +0%..+0% over 3 primitives
   k.dff = {24.0000, {0.00000, 0.000000, 0.00000, 0.0000000, 0}};
-  // dffe: area +0%..+0% over 3 primitives
-  k.dffe = {22.7143, {0.00000, 0.000000, 0.00000, 0.0000000, 0}};
+  // dffe: area -0%..+0% over 3 primitives
+  k.dffe = {23.5102, {0.00000, 0.000000, 0.00000, 0.0000000, 0}};
   // gates: area: the library's AND2 (32 um2) per 1.5 GE; delay: a stage of the adder's carry chain
-  k.gates = {21.3333, {0.12644, 0.000000, 0.00000, 0.0000000, 0}};
+  k.gates = {21.3333, {0.12582, 0.000000, 0.00000, 0.0000000, 0}};
+  fit_lanes_osu018(k);  // what whole lanes add (node_fit.py --lanes)
   return k;
 }
 

@@ -6,7 +6,7 @@ Per lane (a unit SPEC and a vector file):
  1. `glint rtl SPEC --vectors FILE --no-sweep` writes the lane, its self-checking testbench (the
     file's requests in stream order, one offered a cycle, the sink always ready) and its SDC;
  2. Yosys maps the lane to the library as `glint synth --liberty` does (src/cli/cmd_synth.cpp:
-    synth -flatten, dfflibmap, abc -liberty), and the mapped netlist is kept;
+    synth -flatten, dfflibmap, abc -liberty -D -constr), and the mapped netlist is kept;
  3. Icarus Verilog simulates that netlist with the library's own cell models
     (osu018_stdcells.v) under the same testbench, which must report PASS (the mapping is right),
     and dumps every net of the lane to a VCD; zero-delay: no glitches are counted;
@@ -28,7 +28,7 @@ groups whatever the state, and leakage is the cells' own), so none is passed.
 
     # one lane, its figures printed (and the work folder kept with --work)
     python3 tests/calibration/gate_power.py build/glint --lane hast traces/multi_light.vec
-    # the stored reference (tests/calibration/power_set.txt, 28 lanes): 44 minutes on a shared
+    # the stored reference (tests/calibration/power_set.txt, 28 lanes): 10 to 45 minutes on a shared
     # 2-core host, most of it Yosys's abc
     python3 tests/calibration/gate_power.py build/glint --timeout 900 \\
         -o tests/calibration/power_osu018.json
@@ -52,7 +52,7 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, HERE)
-from node_flow import OSU018  # noqa: E402  (the library `--liberty osu018` names)
+from node_flow import OSU018, map_commands  # noqa: E402  (the library `--liberty osu018` names)
 
 CELLS_V = os.path.join(os.path.dirname(OSU018), "osu018_stdcells.v")
 PERIOD_NS = 10.0  # glint rtl's default clock (src/hdl/sdc.h), which the SDC states
@@ -112,7 +112,7 @@ def map_lane(rtl, unit, lib, work, timeout):
     open(script, "w").write(
         f"read_liberty -lib {lib}\n"
         f"read_verilog {rtl}/{top}.v\nread_verilog {rtl}/glint_{unit}_datapath.v\n"
-        f"synth -flatten -top {top}\ndfflibmap -liberty {lib}\nabc -liberty {lib}\n"
+        f"synth -flatten -top {top}\n{map_commands(lib, work)}"
         f"opt_clean -purge\ntee -q -o {work}/stat.txt stat -liberty {lib}\n"
         # As glint synth writes it for OpenSTA; then every name but the ports' made short
         # (Icarus' VCD and OpenSTA then name the nets and instances as the JSON does).

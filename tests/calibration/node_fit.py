@@ -1,26 +1,26 @@
 #!/usr/bin/env python3
-"""The cost proxy at a real node: its per-part constants, and an earlier whole-lane fit.
+"""The cost proxy at a real node: its per-part constants, and what whole lanes add to them.
 
     python3 tests/calibration/node_fit.py --primitives tests/calibration/primitives_osu018.csv \\
         -o src/cost/node_osu018.h
 
 fits the constants glint uses (src/cost/node_osu018.h, cost/node.h) on the primitives mapped to
 the library and timed by OpenSTA (primitives.py --liberty osu018): per kind, um2 per GE and the
-delay's terms, printed with their residuals and written as the C++ header. The lanes' check is
-calibration_report on set_osu018.json (src/cost/README.md, "At a real node").
+delay's terms, printed with their residuals and written as the C++ header.
 
-    python3 tests/calibration/node_fit.py build/glint tests/calibration/set_osu018.json \\
-        [--holdout tests/calibration/holdout_osu018.json]
+    python3 tests/calibration/node_fit.py --lanes build/glint tests/calibration/set_osu018.json \\
+        --holdout tests/calibration/holdout_osu018.json -o src/cost/node_lanes_osu018.h
 
-is the earlier whole-lane fit, kept for comparison:
-
-For every stored configuration the lane's proxy is read from `glint sim --json` (its area
-inventory by part kind, in gate equivalents, and its critical path in gate levels). Two models
-are fitted on the set alone and printed with their residuals on the set and the hold-out, per
-unit: area in um2 as a non-negative sum over part kinds (um2 per GE of adders, multipliers,
-registers, tables, ...; Lawson-Hanson on relative errors), and the worst path in ns as an affine
-function of the proxy's levels. Issue 26's targets: area within +-10 %, path within +-15 %,
-Spearman rank correlation >= 0.95, for every unit. Pure Python (no numpy): the fits are small.
+fits, on the calibration lanes alone, what primitives mapped one by one cannot show: the overlap
+of arithmetic parts in a row on a path (NodeOverlap: an adder before a multiplier; an adder,
+comparator or select after one) and the area abc saves by sharing logic across a lane's parts
+(NodePart::lane_area of multipliers, ROMs and the other logic; registers and RAMs are kept as
+measured). It reads each lane's parts from `glint sim --node osu018 --json` (the path's chain of
+primitives with their own delays, the area per part before the lane factors), so the build's own
+factors do not enter; minimises the sum of squared log ratios (proxy / library, proxy / OpenSTA)
+by coordinate descent on a grid of 0.01, and prints the ratios on the set and the hold-out, which
+is fitted on nothing. The lanes' check is calibration_report (src/cost/README.md, "At a real
+node"). Pure Python (no numpy): the fits are small.
 """
 import argparse
 import csv
@@ -31,17 +31,6 @@ import subprocess
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-
-
-def proxy(glint, spec, vectors):
-    out = subprocess.run([glint, "sim", "--json", "--unit", spec, os.path.join(ROOT, vectors)],
-                         check=True, capture_output=True, text=True).stdout
-    u = json.loads(out)["units"][0]
-    kinds = {}
-    for part in u["area"]["inventory"]:
-        kinds[part["kind"]] = kinds.get(part["kind"], 0.0) + part["ge"]
-    return {"unit": u["unit"], "ge": u["area"]["ge"], "kinds": kinds,
-            "levels": u["critical_path"]["delay"], "stage": u["critical_path"]["stage"]}
 
 
 def solve(a, b):
@@ -111,34 +100,6 @@ def spearman(a, b):
     return sab / (saa * sbb) ** 0.5 if saa and sbb else float("nan")
 
 
-def load(glint, path):
-    rows = []
-    for c in json.load(open(path))["configs"]:
-        if "error" in c:
-            print(f"  left out: {c['spec']} ({c['error']})", file=sys.stderr)
-            continue
-        rows.append({**c, "proxy": proxy(glint, c["spec"], c["vectors"])})
-    return rows
-
-
-def report(name, rows, kinds, area_c, path_c):
-    area = [sum(area_c[k] * r["proxy"]["kinds"].get(kind, 0.0) for k, kind in enumerate(kinds))
-            for r in rows]
-    path = [path_c[0] + path_c[1] * r["proxy"]["levels"] for r in rows]
-    print(f"\n{name}: {len(rows)} configurations")
-    print(f"{'unit':9} {'n':>3} {'area residuals':>18} {'rho':>5} {'path residuals':>18} {'rho':>5}")
-    units = sorted({r["proxy"]["unit"] for r in rows}) + ["all"]
-    for u in units:
-        idx = [i for i, r in enumerate(rows) if u == "all" or r["proxy"]["unit"] == u]
-        ra = [area[i] / rows[i]["area_um2"] - 1 for i in idx]
-        rt = [path[i] / rows[i]["timing"]["critical_path_ns"] - 1 for i in idx]
-        sa = spearman([area[i] for i in idx], [rows[i]["area_um2"] for i in idx])
-        st = spearman([rows[i]["proxy"]["levels"] for i in idx],
-                      [rows[i]["timing"]["critical_path_ns"] for i in idx])
-        print(f"{u:9} {len(idx):>3} {min(ra):+8.1%}..{max(ra):+7.1%} {sa:5.2f} "
-              f"{min(rt):+8.1%}..{max(rt):+7.1%} {st:5.2f}")
-
-
 # ---- per-part constants from the primitives at the node (primitives.py --liberty) -------------
 
 # Proxy kind -> primitives.csv kinds it is fitted on.
@@ -165,17 +126,17 @@ def delay_terms(kind, r):
             return a + ones, min(a, ones), 0
         return a + b, min(a, b), 0
     if kind in ("mux", "ram", "ram_computed"):
-        return clog2(b if kind == "mux" else a), 1, a * b
+        # The select's loads as y: abc buffers the net (a tree, log2 of its loads deep).
+        return clog2(b if kind == "mux" else a), a * b, a * b
     if kind == "rom":
         return b, a, 0
     return a, a, 0
 
 
 TERMS = ("c0", "x", "log2", "load", "load2")
-RAM_LINEAR_LOADS = 600
 # Which of c0, per_x, per_log2, per_load each kind's delay uses (the shapes of the data).
 DELAY_SHAPE = {"adder": "c0 x", "comparator": "c0 log2", "multiplier": "c0 x log2",
-               "divider": "c0 x", "mux": "c0 x load", "ram": "c0 x load load2", "ram_computed": "c0 x load",
+               "divider": "c0 x", "mux": "c0 x log2", "ram": "c0 x log2", "ram_computed": "c0 x log2",
                "rom": "c0 log2",
                "shifter": "c0 x", "lzd": "c0 x"}
 
@@ -193,14 +154,6 @@ def fit_primitives(path, out):
     for kind, sources in AREA_KINDS.items():
         sel = [r for r in rows if any(r["kind"] == s or f"{r['kind']}/{r['variant']}" == s
                                       for s in sources)]
-        dsel = sel
-        if kind == "ram_computed":
-            # Beyond ~600 loads a register's unbuffered select slows with their square (65 x 16:
-            # 52 ns, 257 x 16: 788 ns; the merge buffer's head in schlick's lanes of 19-26
-            # entries: 13-26 ns), but the lanes' t^n banks, read by an address computed from t,
-            # stay on the linear trend of the small RAMs up to ~1800 loads (lut:tables=ram:
-            # 23-45 ns): their delay is fitted on the small RAMs only.
-            dsel = [r for r in sel if r["a"] * r["b"] <= RAM_LINEAR_LOADS]
         ratio = sum(r["um2"] for r in sel) / sum(r["ge"] for r in sel)
         res = [r["um2"] / (r["ge"] * ratio) - 1 for r in sel]
         c = {"um2": ratio, "area_res": (min(res), max(res), len(sel)), "delay": [0.0] * len(TERMS)}
@@ -208,11 +161,11 @@ def fit_primitives(path, out):
         if shape:
             cols = [t for t in TERMS if t in shape.split()]
             feats = []
-            for r in dsel:
+            for r in sel:
                 x, y, loads = delay_terms(kind, r)
                 f = {"c0": 1.0, "x": x, "log2": log2(y), "load": loads, "load2": loads * loads}
                 feats.append([f[t] for t in cols])
-            logic = [r["ns"] - reg_ns for r in dsel]
+            logic = [r["ns"] - reg_ns for r in sel]
             # Relative errors on the whole path (register overhead included), as a lane's stage.
             coef = solve([[v / (y + reg_ns) for v in f] for f, y in zip(feats, logic)],
                          [y / (y + reg_ns) for y in logic])
@@ -268,6 +221,7 @@ def write_header(out, source, reg_ns, consts):
 #pragma once
 
 #include "cost/node.h"
+#include "cost/node_lanes_osu018.h"
 
 namespace glint {{
 
@@ -277,6 +231,7 @@ inline NodeConstants make_osu018() {{
   k.library = "OSU 0.18 um standard cells (qflow-tech-osu018), abc -liberty, OpenSTA";
   k.reg_ns = {reg_ns:.4f};  // clock-to-Q + setup, register to register
 {chr(10).join(body)}
+  fit_lanes_osu018(k);  // what whole lanes add (node_fit.py --lanes)
   return k;
 }}
 
@@ -285,34 +240,130 @@ inline NodeConstants make_osu018() {{
     open(out, "w").write(text)
 
 
+# The lane fit. Mirrors CostBuilder::close (src/cost/builder.h): which factor a part of the chain
+# takes.
+OVERLAP = ("adder_before_multiplier", "adder_after", "comparator_after", "mux_after")
+
+
+def path_ns(path, f):
+    ns = path["ns"] - sum(a["counted_ns"] for a in path["chain"])  # the register overhead
+    after, chain = False, path["chain"]
+    for i, a in enumerate(chain):
+        before = i + 1 < len(chain) and chain[i + 1]["kind"] == "multiplier"
+        x = 1.0
+        if a["kind"] == "adder" and before:
+            x = f[0]
+        elif after and a["kind"] in ("adder", "comparator", "mux"):
+            x = f[1 + ("adder", "comparator", "mux").index(a["kind"])]
+        ns += x * a["ns"]
+        after = a["kind"] == "multiplier" or (after and x < 1)
+    return ns
+
+
+# Area groups: each takes one lane_area factor; parts in no group are kept as measured.
+AREA_GROUPS = {"multiplier": ["multiplier"], "rom": ["rom"],
+               "logic": ["adder", "comparator", "divider", "mux", "shifter", "lzd", "gates"]}
+
+
+def lane_area(parts, g):
+    return sum(um2 * next((g[k] for k, v in AREA_GROUPS.items() if part in v), 1.0)
+               for part, um2 in parts.items())
+
+
+def lanes(glint, path):
+    rows = []
+    for c in json.load(open(path))["configs"]:
+        if not c.get("timing"):
+            continue  # left out (a timeout) or a library OpenSTA could not time
+        out = subprocess.run([glint, "sim", os.path.join(ROOT, c["vectors"]), "--unit", c["spec"],
+                              "--node", "osu018", "--json"],
+                             check=True, capture_output=True, text=True).stdout
+        u = json.loads(out)["units"][0]
+        rows.append({"spec": c["spec"], "unit": u["unit"], "um2": c["area_um2"],
+                     "ns": c["timing"]["critical_path_ns"], "paths": u["node"]["paths"],
+                     "parts": u["node"]["area_um2_unfitted_by_part"]})
+    return rows
+
+
+def ratios(rows, f, g):
+    return ([lane_area(r["parts"], g) / r["um2"] for r in rows],
+            [max(path_ns(p, f) for p in r["paths"]) / r["ns"] for r in rows])
+
+
+def descend(cost, x, lo, hi):
+    for _ in range(8):
+        for i in range(len(x)):
+            x[i] = min((cost(x[:i] + [v / 100] + x[i + 1:]), v / 100)
+                       for v in range(lo, hi + 1))[1]
+    return x
+
+
+def lane_report(name, rows, f, g):
+    area, path = ratios(rows, f, g)
+    print(f"\n{name}: {len(rows)} lanes; area ratio {min(area):.3f}..{max(area):.3f} "
+          f"({sum(abs(a - 1) > 0.10 for a in area)} outside +-10 %), path ratio "
+          f"{min(path):.3f}..{max(path):.3f} ({sum(abs(p - 1) > 0.15 for p in path)} outside "
+          f"+-15 %)")
+    for unit in sorted({r["unit"] for r in rows}) + ["all"]:
+        sel = [i for i, r in enumerate(rows) if unit in ("all", r["unit"])]
+        print(f"  {unit:8} {len(sel):3} lanes  area {min(area[i] for i in sel):.3f}.."
+              f"{max(area[i] for i in sel):.3f} Spearman "
+              f"{spearman([area[i] * rows[i]['um2'] for i in sel], [rows[i]['um2'] for i in sel]):.3f}"
+              f"  path {min(path[i] for i in sel):.3f}..{max(path[i] for i in sel):.3f} Spearman "
+              f"{spearman([path[i] * rows[i]['ns'] for i in sel], [rows[i]['ns'] for i in sel]):.3f}")
+
+
+def fit_lanes(glint, set_path, holdout, out):
+    rows = lanes(glint, set_path)
+    f = descend(lambda x: sum(math.log(max(path_ns(p, x) for p in r["paths"]) / r["ns"]) ** 2
+                              for r in rows), [1.0] * len(OVERLAP), 0, 100)
+    keys = list(AREA_GROUPS)
+    gl = descend(lambda x: sum(math.log(lane_area(r["parts"], dict(zip(keys, x))) / r["um2"]) ** 2
+                               for r in rows), [1.0] * len(keys), 50, 130)
+    g = dict(zip(keys, gl))
+    print("overlap: " + ", ".join(f"{k} {v:.2f}" for k, v in zip(OVERLAP, f)))
+    print("lane area: " + ", ".join(f"{k} {v:.2f}" for k, v in g.items()))
+    lane_report("fitted on", rows, f, g)
+    if holdout:
+        lane_report("hold-out", lanes(glint, holdout), f, g)
+    if out:
+        sets = "\n".join(f"  k.{part}.lane_area = {g[grp]:.2f};"
+                         for grp, parts in AREA_GROUPS.items() for part in parts)
+        open(out, "w").write(f"""// Generated by tests/calibration/node_fit.py --lanes build/glint
+// tests/calibration/set_osu018.json -o src/cost/node_lanes_osu018.h from the calibration lanes
+// mapped to OSU 0.18 um and timed by OpenSTA (synth_set.py --liberty osu018). Do not edit: re-fit
+// (src/cost/README.md, "At a real node").
+#pragma once
+
+#include "cost/node.h"
+
+namespace glint {{
+
+// What whole lanes add to the primitives' constants (cost/node.h: NodeOverlap, lane_area).
+inline void fit_lanes_osu018(NodeConstants& k) {{
+  k.overlap = {{{f[0]:.2f}, {f[1]:.2f}, {f[2]:.2f}, {f[3]:.2f}}};
+{sets}
+}}
+
+}}  // namespace glint
+""")
+    return 0
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("glint", nargs="?")
-    ap.add_argument("set", nargs="?")
-    ap.add_argument("--holdout")
     ap.add_argument("--primitives", help="fit the per-part constants on this CSV "
-                    "(primitives.py --liberty) instead")
-    ap.add_argument("-o", "--output", help="with --primitives: write the C++ header here")
+                    "(primitives.py --liberty)")
+    ap.add_argument("--lanes", nargs=2, metavar=("GLINT", "SET"),
+                    help="fit the lane factors on this stored set (synth_set.py --liberty)")
+    ap.add_argument("--holdout", help="with --lanes: also report this stored set")
+    ap.add_argument("-o", "--output", help="write the C++ header here")
     args = ap.parse_args()
     if args.primitives:
         return fit_primitives(args.primitives, args.output)
-    if not args.glint or not args.set:
-        ap.error("give GLINT SET (the whole-lane fit) or --primitives CSV")
-    fit = load(args.glint, args.set)
-    kinds = sorted({k for r in fit for k in r["proxy"]["kinds"]})
-    # Relative errors: each row divided by its library area.
-    a = [[r["proxy"]["kinds"].get(k, 0.0) / r["area_um2"] for k in kinds] for r in fit]
-    area_c = nnls(a, [1.0] * len(fit))
-    lv = [[1.0 / r["timing"]["critical_path_ns"], r["proxy"]["levels"] /
-           r["timing"]["critical_path_ns"]] for r in fit]
-    path_c = solve(lv, [1.0] * len(fit))
-    print("area: um2 per proxy GE, by part kind: " +
-          ", ".join(f"{k} {c:.3f}" for k, c in zip(kinds, area_c)))
-    print(f"path: ns = {path_c[0]:.3f} + {path_c[1]:.4f} x proxy levels")
-    report("fitted on", fit, kinds, area_c, path_c)
-    if args.holdout:
-        report("hold-out", load(args.glint, args.holdout), kinds, area_c, path_c)
-    return 0
+    if args.lanes:
+        return fit_lanes(args.lanes[0], args.lanes[1], args.holdout, args.output)
+    ap.error("give --primitives CSV or --lanes GLINT SET")
 
 
 if __name__ == "__main__":

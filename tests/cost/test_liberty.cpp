@@ -90,3 +90,35 @@ TEST(Liberty, NandFunctionsInEveryNotation) {
 }
 
 }  // namespace
+
+namespace {
+
+// The cell abc buffers high fan-out nets with (cmd_synth.cpp): the smallest one-input identity
+// with delay tables (BUFX1 has none).
+TEST(Liberty, TheSmallestBufferIsTheOneAbcBuffersWith) {
+  const std::string lib = R"lib(library(x) {
+    cell(BUFX4) { area : 32; pin(A) { direction : input; } pin(Y) { direction : output;
+      function : "A"; timing() { cell_rise(t) { } } } }
+    cell(BUFX2) { area : 24; pin(A) { direction : input; } pin(Y) { direction : output;
+      function : "(A)"; timing() { cell_rise(t) { } } } }
+    cell(BUFX1) { area : 20; pin(A) { direction : input; } pin(Y) { direction : output;
+      function : "A"; } }
+    cell(INVX1) { area : 16; pin(A) { direction : input; } pin(Y) { direction : output;
+      function : "(!A)"; } }
+    cell(AND2) { area : 8; pin(A) { direction : input; } pin(B) { direction : input; }
+      pin(Y) { direction : output; function : "A"; } }
+    cell(LATCH) { area : 4; latch(IQ, IQN) { } pin(D) { direction : input; }
+      pin(Q) { direction : output; function : "D"; } }
+    cell(NOAREA) { pin(A) { direction : input; } pin(Y) { direction : output; function : "A"; } }
+  })lib";
+  EXPECT_EQ(glint::liberty_buffer(lib), "BUFX2");
+  EXPECT_EQ(glint::liberty_buffer("library(x) { cell(INVX1) { area : 16; pin(A) { direction : "
+                                  "input; } pin(Y) { direction : output; function : \"!A\"; } } }"),
+            "");
+  EXPECT_EQ(glint::liberty_buffer(""), "");
+  // Its BUF has no delay tables: abc cannot buffer with it.
+  EXPECT_EQ(glint::liberty_buffer(glint::test::read_file(GLINT_SOURCE_DIR "/tests/rtl/tiny.lib")),
+            "");
+}
+
+}  // namespace
