@@ -460,6 +460,12 @@ int run_synth(const SynthOptions& o) {
   std::cout << fmt::format("{}: {} cells, {} flip-flops, {}, logic depth {} (yosys {:.1f} s)\n",
                            j["spec"].get<std::string>(), dr.cells, dr.flip_flops, area,
                            dr.max_depth, seconds);
+  if (j.contains("delay_target_ps"))
+    std::cout << fmt::format(
+        "  mapped by abc for a {} ps delay target{}\n", j["delay_target_ps"].get<long>(),
+        j["buffer_cell"].is_null()
+            ? std::string(" (the library has no timed buffer: no buffering or sizing)")
+            : ", high fan-out nets buffered with " + j["buffer_cell"].get<std::string>());
   if (j.contains("timing_unavailable"))
     std::cout << "  no timing: " << j["timing_unavailable"].get<std::string>() << "\n";
   if (j.contains("timing") && !j["timing"].is_null()) {
