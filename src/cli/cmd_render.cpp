@@ -57,7 +57,7 @@ std::string without_skip_error_line(const UnitRender& u, std::size_t label_width
   const std::string verdict = w.error.max_lsb == u.error.max_lsb
                                   ? "equal error (the same max_lsb)"
                                   : "the skip changes the error: compare at equal error with "
-                                    "glint size (guide/render.md)";
+                                    "glint size (src/cli/guide/render.md)";
   return fmt::format(
       "{:<{}} error with / without the skip: max_lsb {} / {}, mean_lsb {:.4f} / {:.4f}, "
       "weighted.max_lsb8 {:.3f} / {:.3f}, max_datapath_ulps {:.3f} / {:.3f}; {}: {}\n",
