@@ -44,6 +44,29 @@ std::string lsb_text(double v) {
   return fmt::format("{:.0f}", v);
 }
 
+// The lane's error beside its without-skip lane's (a saving is fair only at equal error): the
+// frame's worst and mean pixel error, the request-level pixel error and the datapath's ulps, and
+// how the two frames differ.
+std::string without_skip_error_line(const UnitRender& u, std::size_t label_width) {
+  const UnitRender::WithoutSkip& w = *u.without_skip;
+  const std::string differ =
+      w.pixels_differing == 0
+          ? "the frames are identical"
+          : fmt::format("the frames differ in {} pixel{} (by at most {} LSB)", w.pixels_differing,
+                        w.pixels_differing == 1 ? "" : "s", w.max_lsb_between);
+  const std::string verdict = w.error.max_lsb == u.error.max_lsb
+                                  ? "equal error (the same max_lsb)"
+                                  : "the skip changes the error: compare at equal error with "
+                                    "glint size (src/cli/guide/render.md)";
+  return fmt::format(
+      "{:<{}} error with / without the skip: max_lsb {} / {}, mean_lsb {:.4f} / {:.4f}, "
+      "weighted.max_lsb8 {:.3f} / {:.3f}, max_datapath_ulps {:.3f} / {:.3f}; {}: {}\n",
+      u.label, label_width, lsb_text(u.error.max_lsb), lsb_text(w.error.max_lsb), u.error.mean_lsb,
+      w.error.mean_lsb, u.stats.weighted.max_abs * display_scale(u.stats.display_bits),
+      w.stats.weighted.max_abs * display_scale(w.stats.display_bits), u.stats.max_ulps(),
+      w.stats.max_ulps(), differ, verdict);
+}
+
 int run_render(const RenderCommandOptions& o) {
   RenderOptions options;
   if (!o.units.empty()) options.units = parse_unit_options(o.units);  // empty: the default set
@@ -197,6 +220,7 @@ int run_render(const RenderCommandOptions& o) {
           u.label, label_width, without / 1000,
           u.energy_without_skip.at("pj_per_shaded_pixel").get<double>(), (without - with) / 1000,
           without > 0 ? 100 * (without - with) / without : 0.0);
+      if (u.without_skip) out << without_skip_error_line(u, label_width);
     }
   out << fmt::format("images and report.json{} in {}\n", o.html ? " (and report.html)" : "",
                      o.out_dir);

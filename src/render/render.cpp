@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <set>
 #include <stdexcept>
@@ -118,11 +119,7 @@ class SceneRenderer {
     }
     acc_.resize(units_);
     for (std::size_t u = 0; u < units_; ++u) ulp_.push_back(ev_.units()[u]->out_format().ulp());
-    if (options.node && options.gating)
-      for (const auto& unit : ev_.units()) {
-        activity_.emplace_back(*unit, *options.gating);
-        no_skip_activity_.push_back(no_skip_counter(*unit));
-      }
+    if (options.node && options.gating) make_without_skip_lanes(*options.gating);
     out_.skips.assign(lights_, std::vector<SkipCounts>(scene.materials.size()));
   }
 
@@ -139,6 +136,8 @@ class SceneRenderer {
       make_requests();
       if (options_.on_requests) options_.on_requests(requests_.data(), requests_.size());
       ev_.add_batch(requests_.data(), requests_.size(), results_, options_.threads);
+      if (off_ev_)
+        off_ev_->add_batch(requests_.data(), requests_.size(), off_results_, options_.threads);
       out_.requests += requests_.size();
       index_lit_pixels();
       out_.shaded_pixels += lit_.size();
@@ -306,6 +305,14 @@ class SceneRenderer {
       for (std::size_t k = 0; k < requests_.size(); ++k)
         add_scaled(spec[request_lit_[k]], request_colour(k), static_cast<double>(raw[k]) * ulp_[u]);
       if (!activity_.empty()) count_activity(u);
+      if (const std::size_t j = off_index(u); j != kNoOff) {
+        std::vector<Rgb>& off = off_light_[j];
+        off.assign(lit_.size(), Rgb{});
+        const std::int64_t* off_raw = off_results_.raw.data() + j * requests_.size();
+        for (std::size_t k = 0; k < requests_.size(); ++k)
+          add_scaled(off[request_lit_[k]], request_colour(k),
+                     static_cast<double>(off_raw[k]) * off_ulp_[j]);
+      }
     });
   }
 
@@ -321,21 +328,47 @@ class SceneRenderer {
         off->add(slots.slot(row), quantize_input(row.t, off->unit().in_format()));
   }
 
-  // What the skip buys (issue 26, item 5): the same lane without its comparator (its spec with
-  // skip=off, every request computed) counts the same requests. Null for a lane without the skip.
-  std::unique_ptr<ActivityCounter> no_skip_counter(const SpecularUnit& unit) {
-    if (!unit.comparator_enabled()) return nullptr;
-    UnitSpec spec = parse_unit_spec(unit.canonical_spec());
-    const auto key = std::find_if(spec.keys.begin(), spec.keys.end(),
-                                  [](const auto& k) { return k.first == "skip"; });
-    if (key != spec.keys.end()) {
-      key->second = "off";
-    } else {
-      spec.keys.emplace_back("skip", "off");
+  // What the skip buys (issue 26, item 5): each lane with the skip beside the same lane without
+  // its comparator (its spec with skip=off, every request computed), on the same requests: their
+  // energies, and their errors measured alike, since a saving is fair only at equal error. The
+  // lanes without the skip are an Evaluator of their own, so a render without --node does no
+  // more than before.
+  void make_without_skip_lanes(Gating gating) {
+    std::vector<UnitSpec> off_specs;
+    off_of_.assign(units_, kNoOff);
+    for (std::size_t u = 0; u < units_; ++u) {
+      const SpecularUnit& unit = *ev_.units()[u];
+      if (!unit.comparator_enabled()) continue;
+      UnitSpec spec = parse_unit_spec(unit.canonical_spec());
+      const auto key = std::find_if(spec.keys.begin(), spec.keys.end(),
+                                    [](const auto& k) { return k.first == "skip"; });
+      if (key != spec.keys.end()) {
+        key->second = "off";
+      } else {
+        spec.keys.emplace_back("skip", "off");
+      }
+      off_of_[u] = off_specs.size();
+      off_specs.push_back(std::move(spec));
     }
-    no_skip_units_.push_back(make_unit(specs_on_chip({spec}, options_.chip).front(), ev_.slots()));
-    return std::make_unique<ActivityCounter>(*no_skip_units_.back(), Gating::kNone);
+    if (!off_specs.empty()) {
+      off_ev_ = std::make_unique<Evaluator>(header_, off_specs, 8, options_.chip);
+      off_light_.resize(off_specs.size());
+      off_acc_.resize(off_specs.size());
+      off_between_.resize(off_specs.size());
+      for (const auto& unit : off_ev_->units()) off_ulp_.push_back(unit->out_format().ulp());
+    }
+    for (std::size_t u = 0; u < units_; ++u) {
+      activity_.emplace_back(*ev_.units()[u], gating);
+      no_skip_activity_.push_back(
+          off_of_[u] == kNoOff
+              ? nullptr
+              : std::make_unique<ActivityCounter>(*off_ev_->units()[off_of_[u]], Gating::kNone));
+    }
   }
+
+  // The index of unit u's lane without the skip (kNoOff: none).
+  static constexpr std::size_t kNoOff = static_cast<std::size_t>(-1);
+  std::size_t off_index(std::size_t u) const { return off_of_.empty() ? kNoOff : off_of_[u]; }
 
   void accumulate_reference() {
     const SlotMap& slots = ev_.slots();
@@ -486,6 +519,9 @@ class SceneRenderer {
     // A pixel without requests has no specular light in any source: the unit's pixel is the
     // reference's (d + 0 is d exactly), with no error and no highlight, so it is only counted.
     acc_[u].add_equal_unlit(pixels_ - lit_.size());
+    const std::size_t j = off_index(u);
+    const std::vector<Rgb>* off = j == kNoOff ? nullptr : &off_light_[j];
+    if (off) off_acc_[j].add_equal_unlit(pixels_ - lit_.size());
     std::uint8_t* error_row =
         images ? error_[u].data() + static_cast<std::size_t>(y0_) * width_ : nullptr;
     if (images)
@@ -502,6 +538,7 @@ class SceneRenderer {
       const int error =
           acc_[u].add(ref8_[p], img, ref_highlight_[p],
                       none ? ImageErrorAccumulator::Highlight{} : highlight(light[i], p));
+      if (off != nullptr) compose_without_skip(u, i, img);
       if (!images) continue;
       put(*image, p, img);
       put(*specular, p, none ? black8_ : to_display8(scene_.display, light[i]));
@@ -510,6 +547,23 @@ class SceneRenderer {
     if (!images) return;
     emit(reference_slots_ + 2 * u);
     emit(reference_slots_ + 2 * u + 1);
+  }
+
+  // Lit pixel i of unit u's lane without the skip: its error, as the lane's own is measured, and
+  // how it differs from the lane's final pixel `lane`.
+  void compose_without_skip(std::size_t u, std::size_t i, const Rgb8& lane) {
+    const std::size_t j = off_of_[u];
+    const std::size_t p = lit_[i];
+    const Rgb& light = off_light_[j][i];
+    const bool none = dark(light);
+    const Rgb8 img = none ? diffuse8_[p] : final_pixel(light, p);
+    off_acc_[j].add(ref8_[p], img, ref_highlight_[p],
+                    none ? ImageErrorAccumulator::Highlight{} : highlight(light, p));
+    int between = 0;
+    for (int c = 0; c < 3; ++c) between = std::max(between, std::abs(int{img[c]} - int{lane[c]}));
+    OffBetween& b = off_between_[j];
+    b.pixels += between > 0;
+    b.max_lsb = std::max(b.max_lsb, between);
   }
 
   // The whole image a slot's strip is part of (kKeep).
@@ -549,6 +603,7 @@ class SceneRenderer {
     out_.skip_guarantee_lsb = skip_guarantee_lsb(scene_.display, scene_.eps, slot_map.skip_ratio);
     out_.skip_within_guarantee = out_.skip_only_error.max_lsb <= out_.skip_guarantee_lsb;
     const std::vector<UnitStats> stats = ev_.stats();
+    const std::vector<UnitStats> off_stats = off_ev_ ? off_ev_->stats() : std::vector<UnitStats>{};
     const std::vector<std::string> labels = render_unit_labels(unit_specs(options_));
     const std::vector<std::string> stems = render_file_stems(labels);
     // The shared scale: the largest error of any unit (at least 1 LSB), so that a colour means the
@@ -583,6 +638,10 @@ class SceneRenderer {
             r.energy_without_skip["spec"] = off->unit().canonical_spec();
           }
         }
+      if (const std::size_t j = off_index(u); j != kNoOff && !r.energy_without_skip.is_null())
+        r.without_skip =
+            UnitRender::WithoutSkip{off_stats[j].spec, off_acc_[j].result(), off_stats[j],
+                                    off_between_[j].pixels, off_between_[j].max_lsb};
       r.heatmap_scale =
           options_.heat_scale == HeatScale::kShared ? shared_scale : std::max(1.0, r.error.max_lsb);
       out_.units.push_back(std::move(r));
@@ -649,8 +708,20 @@ class SceneRenderer {
   std::vector<Image8> heat_thumb_;                // per unit (kStream)
   std::vector<ImageErrorAccumulator> acc_;
   std::vector<ActivityCounter> activity_;  // per unit, with node and gating
-  // Per unit with node: the lane without the skip and its activity (null: no skip to leave out).
-  std::vector<std::unique_ptr<SpecularUnit>> no_skip_units_;
+  // With node, the lanes with the skip built without it (make_without_skip_lanes): per unit the
+  // index of its own (kNoOff: none) and its activity (null: none); per such lane its results on
+  // the tile, specular light per lit pixel, image error and difference from the lane's pixels.
+  std::vector<std::size_t> off_of_;
+  std::unique_ptr<Evaluator> off_ev_;
+  BatchResults off_results_;
+  std::vector<double> off_ulp_;
+  std::vector<std::vector<Rgb>> off_light_;
+  std::vector<ImageErrorAccumulator> off_acc_;
+  struct OffBetween {
+    std::uint64_t pixels = 0;
+    int max_lsb = 0;
+  };
+  std::vector<OffBetween> off_between_;
   std::vector<std::unique_ptr<ActivityCounter>> no_skip_activity_;
   ImageErrorAccumulator skip_acc_;
   // The current tile.

@@ -132,6 +132,18 @@ struct UnitRender {
   // The same lane without its skip (spec with skip=off) on the same requests, with "spec"; null
   // without energy or for a lane without the skip.
   nlohmann::json energy_without_skip;
+  // That lane's error on the frame, measured as this lane's is (issue 26 item 5: what the skip
+  // buys is a fair figure only at equal error); set exactly when energy_without_skip is.
+  struct WithoutSkip {
+    std::string spec;
+    ImageError error;  // its final pixels against the reference's
+    UnitStats stats;   // its request-level accuracy
+    // Pixels whose final colour differs from this lane's, and the largest difference (LSBs of
+    // the pixel error): zero when the skip leaves the frame as it is.
+    std::uint64_t pixels_differing = 0;
+    int max_lsb_between = 0;
+  };
+  std::optional<WithoutSkip> without_skip;
 };
 
 struct RenderResult {

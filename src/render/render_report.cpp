@@ -44,6 +44,18 @@ nlohmann::json float_images_json(const RenderResult& r) {
           {"files", render_float_file_names(labels, *r.float_format)}};
 }
 
+// The lane without its skip beside the lane (UnitRender::WithoutSkip): what the skip buys is a
+// fair figure only at equal error, so the report states that lane's error as the lane's own.
+nlohmann::json without_skip_json(const UnitRender& u) {
+  const UnitRender::WithoutSkip& w = *u.without_skip;
+  return {{"spec", w.spec},
+          {"image_error", w.error.to_json()},
+          {"errors", w.stats.errors_json()},
+          {"equal_error", w.error.max_lsb == u.error.max_lsb},
+          {"pixels_differing", w.pixels_differing},
+          {"max_lsb_between", w.max_lsb_between}};
+}
+
 }  // namespace
 
 nlohmann::json ImageError::to_json() const {
@@ -262,6 +274,7 @@ nlohmann::json RenderResult::to_json() const {
     if (!u.energy.is_null()) units_json.back()["energy"] = u.energy;
     if (!u.energy_without_skip.is_null())
       units_json.back()["energy_without_skip"] = u.energy_without_skip;
+    if (u.without_skip) units_json.back()["error_without_skip"] = without_skip_json(u);
   }
   return {{"glint_render_report", kRenderReportVersion},
           {"scene", scene_name},
