@@ -53,7 +53,7 @@ std::uint64_t register_bits(std::int64_t value, int width) {
 }  // namespace
 
 ActivityCounter::ActivityCounter(const SpecularUnit& unit, Gating gating)
-    : unit_(unit), ii_(static_cast<std::uint64_t>(unit.timing().ii)) {
+    : unit_(unit), ii_(static_cast<std::uint64_t>(unit.timing().ii)), schedule_(unit.timing(), {}) {
   const StageLayout& layout = unit.stages();
   activity_.gating = gating;
   for (const Stage& s : layout.stages()) activity_.stages.push_back(StageActivity{s.name});
@@ -79,10 +79,12 @@ ActivityCounter::ActivityCounter(const SpecularUnit& unit, Gating gating)
 void ActivityCounter::add(std::size_t slot, std::int64_t t_raw) {
   LaneActivity& a = activity_;
   ++a.requests;
-  a.cycles += ii_;
   const bool skipped = unit_.skip(slot, t_raw);
   if (!skipped) ++a.computed;
   const bool enters = !skipped || a.gating == Gating::kNone;
+  schedule_.next(!enters);
+  const std::uint64_t cycles = schedule_.stats().cycles, added = cycles - a.cycles;
+  a.cycles = cycles;
   const auto toggles = [](std::int64_t x, std::int64_t y, int width) {
     return std::bitset<64>(register_bits(x, width) ^ register_bits(y, width)).count();
   };
@@ -105,10 +107,11 @@ void ActivityCounter::add(std::size_t slot, std::int64_t t_raw) {
   a.output_toggles += toggles(result, entry, a.out_bits);
   entry = result;
   next_entry_ = (next_entry_ + 1) % entries_.size();
-  if (enters || a.gating != Gating::kClock) {
-    a.clocked_cycles += ii_;
-    for (StageActivity& s : a.stages) s.clocked_bits += static_cast<std::uint64_t>(s.bits) * ii_;
-  }
+  // Clock gating runs the stage registers II cycles per request they take; otherwise they are
+  // clocked every cycle of the lane's.
+  const std::uint64_t clocked = a.gating == Gating::kClock ? (enters ? ii_ : 0) : added;
+  a.clocked_cycles += clocked;
+  for (StageActivity& s : a.stages) s.clocked_bits += static_cast<std::uint64_t>(s.bits) * clocked;
 }
 
 nlohmann::json activity_json(const LaneActivity& a) {

@@ -1,6 +1,7 @@
 // Switching activity of a lane on a request stream (issue 26 item 3): how many register bits
-// toggle, and how many are clocked, stage by stage, when the requests go through the pipeline in
-// order, one per initiation interval, without stalls.
+// toggle, and how many are clocked, stage by stage, when the requests go through the lane in
+// order as it schedules them (timing/timing.h's recurrences, the sink always ready: the stream
+// glint rtl's testbench offers).
 //
 // Toggles come from the bit-accurate staged evaluation (eval_staged, the values the SystemC model
 // traces and glint rtl's registers hold): a register of width w holding request i's value after
@@ -14,8 +15,13 @@
 //            computed request's values (operand isolation / enable-held registers), no toggles;
 //   clock    as operand, and the stage registers are clock-gated on the skipped request's cycles:
 //            their clock load is not switched either.
-// Every register bit is clocked once a cycle (a cycle per II of each request) except where clock
-// gating stops it: clocked_bits counts that load, which clock energy is proportional to.
+// The lane's cycles are its own schedule's, from reset to the cycle the last result leaves: a
+// request the datapath takes waits for its initiation interval, one the comparator skips (and
+// keeps out of the datapath) passes a cycle after the previous one, so an iterative unit with the
+// skip spends far fewer cycles than requests x II. With gating none every request enters the
+// datapath, so every one waits for the II. Every register bit is clocked once a cycle except
+// where clock gating stops it (the stage registers then run II cycles per request they take):
+// clocked_bits counts that load, which clock energy is proportional to.
 #pragma once
 
 #include <cstddef>
@@ -23,6 +29,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include "timing/timing.h"
 
 namespace glint {
 
@@ -44,7 +52,7 @@ struct LaneActivity {
   Gating gating = Gating::kNone;
   std::size_t requests = 0;  // the stream's requests
   std::size_t computed = 0;  // those the comparator kept
-  std::uint64_t cycles = 0;  // requests x II
+  std::uint64_t cycles = 0;  // the lane's schedule: reset to the last result's retire
   std::vector<StageActivity> stages;
   // Beside the unit's stages, for the energy (eval/energy.h; not in activity_json): the lane's
   // input t (in_bits wide) toggles at the port on every request (the tau comparator's operand),
@@ -79,6 +87,7 @@ class ActivityCounter {
  private:
   const SpecularUnit& unit_;
   std::uint64_t ii_ = 1;
+  TimingEngine schedule_;  // the lane's, the sink always ready
   LaneActivity activity_;
   std::vector<std::size_t> stage_of_;  // per flat register index of the staged values
   std::vector<int> width_of_;
