@@ -26,6 +26,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <deque>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -63,6 +64,13 @@ struct LaneActivity {
   int in_bits = 0, out_bits = 0;
   std::uint64_t port_toggles = 0, entry_toggles = 0, output_toggles = 0;
   std::uint64_t clocked_cycles = 0;
+  // The lane's control flip-flops around the datapath (hdl/lane.cpp), their toggles as the
+  // schedule determines them: the issue and head tags (one step mod B a request), the tags beside
+  // the L + 1 positions and the bypass tag (copies of the issue tag), the in-flight credit counter
+  // (+1 an issue, -1 a retire), the II counter, the bypass's and positions' valid bits (a rise and
+  // a fall a run of consecutive issues) and the merge buffer's valid and skipped bits (an entry is
+  // written only by a result that cannot leave as it arrives).
+  std::uint64_t control_toggles = 0;
 
   std::uint64_t toggles() const;
   std::uint64_t clocked_bits() const;
@@ -81,7 +89,8 @@ class ActivityCounter {
  public:
   ActivityCounter(const SpecularUnit& unit, Gating gating);
   void add(std::size_t slot, std::int64_t t_raw);
-  const LaneActivity& activity() const { return activity_; }
+  // The counts so far, the credits of the results still in flight returned as they drain.
+  LaneActivity activity() const;
   const SpecularUnit& unit() const { return unit_; }
 
  private:
@@ -95,6 +104,13 @@ class ActivityCounter {
   std::int64_t port_t_ = 0, entry_t_ = 0;
   std::vector<std::int64_t> entries_;  // the merge buffer's words
   std::size_t next_entry_ = 0;
+  // The control registers' state (control_toggles).
+  void count_control(const ResultTiming& r, bool skipped, bool enters);
+  std::uint64_t tag_step_toggles_ = 0;  // issue_tag's toggles, stepping 0, 1, .. B - 1, 0, ..
+  std::uint64_t in_flight_ = 0;
+  std::deque<std::uint64_t> retires_;  // cycles of the retires not yet counted, in order
+  std::uint64_t last_bypass_ = 0, last_start_ = 0;  // issue cycle + 1 of the last such (0: none)
+  std::vector<bool> entry_skipped_;
 };
 
 // The report's "activity" entry (src/eval/sim_report.md) and its line in the text report.
