@@ -16,14 +16,14 @@ namespace glint {
 
 inline EnergyScale make_energy_scale_osu018() {
   EnergyScale s;
-  s.clock_bit = 0.594103;
-  s.register_bit = 1.406058;
-  s.adder_bit = 0.552587;
-  s.multiplier_bit = 0.552587;
+  s.clock_bit = 0.594127;
+  s.register_bit = 1.404619;
+  s.adder_bit = 0.552589;
+  s.multiplier_bit = 0.552589;
   s.table_bit = 0.000000;
-  s.mux_bit = 0.689093;
-  s.comparator_bit = 0.689093;
-  s.gate = 0.689093;
+  s.mux_bit = 0.689529;
+  s.comparator_bit = 0.689529;
+  s.gate = 0.689529;
   return s;
 }
 

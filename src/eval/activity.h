@@ -109,7 +109,8 @@ class ActivityCounter {
   std::uint64_t tag_step_toggles_ = 0;  // issue_tag's toggles, stepping 0, 1, .. B - 1, 0, ..
   std::uint64_t in_flight_ = 0;
   std::deque<std::uint64_t> retires_;  // cycles of the retires not yet counted, in order
-  std::uint64_t last_bypass_ = 0, last_start_ = 0;  // issue cycle + 1 of the last such (0: none)
+  // The cycle after the last bypassed and the last started request's issue (none yet: never).
+  std::uint64_t last_bypass_ = ~std::uint64_t{0}, last_start_ = ~std::uint64_t{0};
   std::vector<bool> entry_skipped_;
 };
 

@@ -124,6 +124,30 @@ TEST_P(Activity, GatingDecidesWhatASkippedRequestCosts) {
   EXPECT_EQ(clock.clocked_bits(), bits * 2 * ii);
 }
 
+// The lane's control flip-flops (hdl/lane.cpp) on a stream the comparator skips whole: each
+// request bypasses the cycle after the previous one and leaves as it arrives, so no merge-buffer
+// entry is written, no position's valid bit nor the II counter moves, the bypass valid bit rises
+// once and falls once, in_flight goes 0 -> 1 at the first issue and back after the last retire,
+// and the issue tag, the head, the bypass tag and the L + 1 position tags each step through
+// 0, 1, .., B - 1, 0, .. once a request.
+TEST_P(Activity, ControlTogglesFollowTheLanesSchedule) {
+  const test::TraceUnit b = test::trace_unit(GetParam());
+  const SpecularUnit& u = *b.unit;
+  ASSERT_TRUE(u.comparator_enabled());
+  ASSERT_TRUE(u.skip(0, 1));
+  const std::size_t n = 23;
+  const LaneActivity a =
+      measure_activity(u, std::vector<ActivityRequest>(n, {0, 1}), Gating::kOperand);
+  const UnitTiming t = u.timing();
+  const auto depth = static_cast<std::uint64_t>(t.buffer_depth);
+  std::uint64_t steps = 0;
+  for (std::uint64_t i = 0; i < n; ++i)
+    steps += std::bitset<64>((i % depth) ^ ((i + 1) % depth)).count();
+  const auto tags = static_cast<std::uint64_t>(3 + t.latency + 1);
+  EXPECT_EQ(a.control_toggles, 2 + 2 + tags * steps);
+  EXPECT_EQ(a.cycles, n + 1);  // the last bypasses at n - 1 and leaves at n
+}
+
 INSTANTIATE_TEST_SUITE_P(Units, Activity,
                          ::testing::Values("pow", "schlick", "hast", "horner", "lut", "sfu",
                                            "schlick:divider=iterative"),
