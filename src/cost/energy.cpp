@@ -46,4 +46,51 @@ PartSwitching part_switching(const Primitive& p, const EnergyWeights& w) {
   return {};  // registers: counted toggles
 }
 
+const char* to_string(SwitchKind k) {
+  switch (k) {
+    case SwitchKind::kAdder:
+      return "adder";
+    case SwitchKind::kMultiplier:
+      return "multiplier";
+    case SwitchKind::kComparator:
+      return "comparator";
+    case SwitchKind::kMux:
+      return "mux";
+    case SwitchKind::kTable:
+      return "table";
+    case SwitchKind::kGate:
+      return "gate";
+  }
+  return "adder";
+}
+
+KindArray part_switching_bits(const Primitive& p) {
+  KindArray bits{};
+  const auto at = [&bits](SwitchKind k) -> double& { return bits[static_cast<std::size_t>(k)]; };
+  // part_switching's bits do not depend on the weights.
+  const double n = part_switching(p, EnergyWeights{}).bits;
+  const std::string& k = p.kind;
+  if (k == "divider") {
+    at(SwitchKind::kAdder) = n;
+    at(SwitchKind::kMux) = n;
+  } else if (k == "adder") {
+    at(SwitchKind::kAdder) = n;
+  } else if (k == "comparator") {
+    at(SwitchKind::kComparator) = n;
+  } else if (k == "multiplier") {
+    at(SwitchKind::kMultiplier) = n;
+  } else if (k == "mux" || k == "shifter") {
+    at(SwitchKind::kMux) = n;
+  } else if (k == "lzd" || k == "gates") {
+    at(SwitchKind::kGate) = n;
+  } else if (k == "table") {
+    at(SwitchKind::kTable) = n;
+  }
+  return bits;
+}
+
+KindArray kind_weights(const EnergyWeights& w) {
+  return {w.adder_bit, w.multiplier_bit, w.comparator_bit, w.mux_bit, w.table_bit, w.gate};
+}
+
 }  // namespace glint

@@ -14,6 +14,9 @@
 // The scale factors are fitted to a gate-level reference (EnergyScale, below).
 #pragma once
 
+#include <array>
+#include <cstddef>
+#include <cstdint>
 #include <string>
 
 #include "cost/cost_model.h"
@@ -63,5 +66,17 @@ struct PartSwitching {
   double pj() const { return bits * pj_per_bit; }
 };
 PartSwitching part_switching(const Primitive& p, const EnergyWeights& w);
+
+// The datapath's energy by the kind of weight it is counted with, so that a gate-level fit can
+// tell tables from multipliers (tests/calibration/energy_fit.py): a shifter's levels and a
+// divider's restores are mux bits, its subtractors adder bits, leading-one chains glue gates.
+enum class SwitchKind : std::uint8_t { kAdder, kMultiplier, kComparator, kMux, kTable, kGate };
+inline constexpr std::size_t kSwitchKinds = 6;
+const char* to_string(SwitchKind k);  // "adder", "multiplier", "comparator", "mux", "table", "gate"
+using KindArray = std::array<double, kSwitchKinds>;  // a figure per SwitchKind
+// The part's switching bits (part_switching's) split by those kinds: a divider's are adder and
+// mux bits alike. Times kind_weights(w), kind by kind, they make part_switching's pJ.
+KindArray part_switching_bits(const Primitive& p);
+KindArray kind_weights(const EnergyWeights& w);
 
 }  // namespace glint

@@ -1,6 +1,7 @@
 // Switching activity of a lane on a request stream (issue 26 item 3): how many register bits
-// toggle, and how many are clocked, stage by stage, when the requests go through the pipeline in
-// order, one per initiation interval, without stalls.
+// toggle, and how many are clocked, stage by stage, when the requests go through the lane in
+// order as it schedules them (timing/timing.h's recurrences, the sink always ready: the stream
+// glint rtl's testbench offers).
 //
 // Toggles come from the bit-accurate staged evaluation (eval_staged, the values the SystemC model
 // traces and glint rtl's registers hold): a register of width w holding request i's value after
@@ -14,15 +15,23 @@
 //            computed request's values (operand isolation / enable-held registers), no toggles;
 //   clock    as operand, and the stage registers are clock-gated on the skipped request's cycles:
 //            their clock load is not switched either.
-// Every register bit is clocked once a cycle (a cycle per II of each request) except where clock
-// gating stops it: clocked_bits counts that load, which clock energy is proportional to.
+// The lane's cycles are its own schedule's, from reset to the cycle the last result leaves: a
+// request the datapath takes waits for its initiation interval, one the comparator skips (and
+// keeps out of the datapath) passes a cycle after the previous one, so an iterative unit with the
+// skip spends far fewer cycles than requests x II. With gating none every request enters the
+// datapath, so every one waits for the II. Every register bit is clocked once a cycle except
+// where clock gating stops it (the stage registers then run II cycles per request they take):
+// clocked_bits counts that load, which clock energy is proportional to.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
+#include <deque>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include "timing/timing.h"
 
 namespace glint {
 
@@ -44,7 +53,7 @@ struct LaneActivity {
   Gating gating = Gating::kNone;
   std::size_t requests = 0;  // the stream's requests
   std::size_t computed = 0;  // those the comparator kept
-  std::uint64_t cycles = 0;  // requests x II
+  std::uint64_t cycles = 0;  // the lane's schedule: reset to the last result's retire
   std::vector<StageActivity> stages;
   // Beside the unit's stages, for the energy (eval/energy.h; not in activity_json): the lane's
   // input t (in_bits wide) toggles at the port on every request (the tau comparator's operand),
@@ -55,6 +64,13 @@ struct LaneActivity {
   int in_bits = 0, out_bits = 0;
   std::uint64_t port_toggles = 0, entry_toggles = 0, output_toggles = 0;
   std::uint64_t clocked_cycles = 0;
+  // The lane's control flip-flops around the datapath (hdl/lane.cpp), their toggles as the
+  // schedule determines them: the issue and head tags (one step mod B a request), the tags beside
+  // the L + 1 positions and the bypass tag (copies of the issue tag), the in-flight credit counter
+  // (+1 an issue, -1 a retire), the II counter, the bypass's and positions' valid bits (a rise and
+  // a fall a run of consecutive issues) and the merge buffer's valid and skipped bits (an entry is
+  // written only by a result that cannot leave as it arrives).
+  std::uint64_t control_toggles = 0;
 
   std::uint64_t toggles() const;
   std::uint64_t clocked_bits() const;
@@ -73,12 +89,14 @@ class ActivityCounter {
  public:
   ActivityCounter(const SpecularUnit& unit, Gating gating);
   void add(std::size_t slot, std::int64_t t_raw);
-  const LaneActivity& activity() const { return activity_; }
+  // The counts so far, the credits of the results still in flight returned as they drain.
+  LaneActivity activity() const;
   const SpecularUnit& unit() const { return unit_; }
 
  private:
   const SpecularUnit& unit_;
   std::uint64_t ii_ = 1;
+  TimingEngine schedule_;  // the lane's, the sink always ready
   LaneActivity activity_;
   std::vector<std::size_t> stage_of_;  // per flat register index of the staged values
   std::vector<int> width_of_;
@@ -86,6 +104,14 @@ class ActivityCounter {
   std::int64_t port_t_ = 0, entry_t_ = 0;
   std::vector<std::int64_t> entries_;  // the merge buffer's words
   std::size_t next_entry_ = 0;
+  // The control registers' state (control_toggles).
+  void count_control(const ResultTiming& r, bool skipped, bool enters);
+  std::uint64_t tag_step_toggles_ = 0;  // issue_tag's toggles, stepping 0, 1, .. B - 1, 0, ..
+  std::uint64_t in_flight_ = 0;
+  std::deque<std::uint64_t> retires_;  // cycles of the retires not yet counted, in order
+  // The cycle after the last bypassed and the last started request's issue (none yet: never).
+  std::uint64_t last_bypass_ = ~std::uint64_t{0}, last_start_ = ~std::uint64_t{0};
+  std::vector<bool> entry_skipped_;
 };
 
 // The report's "activity" entry (src/eval/sim_report.md) and its line in the text report.

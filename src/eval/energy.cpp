@@ -11,6 +11,10 @@ EnergyParts& EnergyParts::operator+=(const EnergyParts& o) {
   clock_pj += o.clock_pj;
   datapath_pj += o.datapath_pj;
   leakage_pj += o.leakage_pj;
+  for (std::size_t k = 0; k < kSwitchKinds; ++k) {
+    datapath_kinds[k] += o.datapath_kinds[k];
+    switching_bits[k] += o.switching_bits[k];
+  }
   return *this;
 }
 
@@ -59,13 +63,14 @@ LaneEnergy lane_energy(const UnitCost& cost, const LaneActivity& a, const Energy
     toggles[s] = a.stages[s].toggles;
   }
   input[m + 1] = ratio(a.output_toggles, a.out_bits);
-  toggles[m + 1] = a.output_toggles;
+  toggles[m + 1] = a.output_toggles + a.control_toggles;
   for (std::size_t s = 0; s < e.stages.size(); ++s)
     e.stages[s].pj.register_pj = static_cast<double>(toggles[s]) * w.register_bit;
 
   // nW x ns = 1e-18 J = 1e-6 pJ.
   const double leak_pj_per_um2 =
       w.leakage_nw_per_um2 * static_cast<double>(a.cycles) * e.clock_ns * 1e-6;
+  const KindArray weight = kind_weights(w);
   for (const Primitive& p : cost.inventory) {
     const std::size_t s = p.stage >= lane ? m + 1 : std::min<std::size_t>(p.stage, m);
     EnergyParts& pj = e.stages[s].pj;
@@ -73,7 +78,12 @@ LaneEnergy lane_energy(const UnitCost& cost, const LaneActivity& a, const Energy
     const bool gated = p.kind == "register" && p.stage < lane;
     pj.clock_pj += static_cast<double>(p.held_bits) *
                    static_cast<double>(gated ? a.clocked_cycles : a.cycles) * w.clock_bit;
-    pj.datapath_pj += part_switching(p, w).pj() * input[s];
+    const KindArray bits = part_switching_bits(p);
+    for (std::size_t k = 0; k < kSwitchKinds; ++k) {
+      pj.switching_bits[k] += bits[k] * input[s];
+      pj.datapath_kinds[k] += bits[k] * input[s] * weight[k];
+      pj.datapath_pj += bits[k] * input[s] * weight[k];
+    }
     pj.leakage_pj += p.um2 * leak_pj_per_um2;
   }
   for (const StageEnergy& s : e.stages) e.total += s.pj;
@@ -101,6 +111,12 @@ nlohmann::json energy_json(const LaneEnergy& e, std::optional<std::uint64_t> sha
     j["stage"] = s.stage;
     stages.push_back(std::move(j));
   }
+  nlohmann::json by_kind = nlohmann::json::object(), bits = nlohmann::json::object();
+  for (std::size_t k = 0; k < kSwitchKinds; ++k) {
+    const char* name = to_string(static_cast<SwitchKind>(k));
+    by_kind[name] = n > 0 ? e.total.datapath_kinds[k] / n : 0.0;
+    bits[name] = n > 0 ? e.total.switching_bits[k] / n : 0.0;
+  }
   const EnergyScale& f = energy_scale();
   nlohmann::json j = {{"node", e.node},
                       {"gating", to_string(e.gating)},
@@ -123,6 +139,8 @@ nlohmann::json energy_json(const LaneEnergy& e, std::optional<std::uint64_t> sha
                       {"pj_per_request", e.per_request()},
                       {"pj_per_computed", e.per_computed()},
                       {"per_request", parts_json(e.total, n)},
+                      {"datapath_by_kind", by_kind},
+                      {"switching_bits_by_kind", bits},
                       {"stages", stages}};
   if (shaded_pixels) {
     j["shaded_pixels"] = *shaded_pixels;

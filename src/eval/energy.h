@@ -7,8 +7,9 @@
 // counts them) and the merge buffer with the lane's control (placed after the last stage):
 //   register   the stage's register bit toggles x register_bit: the comparator register's (t,
 //              loaded by the requests that enter the datapath), the unit's staged values', the
-//              merge buffer entries' (each request's result written in turn). The lane's tags,
-//              counters and valid bits are clocked but their toggles are not counted.
+//              merge buffer entries' (each request's result written in turn), and the lane's
+//              tags, counters and valid bits (LaneActivity::control_toggles, in the merge
+//              buffer's stage).
 //   clock      flip-flops the stage holds (its inventory's registers, a RAM table's storage) x the
 //              cycles they are clocked x clock_bit: the comparator's and unit's registers on the
 //              cycles clock gating leaves (all with gating none or operand), tables and the merge
@@ -38,6 +39,9 @@ namespace glint {
 
 struct EnergyParts {
   double register_pj = 0, clock_pj = 0, datapath_pj = 0, leakage_pj = 0;
+  // datapath_pj by the kind of its weight (cost/energy.h), and the switching bits each kind's
+  // weight multiplies (summed over the stream: part_switching_bits x its input's toggle fraction).
+  KindArray datapath_kinds{}, switching_bits{};
   double total() const { return register_pj + clock_pj + datapath_pj + leakage_pj; }
   EnergyParts& operator+=(const EnergyParts& o);
 };
@@ -63,7 +67,8 @@ struct LaneEnergy {
 LaneEnergy lane_energy(const UnitCost& cost, const LaneActivity& activity, const EnergyWeights& w);
 
 // The report's "energy" entry (src/eval/sim_report.md): totals and pJ per request, per computed
-// request and, given, per shaded pixel; the parts and stages in pJ per request.
+// request and, given, per shaded pixel; the parts, the datapath's split by kind and the stages in
+// pJ per request.
 nlohmann::json energy_json(const LaneEnergy& e,
                            std::optional<std::uint64_t> shaded_pixels = std::nullopt);
 // Its line in the text reports.

@@ -9,11 +9,11 @@ the library-mapped lane, simulated on the lane's vectors) runs
     glint sim VECTORS --unit SPEC --node osu018 --activity operand --json
 
 (the RTL lane is operand gating), checks glint counts the same requests and computed requests
-(cycles: glint's stream count against the testbench's, which adds the pipeline's drain), takes
-glint's energy per request split into clock, register, datapath and leakage, and fits a factor on
-each of the first three (cost/energy.h's EnergyScale: clock_bit, register_bit, and one factor
-on every datapath kind) by non-negative least squares on the relative error, on the calibration
-lanes only. The reference is internal_averaged + switching + leakage: OpenSTA 2.0.17's own
+and cycles (the lane's schedule: they must be the testbench's), takes glint's energy per request
+split into clock, register, the datapath by kind (datapath_by_kind) and leakage, and fits five
+factors (cost/energy.h's EnergyScale: clock_bit, register_bit, and one factor per group of
+datapath kinds, GROUPS below) by non-negative least squares on the relative error, on the
+calibration lanes only. The reference is internal_averaged + switching + leakage: OpenSTA 2.0.17's own
 `internal` counts the rise and the fall energy on every transition (src/cost/README.md, "Energy",
 says why the averaged one). Prints a table per lane (reference, glint before and after, ratio)
 and the worst ratio on the calibration set and on the hold-out; writes the factors with their
@@ -24,7 +24,7 @@ residuals as a C++ header. glint's parts are divided by the factors the report s
 
 is the normal suite's check (ctest calibration_energy): glint's energy as built, every lane's
 ratio to the reference within 1 +- GUARD; prints PASS: or FAIL: and exits 1 on a failure.
-Pure Python (no numpy): three unknowns.
+Pure Python (no numpy): five unknowns.
 """
 import argparse
 import json
@@ -38,11 +38,20 @@ from node_fit import nnls
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 STORED = os.path.join(ROOT, "tests", "calibration", "power_osu018.json")
-FACTORS = ["clock", "register", "datapath"]
-# The header's fields, per factor (datapath: every datapath kind of EnergyScale alike).
+LIBRARY = os.path.join(ROOT, "src", "cost", "energy_osu018.h")
+FACTORS = ["clock", "register", "arithmetic", "table", "selection"]
+# The datapath's kinds (the report's datapath_by_kind) and EnergyScale's field for each.
+KINDS = {"adder": "adder_bit", "multiplier": "multiplier_bit", "comparator": "comparator_bit",
+         "mux": "mux_bit", "table": "table_bit", "gate": "gate"}
+# The datapath's kinds each factor covers. Five factors on 18 calibration lanes: the lanes cannot
+# separate more. Multipliers and adders are one factor (carry-save arrays of the same full adders,
+# and every lane with many adder bits has many multiplier bits); the comparators, muxes and glue
+# gates another (small, select logic); the tables their own (lut's and pwp's against the rest).
+GROUPS = {"clock": [], "register": [], "arithmetic": ["adder", "multiplier"], "table": ["table"],
+          "selection": ["mux", "comparator", "gate"]}
+# The header's fields, per factor.
 FIELDS = {"clock": ["clock_bit"], "register": ["register_bit"],
-          "datapath": ["adder_bit", "multiplier_bit", "comparator_bit", "mux_bit", "table_bit",
-                       "gate"]}
+          **{k: [KINDS[kind] for kind in kinds] for k, kinds in GROUPS.items() if kinds}}
 
 
 def reference(lane):
@@ -50,9 +59,25 @@ def reference(lane):
     return lane["internal_averaged_pj_per_request"] + e["switching"] + e["leakage"]
 
 
-def applied_factors(energy):
-    """The factors the glint that ran applied (its report's `scale`)."""
-    return {k: energy["scale"][FIELDS[k][0]] for k in FACTORS}
+def library_weights():
+    """The library's per-bit energies as src/cost/energy_weights.py derived them (unscaled)."""
+    text = open(LIBRARY).read()
+    return {field: float(re.search(r"w\.%s = ([0-9.eE+-]+);" % field, text).group(1))
+            for field in KINDS.values()}
+
+
+def unscaled_parts(energy, weights):
+    """glint's parts per request at the library's weights: the clock and registers divided by the
+    factor the glint that ran applied (its report's `scale`), the datapath's switching bits per
+    kind times the library's weight of the kind, summed per factor (a factor fitted to 0 would
+    leave nothing to divide)."""
+    p, scale, bits = energy["per_request"], energy["scale"], energy["switching_bits_by_kind"]
+    raw = {"clock": p["clock"] / scale["clock_bit"],
+           "register": p["register"] / scale["register_bit"], "leakage": p["leakage"]}
+    for k, group in GROUPS.items():
+        if group:
+            raw[k] = sum(bits[kind] * weights[KINDS[kind]] for kind in group)
+    return raw
 
 
 def glint_energy(glint, lane):
@@ -83,7 +108,8 @@ def write_header(path, f, rows, fitted, command):
         "// internal_averaged + switching + leakage) by non-negative least squares on the relative",
         "// error of %d of the %d calibration lanes (a lane whose cycles glint miscounts is left" % (
             fitted, len(cal)),
-        "// out); every datapath kind shares one factor.",
+        "// out). The datapath's kinds in groups of one factor each:",
+        "//   " + "; ".join("%s: %s" % (k, ", ".join(GROUPS[k])) for k in FACTORS if GROUPS[k]),
         "// Residuals, glint / reference after the fit: calibration %.3f-%.3f, hold-out (%d lanes,"
         % (min(cal), max(cal), len(hold)),
         "// fitted on nothing) %.3f-%.3f. Per lane: src/cost/README.md, \"Energy\"; tests/bench/"
@@ -119,6 +145,7 @@ def main():
     args = ap.parse_args()
 
     stored = json.load(open(args.stored))
+    weights = library_weights()
     rows, mismatches = [], []
     for lane in stored["lanes"]:
         e = glint_energy(args.glint, lane)
@@ -127,12 +154,10 @@ def main():
                 mismatches.append("%s %s: %s glint %d, reference %d"
                                   % (lane["spec"], lane["input"], key, e[key], lane[key]))
         p = e["per_request"]
-        built = applied_factors(e)
-        raw = {k: p[k] / built[k] for k in FACTORS}
-        raw["leakage"] = p["leakage"]
+        built = {k: e["scale"][FIELDS[k][0]] for k in FACTORS}
         row = {"spec": lane["spec"], "vectors": os.path.basename(lane["input"].split()[-1]),
-                     "set": lane["set"], "ref": reference(lane), "raw": raw,
-                     "built": p["total"], "cycles": (e["cycles"], lane["cycles"])}
+               "set": lane["set"], "ref": reference(lane), "raw": unscaled_parts(e, weights),
+               "built": p["total"], "cycles": (e["cycles"], lane["cycles"])}
         if off_cycles(row):
             mismatches.append("%s %s: cycles glint %d, reference %d (left out of the fit)"
                               % (lane["spec"], lane["input"], e["cycles"], lane["cycles"]))
