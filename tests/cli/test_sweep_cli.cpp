@@ -646,4 +646,62 @@ TEST_F(SweepCli, NodeColumnsStateSimsLaneAtTheNode) {
       << node.out;
 }
 
+// size --node: the tables state the chosen lanes' area in GE and um2 and their clock, the JSON the
+// lane at the node of each choice; --objective area_um2 picks the least area at the node among the
+// configurations meeting the budget (a brute force over sweep --node's rows); it needs --node.
+TEST_F(SweepCli, SizeAtANodeStatesTheLaneAndMinimisesItsArea) {
+  const std::string vec = quote(kTraces + "/phong_basic.vec");
+  const std::string grids = " --grid 'lut:bits=4..7' --grid 'hast:d=2..3' ";
+  const std::string args = "size --no-widen --chip rom --budget 'max_lsb8<=2'" + grids + vec;
+  const json sweep = glint_json("sweep " + vec + grids + "--node osu018 --json");
+  std::optional<std::size_t> least;
+  for (std::size_t i = 0; i < sweep.at("results").size(); ++i) {
+    const json& row = sweep["results"][i];
+    if (row["errors"]["max_abs"].get<double>() * 255 > 2) continue;
+    const double um2 = row["node"]["area_um2"].get<double>();
+    if (!least || um2 < sweep["results"][*least]["node"]["area_um2"].get<double>()) least = i;
+  }
+  ASSERT_TRUE(least) << "the test wants a configuration meeting the budget";
+  const json doc = glint_json(args + " --node osu018 --objective area_um2 --top 3 --json");
+  EXPECT_EQ(doc.at("objective"), "area_um2");
+  const json& best = doc.at("best");
+  ASSERT_TRUE(best.is_object());
+  EXPECT_EQ(best.at("index"), *least);
+  EXPECT_EQ(best.at("value"), sweep["results"][*least]["node"]["area_um2"]);
+  for (const json& c : doc.at("top")) {
+    EXPECT_GE(c.at("value").get<double>(), best.at("value").get<double>());
+    EXPECT_EQ(c.at("value"), c.at("node").at("area_um2"));
+  }
+  const json sim = glint_json("sim " + vec + " --unit " +
+                              quote(best.at("spec").get<std::string>()) + " --node osu018 --json");
+  for (const char* k : {"area_um2", "critical_path_ns", "max_clock_mhz"})
+    EXPECT_EQ(best.at("node").at(k), sim.at("units")[0].at("node").at(k)) << k;
+
+  // The text (objective area_ge): area_um2 and max_clock_mhz beside it, in the family table and
+  // on the overall line, as the JSON states them.
+  const CliRun text = glint(args + " --node osu018");
+  ASSERT_EQ(text.status, 0) << text.err;
+  EXPECT_NE(text.out.find("family          area_ge       area_um2  max_clock_mhz"),
+            std::string::npos)
+      << text.out;
+  const json area = glint_json(args + " --node osu018 --json");
+  std::smatch m;
+  const std::regex overall(
+      R"(cheapest overall \(area_ge \S+; area_um2 (\S+), max_clock_mhz (\S+);)");
+  ASSERT_TRUE(std::regex_search(text.out, m, overall)) << text.out;
+  const json& node = area.at("best").at("node");
+  EXPECT_NEAR(std::stod(m[1]), node.at("area_um2").get<double>(),
+              1e-5 * node.at("area_um2").get<double>());
+  EXPECT_NEAR(std::stod(m[2]), node.at("max_clock_mhz").get<double>(), 0.05);
+  // Without --node: neither column.
+  const CliRun plain = glint(args);
+  ASSERT_EQ(plain.status, 0) << plain.err;
+  EXPECT_EQ(plain.out.find("area_um2"), std::string::npos) << plain.out;
+  EXPECT_EQ(plain.out.find("max_clock_mhz"), std::string::npos) << plain.out;
+  const CliRun refused = glint(args + " --objective area_um2");
+  EXPECT_EQ(refused.status, 2) << refused.err;
+  EXPECT_NE(refused.err.find("--objective area_um2"), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("--node"), std::string::npos) << refused.err;
+}
+
 }  // namespace
