@@ -68,11 +68,15 @@ int run_size_command(const SizeOptions& o) {
     throw std::invalid_argument(
         "--widen-rounds and --widen-configurations bound the widening: --no-widen has none");
   const SizeObjective objective = parse_size_objective(o.objective);
-  // The energy is priced at a node: without one there is nothing to minimise.
+  // The energy and the area in um2 are priced at a node: without one there is nothing to minimise.
   if (objective == SizeObjective::kEnergy && o.node.empty())
     throw std::invalid_argument(
         "--objective energy minimises the energy per request at a node: it needs --node (e.g. "
         "--node osu018)");
+  if (objective == SizeObjective::kAreaUm2 && o.node.empty())
+    throw std::invalid_argument(
+        "--objective area_um2 minimises the lane's area at a node: it needs --node (e.g. --node "
+        "osu018)");
   // Image-level measures only when every input is a scene rendered with them.
   const bool image = !o.no_image && o.vectors.empty();
   const std::vector<Budget> budgets = parse_budgets(o.budget, image);
@@ -167,7 +171,8 @@ void add_size_command(CLI::App& app, int& status) {
       ->required();
   sub->add_option("--objective", o->objective,
                   "area | throughput | area*latency | energy (pJ per request at --node, gating "
-                  "operand; or the measure: area_ge, area_latency, energy_pj_per_request)")
+                  "operand; or the measure: area_ge, area_latency, energy_pj_per_request) | "
+                  "area_um2 (the lane's area at --node)")
       ->capture_default_str();
   sub->add_option("--grid", o->grids,
                   "Grids to choose from (as glint sweep; repeatable); default: a grid per unit "

@@ -35,6 +35,10 @@ std::vector<SweepColumn> build_columns() {
       {"latency_mean", "/latency_cycles/mean", K::kNumber},
       {"latency_max", "/latency_cycles/max", K::kInteger},
       {"stall_cycles", "/stall_cycles", K::kInteger},
+      // The lane at the node (engine.cpp copies them from UnitCost::node_json).
+      {"area_um2", "/node/area_um2", K::kNumber, false, true},
+      {"critical_path_ns", "/node/critical_path_ns", K::kNumber, false, true},
+      {"max_clock_mhz", "/node/max_clock_mhz", K::kNumber, false, true},
       {"energy_pj_per_request", "/energy_pj_per_request", K::kNumber, false, true},
   };
   for (const std::string& k : operation_kinds()) {

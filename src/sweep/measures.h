@@ -22,7 +22,7 @@ struct SweepColumn {
   std::string pointer;  // JSON pointer into a report row
   ColumnKind kind = ColumnKind::kNumber;
   bool scene_only = false;  // image-level columns: only when the input is a scene
-  bool node_only = false;   // the energy's: only in a report of a sweep with --node
+  bool node_only = false;   // the node's and the energy's: only in a sweep with --node
 };
 
 // Every column in CSV order (the image-level ones among them, flagged scene_only).

@@ -130,14 +130,31 @@ std::string format_sweep_summary(const nlohmann::json& report) {
       find_measure(report.at("error_measure").get<std::string>(), input.at("kind") == "scene");
   const bool bound = measure && is_bound_measure(*measure);
   bool estimates = false;
+  // With --node every front also states the lane at the node, in its CSV columns' names.
+  const bool node = report_has_node(report);
+  const auto node_headings = [&] {
+    return node ? fmt::format(" {:>10} {:>16} {:>13}", "area_um2", "critical_path_ns",
+                              "max_clock_mhz")
+                : std::string();
+  };
+  const auto node_cells = [&](const nlohmann::json& r) {
+    if (!node) return std::string();
+    const auto at = [&](const char* pointer) {
+      const nlohmann::json::json_pointer p(pointer);
+      return r.contains(p) ? r.at(p) : nlohmann::json();
+    };
+    return fmt::format(" {:>10} {:>16} {:>13}", cell(at("/node/area_um2"), "{:.0f}"),
+                       cell(at("/node/critical_path_ns"), "{:.3f}"),
+                       cell(at("/node/max_clock_mhz"), "{:.1f}"));
+  };
   for (const Objective& o : report_objectives(report)) {
     // The energy's front states the energy beside the other measures.
     const bool energy = std::string(o.key) == kEnergyObjective.key;
     out += fmt::format("Pareto front, error vs {} ({}):\n", o.name,
                        o.minimise ? "both minimised" : "error minimised, throughput maximised");
     // Headed by the measures' names (measures.h).
-    out += fmt::format("  {:>5} {:>11} {:>10} {:>10} {:>12} {:>7}{}  {}\n", "index", "error",
-                       "area_ge", "throughput", "area_latency", "latency",
+    out += fmt::format("  {:>5} {:>11} {:>10} {:>10} {:>12} {:>7}{}{}  {}\n", "index", "error",
+                       "area_ge", "throughput", "area_latency", "latency", node_headings(),
                        energy ? fmt::format(" {:>21}", kEnergyObjective.key) : "", "spec");
     // The front from the cheapest (or fastest) configuration to the most accurate.
     std::vector<const nlohmann::json*> front;
@@ -155,13 +172,13 @@ std::string format_sweep_summary(const nlohmann::json& report) {
       const nlohmann::json& r = *front[i];
       const bool estimate = bound && !r.at("error").is_null() && !row_bounds_exact(r);
       estimates = estimates || estimate;
-      out += fmt::format("  {:>5} {:>11} {:>10} {:>10} {:>12} {:>7}{}  {}\n",
-                         r.at("index").get<std::size_t>(),
-                         (estimate ? "~" : "") + cell(r.at("error"), "{:.4g}"),
-                         cell(r.at("area_ge"), "{:.0f}"), cell(r.at("throughput"), "{:.4f}"),
-                         cell(r.at("area_latency"), "{:.0f}"), r.at("latency").get<int>(),
-                         energy ? fmt::format(" {:>21}", cell(r.at(o.key), "{:.2f}")) : "",
-                         r.at("spec").get<std::string>());
+      out += fmt::format(
+          "  {:>5} {:>11} {:>10} {:>10} {:>12} {:>7}{}{}  {}\n", r.at("index").get<std::size_t>(),
+          (estimate ? "~" : "") + cell(r.at("error"), "{:.4g}"), cell(r.at("area_ge"), "{:.0f}"),
+          cell(r.at("throughput"), "{:.4f}"), cell(r.at("area_latency"), "{:.0f}"),
+          r.at("latency").get<int>(), node_cells(r),
+          energy ? fmt::format(" {:>21}", cell(r.at(o.key), "{:.2f}")) : "",
+          r.at("spec").get<std::string>());
       std::size_t j = i + 1;
       while (j < front.size() && front[j]->at("error") == r.at("error") &&
              front[j]->at(o.key) == r.at(o.key))

@@ -53,6 +53,13 @@ std::vector<Objective> report_objectives(const nlohmann::json& report) {
   return out;
 }
 
+bool report_has_node(const nlohmann::json& report) {
+  const nlohmann::json& rows = report.at("results");
+  return std::any_of(rows.begin(), rows.end(), [](const nlohmann::json& r) {
+    return r.contains("node") || r.contains(kEnergyObjective.key);
+  });
+}
+
 void mark_pareto(nlohmann::json& report) {
   nlohmann::json& rows = report.at("results");
   const MeasureRef m = measure_or_throw(report.at("error_measure").get<std::string>(),
@@ -82,10 +89,10 @@ std::string report_json_text(const nlohmann::json& report) {
 
 std::string report_csv_text(const nlohmann::json& report) {
   const bool scene = is_scene(report);
-  const bool energy = report_objectives(report).size() > std::size(kObjectives);
+  const bool node = report_has_node(report);
   std::vector<const SweepColumn*> cols;
   for (const SweepColumn& c : sweep_columns())
-    if ((scene || !c.scene_only) && (energy || !c.node_only)) cols.push_back(&c);
+    if ((scene || !c.scene_only) && (node || !c.node_only)) cols.push_back(&c);
   std::string out;
   for (std::size_t k = 0; k < cols.size(); ++k) out += (k ? "," : "") + csv_text(cols[k]->name);
   out += "\n";
@@ -172,10 +179,9 @@ nlohmann::json parse_sweep_report(const std::string& text, const std::string& pa
     if (!row.contains("refused") || !(row["refused"].is_null() || row["refused"].is_string()))
       throw InputError(path, 0, where + "/refused", "not null or the reason");
     // A refused configuration has no measures. Any other row has every column glint writes but
-    // the image-level ones (absent with --no-image), the energy's (only with --node) and those
-    // merge recomputes (error, pareto),
-    // each of its column's type or null (a measure with no value), and an integer latency (the
-    // summary prints it).
+    // the image-level ones (absent with --no-image), the node's and the energy's (only with
+    // --node) and those merge recomputes (error, pareto), each of its column's type or null (a
+    // measure with no value), and an integer latency (the summary prints it).
     const bool refused = row["refused"].is_string();
     if (!refused) field("latency", &nlohmann::json::is_number_integer, "not a cycle count");
     for (const SweepColumn& c : sweep_columns()) {

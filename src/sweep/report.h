@@ -29,6 +29,10 @@ inline constexpr Objective kEnergyObjective = {"energy", "energy_pj_per_request"
 // The objectives of a report: kObjectives, and the energy when its rows state it.
 std::vector<Objective> report_objectives(const nlohmann::json& report);
 
+// Whether a report's rows state the lane at a node (a sweep with --node; "node" in a row): its
+// CSV, tables and pages then have the node_only columns (measures.h).
+bool report_has_node(const nlohmann::json& report);
+
 // Sets each row's "error" (the report's error_measure; null when the row has none) and its
 // "pareto" flags, over all of the report's rows.
 void mark_pareto(nlohmann::json& report);

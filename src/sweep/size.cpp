@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 #include <stdexcept>
 
 #include "sweep/report.h"
@@ -20,9 +21,10 @@ SizeObjective parse_size_objective(const std::string& text) {
   if (text == "throughput") return SizeObjective::kThroughput;
   if (text == "area*latency" || text == "area_latency") return SizeObjective::kAreaLatency;
   if (text == "energy" || text == "energy_pj_per_request") return SizeObjective::kEnergy;
+  if (text == "area_um2") return SizeObjective::kAreaUm2;
   throw std::invalid_argument(fmt::format(
-      "--objective '{}': expected area, throughput, area*latency or energy (or the measure: "
-      "area_ge, throughput, area_latency, energy_pj_per_request)",
+      "--objective '{}': expected area, throughput, area*latency, energy or area_um2 (or the "
+      "measure: area_ge, throughput, area_latency, energy_pj_per_request)",
       text));
 }
 
@@ -36,6 +38,8 @@ const char* objective_measure(SizeObjective o) {
       return "area_latency";
     case SizeObjective::kEnergy:
       return "energy_pj_per_request";
+    case SizeObjective::kAreaUm2:
+      return "area_um2";
   }
   return "?";
 }
@@ -50,6 +54,8 @@ const char* to_string(SizeObjective o) {
       return "area*latency";
     case SizeObjective::kEnergy:
       return "energy";
+    case SizeObjective::kAreaUm2:
+      return "area_um2";
   }
   return "?";
 }
@@ -70,9 +76,14 @@ const std::vector<std::string>& default_size_grids() {
 
 namespace {
 
-double objective_of(const nlohmann::json& row, SizeObjective o) {
-  const auto v = row.find(objective_measure(o));  // a refused configuration has none
-  return v != row.end() && v->is_number() ? v->get<double>() : NAN;
+// The objective's measure, found as a budget's is: area_um2 sits in the row's "node".
+MeasureRef objective_ref(SizeObjective o) {
+  return measure_or_throw(objective_measure(o), false, "--objective");
+}
+
+double objective_of(const nlohmann::json& row, const MeasureRef& m) {
+  const std::optional<double> v = measure_value(row, m);  // a refused configuration has none
+  return v ? *v : NAN;
 }
 
 // Smaller is cheaper: throughput is negated.
@@ -130,13 +141,14 @@ SizePick pick_cheapest(const std::vector<nlohmann::json>& reports,
   const std::size_t n = reports.front().at("results").size();
   pick.value.assign(n, NAN);
   pick.meets.assign(n, true);
+  const MeasureRef measure = objective_ref(objective);
   for (const nlohmann::json& r : reports) {
     const nlohmann::json& rows = r.at("results");
     if (rows.size() != n) throw std::invalid_argument("size: the inputs' sweeps differ in size");
     for (std::size_t i = 0; i < n; ++i) {
       for (const Budget& b : budgets) pick.meets[i] = pick.meets[i] && meets(rows[i], b);
       // The worst over the inputs.
-      const double v = objective_of(rows[i], objective);
+      const double v = objective_of(rows[i], measure);
       if (std::isnan(pick.value[i]) || cost_of(v, objective) > cost_of(pick.value[i], objective))
         pick.value[i] = v;
     }
@@ -348,6 +360,63 @@ std::string format_search(const nlohmann::json& d) {
   return out;
 }
 
+// With --node (the choices state the lane at it): the lane's area in GE and um2 and its clock
+// beside the objective's value, each the worst over the inputs as the value is, headed by its
+// measure's name; the objective's own measure is not repeated.
+struct NodeColumn {
+  const char* measure;
+  bool larger_worse;  // an area; else a clock (printed to 0.1 MHz)
+};
+constexpr NodeColumn kNodeColumns[] = {
+    {"area_ge", true}, {"area_um2", true}, {"max_clock_mhz", false}};
+
+std::vector<const NodeColumn*> node_columns(const nlohmann::json& d, const std::string& measure) {
+  std::vector<const NodeColumn*> out;
+  const nlohmann::json& best = d.at("best");
+  const nlohmann::json& top = d.at("top");
+  const bool node = (!best.is_null() && best.contains("node")) ||
+                    (!top.empty() && top[0].contains("node")) ||
+                    std::any_of(d.at("families").begin(), d.at("families").end(),
+                                [](const nlohmann::json& f) { return f.contains("node"); });
+  if (!node) return out;
+  for (const NodeColumn& c : kNodeColumns)
+    if (measure != c.measure) out.push_back(&c);
+  return out;
+}
+
+std::string node_headings(const std::vector<const NodeColumn*>& cols) {
+  std::string out;
+  for (const NodeColumn* c : cols) out += fmt::format(" {:>14}", c->measure);
+  return out;
+}
+
+// The worst value over the inputs of each column for a choice ("-" for none).
+std::vector<std::string> node_values(const SizeRun& run, const std::vector<const NodeColumn*>& cols,
+                                     const nlohmann::json& choice) {
+  std::vector<std::string> out;
+  for (const NodeColumn* c : cols) {
+    const MeasureRef m = measure_or_throw(c->measure, false, "size");
+    std::optional<double> worst;
+    if (choice.contains("index"))
+      for (const nlohmann::json& r : run.reports) {
+        const std::optional<double> v =
+            measure_value(r.at("results").at(choice.at("index").get<std::size_t>()), m);
+        if (v && (!worst || (c->larger_worse ? *v > *worst : *v < *worst))) worst = v;
+      }
+    out.push_back(!worst            ? std::string("-")
+                  : c->larger_worse ? fmt::format("{:.6g}", *worst)
+                                    : fmt::format("{:.1f}", *worst));
+  }
+  return out;
+}
+
+std::string node_cells(const SizeRun& run, const std::vector<const NodeColumn*>& cols,
+                       const nlohmann::json& choice) {
+  std::string out;
+  for (const std::string& v : node_values(run, cols, choice)) out += fmt::format(" {:>14}", v);
+  return out;
+}
+
 }  // namespace
 
 std::string format_size(const SizeRun& run) {
@@ -364,32 +433,42 @@ std::string format_size(const SizeRun& run) {
       fmt::join(conditions, ","), fmt::join(paths, ", "), objective,
       paths.size() > 1 ? " (worst over the inputs)" : "", d.at("configurations").get<std::size_t>(),
       d.at("meeting").get<std::size_t>());
-  out += fmt::format("{:<8} {:>14}  {}\n", "family", measure, "cheapest spec meeting the budget");
+  const std::vector<const NodeColumn*> cols = node_columns(d, measure);
+  out += fmt::format("{:<8} {:>14}{}  {}\n", "family", measure, node_headings(cols),
+                     "cheapest spec meeting the budget");
   std::string why;
   for (const nlohmann::json& f : d.at("families")) {
     const std::string unit = f.at("unit").get<std::string>();
     if (f.at("spec").is_null()) {
-      out += fmt::format("{:<8} {:>14}  (none meets the budget)\n", unit, "-");
+      out += fmt::format("{:<8} {:>14}{}  (none meets the budget)\n", unit, "-",
+                         node_cells(run, cols, f));
       why +=
           fmt::format("why no {} configuration meets the budget:\n", unit) + format_explanation(f);
     } else {
-      out += fmt::format("{:<8} {:>14.6g}  {}\n", unit, f.at("value").get<double>(),
-                         f.at("spec").get<std::string>());
+      out += fmt::format("{:<8} {:>14.6g}{}  {}\n", unit, f.at("value").get<double>(),
+                         node_cells(run, cols, f), f.at("spec").get<std::string>());
     }
   }
   out += why;
   out += format_search(d);
   const nlohmann::json& top = d.at("top");
   if (top.size() > 1) {
-    out += fmt::format("the {} cheapest meeting the budget ({}):\n", top.size(), measure);
+    std::string heading = measure;
+    for (const NodeColumn* c : cols) heading += fmt::format(", {}", c->measure);
+    out += fmt::format("the {} cheapest meeting the budget ({}):\n", top.size(), heading);
     for (const nlohmann::json& c : top)
-      out += fmt::format("  {:>14.6g}  {}\n", c.at("value").get<double>(),
-                         c.at("spec").get<std::string>());
+      out += fmt::format("  {:>14.6g}{}  {}\n", c.at("value").get<double>(),
+                         node_cells(run, cols, c), c.at("spec").get<std::string>());
   }
   if (d.at("best").is_null()) return out + "no configuration meets the budget\n";
   const nlohmann::json& b = d.at("best");
-  return out + fmt::format("cheapest overall ({} {:.6g}; canonical {}):\n{}\n", measure,
-                           b.at("value").get<double>(), b.at("canonical_spec").get<std::string>(),
+  std::string figures;
+  const std::vector<std::string> values = node_values(run, cols, b);
+  for (std::size_t k = 0; k < cols.size(); ++k)
+    figures += fmt::format("{} {} {}", k ? "," : ";", cols[k]->measure, values[k]);
+  return out + fmt::format("cheapest overall ({} {:.6g}{}; canonical {}):\n{}\n", measure,
+                           b.at("value").get<double>(), figures,
+                           b.at("canonical_spec").get<std::string>(),
                            b.at("spec").get<std::string>());
 }
 

@@ -18,13 +18,14 @@ namespace glint {
 // What "cheapest" means. A configuration's value over several inputs is its worst: the largest
 // area (a chip that serves every input holds every input's slots), the least throughput, the
 // largest area x latency.
-enum class SizeObjective { kArea, kThroughput, kAreaLatency, kEnergy };
-// "area", "throughput" or "area*latency" (or the measure's name, objective_measure); throws
-// std::invalid_argument naming --objective.
+// kAreaUm2 and kEnergy need a sweep at a node (--node): rows without one have no value.
+enum class SizeObjective { kArea, kThroughput, kAreaLatency, kEnergy, kAreaUm2 };
+// "area", "throughput", "area*latency", "energy" (or the measure's name, objective_measure) or
+// "area_um2"; throws std::invalid_argument naming --objective.
 SizeObjective parse_size_objective(const std::string& text);
 const char* to_string(SizeObjective o);
 // The measure an objective minimises (maximises, for throughput): "area_ge", "throughput",
-// "area_latency".
+// "area_latency", "energy_pj_per_request", "area_um2" (measures.h).
 const char* objective_measure(SizeObjective o);
 
 // The grids `glint size` sweeps without --grid: a few per unit family (src/cli/guide/size.md lists

@@ -32,10 +32,10 @@ HtmlTable configurations(const std::string& id, const nlohmann::json& report, Ke
   HtmlTable t;
   t.id = id;
   const bool scene = report.at("input").at("kind") == "scene";
-  const bool energy = report_objectives(report).size() > std::size(kObjectives);
+  const bool node = report_has_node(report);
   std::vector<const SweepColumn*> cols;
   for (const SweepColumn& c : sweep_columns())
-    if ((scene || !c.scene_only) && (energy || !c.node_only)) cols.push_back(&c);
+    if ((scene || !c.scene_only) && (node || !c.node_only)) cols.push_back(&c);
   t.headings.push_back("error");
   for (const SweepColumn* c : cols) t.headings.push_back(c->name);
   for (const nlohmann::json& row : report.at("results")) {

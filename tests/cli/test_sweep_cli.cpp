@@ -555,4 +555,153 @@ TEST_F(SweepCli, SceneEqualsRenderAndEvalOnItsRequests) {
   for (const json& row : no_image["results"]) EXPECT_FALSE(row.contains("image"));
 }
 
+// A CSV as the sweep writes it (RFC 4180: a cell with a comma or a quote is quoted): its lines'
+// cells.
+std::vector<std::vector<std::string>> read_csv(const std::string& text) {
+  std::vector<std::vector<std::string>> rows(1);
+  std::string cell;
+  bool quoted = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (quoted && c == '"' && i + 1 < text.size() && text[i + 1] == '"') {
+      cell += '"';
+      ++i;
+    } else if (c == '"') {
+      quoted = !quoted;
+    } else if (!quoted && (c == ',' || c == '\n')) {
+      rows.back().push_back(cell);
+      cell.clear();
+      if (c == '\n') rows.emplace_back();
+    } else {
+      cell += c;
+    }
+  }
+  rows.pop_back();  // after the last newline
+  return rows;
+}
+
+std::size_t column_of(const std::vector<std::string>& header, const std::string& name) {
+  return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
+}
+
+const std::vector<std::string> kNodeColumns = {"area_um2", "critical_path_ns", "max_clock_mhz"};
+
+// sweep --node: the CSV and every front's table state each lane's area, critical path and clock at
+// the node, sim --node's figures for the same spec; without --node the CSV and the tables are
+// those of the same sweep with the node's columns left out.
+TEST_F(SweepCli, NodeColumnsStateSimsLaneAtTheNode) {
+  const std::string vec = quote(kTraces + "/phong_basic.vec");
+  const std::string args = "sweep " + vec + " --grid 'lut:bits=4..6' --grid 'hast:d=2..3'";
+  const CliRun node = glint(args + " --node osu018 --csv node.csv");
+  ASSERT_EQ(node.status, 0) << node.err;
+  const CliRun plain = glint(args + " --csv plain.csv");
+  ASSERT_EQ(plain.status, 0) << plain.err;
+  const auto with = read_csv(read_text(file("node.csv")));
+  const auto without = read_csv(read_text(file("plain.csv")));
+  ASSERT_EQ(with.size(), 6u);  // the header and 5 configurations
+  ASSERT_EQ(without.size(), with.size());
+  const std::vector<std::string>& header = with[0];
+  std::string units;
+  for (std::size_t i = 1; i < with.size(); ++i)
+    units += " --unit " + quote(with[i][column_of(header, "spec")]);
+  const json sim = glint_json("sim " + vec + units + " --node osu018 --json");
+  ASSERT_EQ(sim.at("units").size(), with.size() - 1);
+  for (const std::string& c : kNodeColumns) {
+    ASSERT_LT(column_of(header, c), header.size()) << c;
+    EXPECT_EQ(column_of(without[0], c), without[0].size()) << c;
+    for (std::size_t i = 1; i < with.size(); ++i) {
+      const double v = std::stod(with[i][column_of(header, c)]);
+      EXPECT_GT(v, 0) << c;
+      // The CSV's number reads back as the double sim's JSON holds.
+      EXPECT_EQ(v, sim["units"][i - 1].at("node").at(c).get<double>()) << c << " " << i;
+    }
+  }
+  // Without --node: every other column, cell for cell.
+  std::vector<std::string> kept;
+  for (const std::string& c : header)
+    if (std::find(kNodeColumns.begin(), kNodeColumns.end(), c) == kNodeColumns.end() &&
+        c != "energy_pj_per_request" && c != "pareto_energy")
+      kept.push_back(c);
+  EXPECT_EQ(without[0], kept);
+  for (std::size_t i = 1; i < with.size(); ++i)
+    for (const std::string& c : kept)
+      EXPECT_EQ(without[i][column_of(without[0], c)], with[i][column_of(header, c)]) << c;
+  // The tables: each front's heading names the columns, and the area front's first line states
+  // its configuration's area at the node; without --node they are absent.
+  const std::string heading = "   area_um2 critical_path_ns max_clock_mhz";
+  std::size_t headings = 0;
+  for (std::size_t at = node.out.find(heading); at != std::string::npos;
+       at = node.out.find(heading, at + 1))
+    ++headings;
+  EXPECT_EQ(headings, 4u) << node.out;  // area, throughput, area_latency, energy
+  EXPECT_EQ(plain.out.find("area_um2"), std::string::npos) << plain.out;
+  EXPECT_EQ(plain.out.find("max_clock_mhz"), std::string::npos) << plain.out;
+  const std::size_t first = node.out.find('\n', node.out.find(heading)) + 1;
+  std::istringstream line(node.out.substr(first, node.out.find('\n', first) - first));
+  std::size_t index = 0;
+  std::string skip, area;
+  line >> index >> skip >> skip >> skip >> skip >> skip >> area;
+  ASSERT_LT(index + 1, with.size());
+  EXPECT_EQ(std::stod(area), std::round(std::stod(with[index + 1][column_of(header, "area_um2")])))
+      << node.out;
+}
+
+// size --node: the tables state the chosen lanes' area in GE and um2 and their clock, the JSON the
+// lane at the node of each choice; --objective area_um2 picks the least area at the node among the
+// configurations meeting the budget (a brute force over sweep --node's rows); it needs --node.
+TEST_F(SweepCli, SizeAtANodeStatesTheLaneAndMinimisesItsArea) {
+  const std::string vec = quote(kTraces + "/phong_basic.vec");
+  const std::string grids = " --grid 'lut:bits=4..7' --grid 'hast:d=2..3' ";
+  const std::string args = "size --no-widen --chip rom --budget 'max_lsb8<=2'" + grids + vec;
+  const json sweep = glint_json("sweep " + vec + grids + "--node osu018 --json");
+  std::optional<std::size_t> least;
+  for (std::size_t i = 0; i < sweep.at("results").size(); ++i) {
+    const json& row = sweep["results"][i];
+    if (row["errors"]["max_abs"].get<double>() * 255 > 2) continue;
+    const double um2 = row["node"]["area_um2"].get<double>();
+    if (!least || um2 < sweep["results"][*least]["node"]["area_um2"].get<double>()) least = i;
+  }
+  ASSERT_TRUE(least) << "the test wants a configuration meeting the budget";
+  const json doc = glint_json(args + " --node osu018 --objective area_um2 --top 3 --json");
+  EXPECT_EQ(doc.at("objective"), "area_um2");
+  const json& best = doc.at("best");
+  ASSERT_TRUE(best.is_object());
+  EXPECT_EQ(best.at("index"), *least);
+  EXPECT_EQ(best.at("value"), sweep["results"][*least]["node"]["area_um2"]);
+  for (const json& c : doc.at("top")) {
+    EXPECT_GE(c.at("value").get<double>(), best.at("value").get<double>());
+    EXPECT_EQ(c.at("value"), c.at("node").at("area_um2"));
+  }
+  const json sim = glint_json("sim " + vec + " --unit " +
+                              quote(best.at("spec").get<std::string>()) + " --node osu018 --json");
+  for (const char* k : {"area_um2", "critical_path_ns", "max_clock_mhz"})
+    EXPECT_EQ(best.at("node").at(k), sim.at("units")[0].at("node").at(k)) << k;
+
+  // The text (objective area_ge): area_um2 and max_clock_mhz beside it, in the family table and
+  // on the overall line, as the JSON states them.
+  const CliRun text = glint(args + " --node osu018");
+  ASSERT_EQ(text.status, 0) << text.err;
+  EXPECT_NE(text.out.find("family          area_ge       area_um2  max_clock_mhz"),
+            std::string::npos)
+      << text.out;
+  const json area = glint_json(args + " --node osu018 --json");
+  std::smatch m;
+  const std::regex overall(
+      R"(cheapest overall \(area_ge \S+; area_um2 (\S+), max_clock_mhz (\S+);)");
+  ASSERT_TRUE(std::regex_search(text.out, m, overall)) << text.out;
+  const json& node = area.at("best").at("node");
+  EXPECT_NEAR(std::stod(m[1]), node.at("area_um2").get<double>(),
+              1e-5 * node.at("area_um2").get<double>());
+  EXPECT_NEAR(std::stod(m[2]), node.at("max_clock_mhz").get<double>(), 0.05);
+  // Without --node: neither column.
+  const CliRun plain = glint(args);
+  ASSERT_EQ(plain.status, 0) << plain.err;
+  EXPECT_EQ(plain.out.find("area_um2"), std::string::npos) << plain.out;
+  EXPECT_EQ(plain.out.find("max_clock_mhz"), std::string::npos) << plain.out;
+  const CliRun refused = glint(args + " --objective area_um2");
+  EXPECT_EQ(refused.status, 2) << refused.err;
+  EXPECT_NE(refused.err.find("--objective area_um2"), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("--node"), std::string::npos) << refused.err;
+}
+
 }  // namespace

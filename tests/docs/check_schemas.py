@@ -42,7 +42,8 @@ SYNTH_DOC = "src/cli/synth_report.md"
 OSU018 = "/usr/share/qflow/tech/osu018/osu018_stdcells.lib"
 
 # The sweep CSV's columns written only with --node.
-NODE_COLUMNS = {"energy_pj_per_request", "pareto_energy"}
+NODE_COLUMNS = {"area_um2", "critical_path_ns", "max_clock_mhz", "energy_pj_per_request",
+                "pareto_energy"}
 
 BASE_TYPES = {"string", "integer", "number", "boolean", "null", "object", "array"}
 
