@@ -52,7 +52,7 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, HERE)
-from node_flow import OSU018, map_commands  # noqa: E402  (the library `--liberty osu018` names)
+from node_flow import OSU018, map_commands, read_stat  # noqa: E402  (the library `--liberty osu018` names)
 
 CELLS_V = os.path.join(os.path.dirname(OSU018), "osu018_stdcells.v")
 PERIOD_NS = 10.0  # glint rtl's default clock (src/hdl/sdc.h), which the SDC states
@@ -113,7 +113,6 @@ def map_lane(rtl, unit, lib, work, timeout):
         f"read_liberty -lib {lib}\n"
         f"read_verilog {rtl}/{top}.v\nread_verilog {rtl}/glint_{unit}_datapath.v\n"
         f"synth -flatten -top {top}\n{map_commands(lib, work)}"
-        f"opt_clean -purge\ntee -q -o {work}/stat.txt stat -liberty {lib}\n"
         # As glint synth writes it for OpenSTA; then every name but the ports' made short
         # (Icarus' VCD and OpenSTA then name the nets and instances as the JSON does).
         f"setundef -zero\nopt_clean\nrename -hide w:* c:*\nrename -enumerate\n"
@@ -121,9 +120,7 @@ def map_lane(rtl, unit, lib, work, timeout):
         f"write_json {work}/netlist.json\n")
     t0 = time.monotonic()
     run(["yosys", "-q", "-l", os.path.join(work, "yosys.log"), "-s", script], timeout=timeout)
-    stat = open(os.path.join(work, "stat.txt")).read()
-    area = float(re.search(r"Chip area for (?:top )?module '[^']*':\s+([0-9.eE+-]+)", stat).group(1))
-    cells = int(re.search(r"Number of cells:\s+([0-9]+)", stat).group(1))
+    area, cells, _ = read_stat(work)
     return {"area_um2": area, "cells": cells, "yosys_seconds": round(time.monotonic() - t0, 1)}
 
 

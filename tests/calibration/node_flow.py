@@ -44,7 +44,8 @@ def buffer_cell(lib_text):
 
 def map_commands(lib, work, period_ns=10.0):
     """The Yosys commands that map a flattened design onto `lib` as glint synth does
-    (src/cli/cmd_synth.cpp, yosys_script): flip-flops by dfflibmap, logic by abc with the clock
+    (src/cli/cmd_synth.cpp, yosys_script), then its statistics into work/stat.txt (read_stat):
+    flip-flops by dfflibmap, logic by abc with the clock
     period as its delay target and, where the library has a buffer, abc's buffering and gate
     sizing (-constr: the buffer drives the inputs, outputs unloaded as in the lane's SDC).
     Without it abc leaves a register driving a hundred loads unbuffered, a path no real flow
@@ -55,7 +56,16 @@ def map_commands(lib, work, period_ns=10.0):
         constr = os.path.join(work, "abc.constr")
         open(constr, "w").write(f"set_driving_cell {buf}\nset_load 0\n")
         abc = f"abc -D {round(period_ns * 1000)} -constr {constr} -liberty {lib}"
-    return f"dfflibmap -liberty {lib}\n{abc}\n"
+    return (f"dfflibmap -liberty {lib}\n{abc}\nopt_clean -purge\n"
+            f"tee -q -o {os.path.join(work, 'stat.txt')} stat -liberty {lib}\n")
+
+
+def read_stat(work):
+    """(area_um2, cells, text) of the statistics map_commands wrote into `work`."""
+    text = open(os.path.join(work, "stat.txt")).read()
+    area = float(re.search(r"Chip area for (?:top )?module '[^']*':\s+([0-9.eE+-]+)",
+                           text).group(1))
+    return area, int(re.search(r"Number of cells:\s+([0-9]+)", text).group(1)), text
 
 
 def registered(ports, body):
@@ -89,22 +99,18 @@ def synthesize_node(ports, body, lib, own_flops=0):
     lib = library(lib)
     verilog, _ = registered(ports, body)
     with tempfile.TemporaryDirectory(prefix="glint-node.") as d:
-        src, stat = os.path.join(d, "top.v"), os.path.join(d, "stat.txt")
+        src = os.path.join(d, "top.v")
         net, sdc, tcl = (os.path.join(d, n) for n in ("net.v", "top.sdc", "sta.tcl"))
         open(src, "w").write(verilog)
         script = os.path.join(d, "synth.ys")
         open(script, "w").write(
             f"read_liberty -lib {lib}\nread_verilog {src}\nsynth -flatten -top top\n"
-            f"{map_commands(lib, d)}opt_clean -purge\n"
-            f"tee -q -o {stat} stat -liberty {lib}\nsetundef -zero\nsplitnets -ports\n"
+            f"{map_commands(lib, d)}setundef -zero\nsplitnets -ports\n"
             f"opt_clean\nrename -wire\n"
             f"write_verilog -noattr -noexpr -nohex -nodec -simple-lhs {net}\n")
         subprocess.run(["yosys", "-q", "-l", os.path.join(d, "log"), "-s", script], check=True,
                        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        text = open(stat).read()
-        area = float(re.search(r"Chip area for (?:top )?module '[^']*':\s+([0-9.eE+-]+)",
-                               text).group(1))
-        cells = int(re.search(r"Number of cells:\s+([0-9]+)", text).group(1))
+        area, cells, text = read_stat(d)
         open(sdc, "w").write("create_clock -name clk -period 10 [get_ports clk]\n"
                              "set_input_delay 0 -clock clk [delete_from_list [all_inputs] "
                              "[get_ports clk]]\nset_output_delay 0 -clock clk [all_outputs]\n")
