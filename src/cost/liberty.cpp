@@ -59,23 +59,33 @@ bool holds_register_group(std::string_view body) {
 
 namespace {
 
-// Every `cell ( NAME )` group of `text` (`cell` as a whole word): its name and its text up to
-// the next cell.
-std::vector<std::pair<std::string_view, std::string_view>> cells_of(std::string_view text) {
-  std::vector<std::pair<std::size_t, std::string_view>> starts;
-  constexpr std::string_view kCell = "cell";
-  for (std::size_t at = text.find(kCell); at != std::string_view::npos;
-       at = text.find(kCell, at + 1)) {
+// Every `keyword ( NAME )` group of `text` (`keyword` as a whole word): where the keyword
+// starts, NAME, and the index after ')'.
+struct NamedGroup {
+  std::size_t at;
+  std::string_view name;
+  std::size_t end;
+};
+std::vector<NamedGroup> named_groups(std::string_view text, std::string_view keyword) {
+  std::vector<NamedGroup> out;
+  for (std::size_t at = text.find(keyword); at != std::string_view::npos;
+       at = text.find(keyword, at + 1)) {
     if (at > 0 && is_word(text[at - 1])) continue;
-    const std::size_t after = at + kCell.size();
+    const std::size_t after = at + keyword.size();
     if (after < text.size() && is_word(text[after])) continue;
     const auto [name, end] = group_name(text, after);
-    if (!name.empty()) starts.emplace_back(at, name);
+    if (!name.empty()) out.push_back({at, name, end});
   }
+  return out;
+}
+
+// Every `cell ( NAME )` group of `text`: its name and its text up to the next cell.
+std::vector<std::pair<std::string_view, std::string_view>> cells_of(std::string_view text) {
+  const std::vector<NamedGroup> starts = named_groups(text, "cell");
   std::vector<std::pair<std::string_view, std::string_view>> out;
   for (std::size_t i = 0; i < starts.size(); ++i) {
-    const std::size_t end = i + 1 < starts.size() ? starts[i + 1].first : text.size();
-    out.emplace_back(starts[i].second, text.substr(starts[i].first, end - starts[i].first));
+    const std::size_t end = i + 1 < starts.size() ? starts[i + 1].at : text.size();
+    out.emplace_back(starts[i].name, text.substr(starts[i].at, end - starts[i].at));
   }
   return out;
 }
@@ -142,16 +152,8 @@ double cell_area(std::string_view body) {
 // The names of the cell's pins whose direction is input.
 std::vector<std::string> input_pins(std::string_view body) {
   std::vector<std::string> out;
-  constexpr std::string_view kPin = "pin";
-  for (std::size_t at = body.find(kPin); at != std::string_view::npos;
-       at = body.find(kPin, at + 1)) {
-    if (at > 0 && is_word(body[at - 1])) continue;
-    const std::size_t after = at + kPin.size();
-    if (after < body.size() && is_word(body[after])) continue;
-    const auto [name, end] = group_name(body, after);
-    if (!name.empty() && attribute(body.substr(end), "direction") == "input")
-      out.emplace_back(name);
-  }
+  for (const NamedGroup& pin : named_groups(body, "pin"))
+    if (attribute(body.substr(pin.end), "direction") == "input") out.emplace_back(pin.name);
   return out;
 }
 
