@@ -81,12 +81,12 @@ void run_yosys(const std::string& script, const std::string& log, const std::str
 
 // The generic flow: Yosys' own `synth` (coarse and fine optimisation, techmap to its internal gate
 // library, ABC on those gates), flattened so that depth is measured across the lane. With a
-// liberty file: flip-flops mapped by dfflibmap and logic by ABC onto its cells.
-// With a liberty file, abc maps for the clock period as its delay target and, given the
-// library's buffer (`constr`: a file naming it, the abc.constr below), buffers and sizes the
-// gates: without it abc leaves a register driving a hundred loads unbuffered, a path no real
-// flow keeps (schlick's merge-buffer read timed 13 ns unbuffered, 4.4 ns buffered). The
-// calibration scripts map the same way (tests/calibration/node_flow.py, map_commands).
+// liberty file: flip-flops mapped by dfflibmap and logic by ABC onto its cells, for the clock
+// period as its delay target and, given the library's buffer (`constr`: a file naming it, the
+// abc.constr below), buffered and sized: without it abc leaves a register driving a hundred
+// loads unbuffered, a path no real flow keeps (schlick's merge-buffer read timed 13 ns
+// unbuffered, 4.4 ns buffered). The calibration scripts map the same way
+// (tests/calibration/node_flow.py, map_commands).
 std::string yosys_script(const std::string& top, const std::vector<std::string>& sources,
                          const std::string& liberty, const std::string& stat,
                          const std::string& netlist, const std::string& sta_netlist,
